@@ -1,0 +1,22 @@
+//! rotor-rub: a Jeffcott rotor rubbing on an anisotropically supported stator, propagated segment
+//! by segment with closed forms derived at build time.
+//!
+//! `#![no_std]`, no heap, no panics on finite input. See `ARCHITECTURE.md` for the map.
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod analytic;
+pub mod field;
+pub mod math;
+pub mod method;
+pub mod params;
+pub mod propagate;
+pub mod reference;
+
+pub use method::{ContactScheme, Method, Options, Propagator};
+pub use params::{Field, ParamError, Params, Preset, Problem, State};
+pub use propagate::{
+    Event, EventKind, Propagate, PropagationError, Regime, Sample, advance_to, events, poincare,
+    poincare_times, samples,
+};

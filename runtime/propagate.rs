@@ -1,0 +1,273 @@
+//! The one interface every propagation method implements, and the drivers built on it: the events
+//! iterator, dense sampling and stroboscopic (Poincaré) sampling.
+//!
+//! A method only has to provide [`Propagate::advance`]: move forward to a target time or to the
+//! next contact switch, whichever comes first. Sampling never changes the trajectory: a method
+//! evaluates its own continuous representation at a sample time (closed form or dense output) and
+//! keeps its internal step sequence.
+
+use core::fmt;
+
+use crate::params::{ParamError, State};
+
+/// Contact regime (`model.md` §1): free flight for z < 1, contact for z > 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Regime {
+    /// No contact: the rotor moves freely inside the clearance.
+    Free,
+    /// The rotor presses on the stator.
+    Contact,
+}
+
+/// What a switch does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EventKind {
+    /// Contact starts (z crosses 1 upwards).
+    Enter,
+    /// Contact ends (z crosses 1 downwards).
+    Exit,
+}
+
+impl EventKind {
+    /// `enter` or `exit`, as written in event files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            EventKind::Enter => "enter",
+            EventKind::Exit => "exit",
+        }
+    }
+
+    /// The regime after the switch.
+    pub const fn regime_after(self) -> Regime {
+        match self {
+            EventKind::Enter => Regime::Contact,
+            EventKind::Exit => Regime::Free,
+        }
+    }
+}
+
+/// A contact switch: time, kind and the state at the switch (where z = 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Event {
+    /// Switch time τ.
+    pub time: f64,
+    /// Entry or exit.
+    pub kind: EventKind,
+    /// State at the switch.
+    pub state: State,
+}
+
+/// Why a propagation stopped early.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PropagationError {
+    /// The problem failed validation.
+    InvalidProblem(ParamError),
+    /// A target time before the current time, or not finite.
+    InvalidTarget {
+        /// The requested time.
+        target: f64,
+        /// The current time.
+        current: f64,
+    },
+    /// The motion grows without bound (flutter, `model.md` §6 case 3): the displacement passed
+    /// the divergence limit at `time`.
+    Diverged {
+        /// When the limit was passed.
+        time: f64,
+        /// The state then.
+        state: State,
+    },
+    /// The linearized contact stiffness is singular (det Kl = 0, `model.md` §6 case 9) or the
+    /// contact forcing is exactly resonant (case 10) at `time`.
+    SingularContact {
+        /// When.
+        time: f64,
+    },
+    /// An adaptive method could not meet its tolerance with a representable step at `time`.
+    StepSizeUnderflow {
+        /// When.
+        time: f64,
+    },
+    /// An invalid method option (tolerance or step size), named in `what`.
+    InvalidOption {
+        /// The option's name.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+}
+
+impl fmt::Display for PropagationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            PropagationError::InvalidProblem(e) => write!(f, "invalid problem: {e}"),
+            PropagationError::InvalidTarget { target, current } => write!(
+                f,
+                "target time {target} is invalid: it must be finite and not before the current time {current}"
+            ),
+            PropagationError::Diverged { time, state } => write!(
+                f,
+                "the motion diverged at time {time} (x = {}, y = {}): the contact feeds energy faster than damping removes it",
+                state.x, state.y
+            ),
+            PropagationError::SingularContact { time } => write!(
+                f,
+                "the linearized contact system is singular or resonant at time {time}"
+            ),
+            PropagationError::StepSizeUnderflow { time } => write!(
+                f,
+                "the step size underflowed at time {time}: the tolerance cannot be met"
+            ),
+            PropagationError::InvalidOption { what, value } => {
+                write!(f, "{what} = {value} is invalid")
+            }
+        }
+    }
+}
+
+impl core::error::Error for PropagationError {}
+
+impl From<ParamError> for PropagationError {
+    fn from(e: ParamError) -> Self {
+        PropagationError::InvalidProblem(e)
+    }
+}
+
+/// Radius (in clearances) beyond which a trajectory is declared [`PropagationError::Diverged`].
+pub const DIVERGENCE_RADIUS: f64 = 1.0e4;
+
+/// A propagation method: analytic, hybrid or a reference integrator.
+pub trait Propagate {
+    /// The current time τ.
+    fn time(&self) -> f64;
+    /// The state at [`Propagate::time`].
+    fn state(&self) -> State;
+    /// The regime at [`Propagate::time`] (after any switch reported at that time).
+    fn regime(&self) -> Regime;
+    /// Advance to `target` or to the next switch, whichever comes first.
+    ///
+    /// Returns `Ok(Some(event))` with `time() == event.time` when a switch at or before `target`
+    /// stopped it, `Ok(None)` with `time() == target` otherwise. A target equal to the current
+    /// time returns `Ok(None)` at once; a switch is never reported twice.
+    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError>;
+}
+
+/// Iterator over the switches up to `end` (see [`events`]).
+pub struct Events<'a, P: ?Sized> {
+    propagator: &'a mut P,
+    end: f64,
+    done: bool,
+}
+
+/// The switches of `propagator` from its current time to `end`, in order. An error is yielded
+/// once, then the iterator ends.
+pub fn events<P: Propagate + ?Sized>(propagator: &mut P, end: f64) -> Events<'_, P> {
+    Events {
+        propagator,
+        end,
+        done: false,
+    }
+}
+
+impl<P: Propagate + ?Sized> Iterator for Events<'_, P> {
+    type Item = Result<Event, PropagationError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        match self.propagator.advance(self.end) {
+            Ok(Some(event)) => Some(Ok(event)),
+            Ok(None) => {
+                self.done = true;
+                None
+            }
+            Err(e) => {
+                self.done = true;
+                Some(Err(e))
+            }
+        }
+    }
+}
+
+/// One sampled point of a trajectory.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Sample time τ.
+    pub time: f64,
+    /// State at `time`.
+    pub state: State,
+    /// Regime at `time`.
+    pub regime: Regime,
+}
+
+/// Advance to `time`, passing every switch on the way to `on_event`, and return the sample there.
+pub fn advance_to<P: Propagate + ?Sized>(
+    propagator: &mut P,
+    time: f64,
+    mut on_event: impl FnMut(&Event),
+) -> Result<Sample, PropagationError> {
+    while let Some(event) = propagator.advance(time)? {
+        on_event(&event);
+    }
+    Ok(Sample {
+        time: propagator.time(),
+        state: propagator.state(),
+        regime: propagator.regime(),
+    })
+}
+
+/// Iterator over samples at given non-decreasing times (see [`samples`]).
+pub struct Samples<'a, P: ?Sized, I> {
+    propagator: &'a mut P,
+    times: I,
+    done: bool,
+}
+
+/// The states at each of `times` (non-decreasing, not before the current time). Switches passed on
+/// the way are not reported; use [`advance_to`] to see both.
+pub fn samples<P, I>(propagator: &mut P, times: I) -> Samples<'_, P, I::IntoIter>
+where
+    P: Propagate + ?Sized,
+    I: IntoIterator<Item = f64>,
+{
+    Samples {
+        propagator,
+        times: times.into_iter(),
+        done: false,
+    }
+}
+
+impl<P: Propagate + ?Sized, I: Iterator<Item = f64>> Iterator for Samples<'_, P, I> {
+    type Item = Result<Sample, PropagationError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        let t = self.times.next()?;
+        let r = advance_to(self.propagator, t, |_| {});
+        self.done = r.is_err();
+        Some(r)
+    }
+}
+
+/// The stroboscopic times `start + k·period` for k = 1, 2, … of the forcing, where `start` is the
+/// first forcing-period boundary at or after the propagator's current time. Forcing-period
+/// boundaries are the times τ = k·2π/η (θ = φ0 + 2πk).
+pub fn poincare_times(current: f64, speed_ratio: f64, count: usize) -> impl Iterator<Item = f64> {
+    let period = core::f64::consts::TAU / speed_ratio;
+    let first = libm::ceil(current / period - 1e-9);
+    (0..count).map(move |k| (first + k as f64) * period)
+}
+
+/// The Poincaré section: the state once per forcing period at τ = k·2π/η, for the next `count`
+/// periods (see [`poincare_times`]).
+pub fn poincare<P: Propagate + ?Sized>(
+    propagator: &mut P,
+    speed_ratio: f64,
+    count: usize,
+) -> Samples<'_, P, impl Iterator<Item = f64> + use<P>> {
+    let times = poincare_times(propagator.time(), speed_ratio, count);
+    samples(propagator, times)
+}
