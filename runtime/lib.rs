@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod analytic;
+pub mod coefficients;
 pub mod field;
 pub mod math;
 pub mod method;

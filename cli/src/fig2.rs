@@ -1,0 +1,271 @@
+//! The main job (no subcommand, or `fig2`): the paper's Fig. 2, analytic and numerical orbits
+//! for six speed ratios side by side, with a table of switch agreement, response class,
+//! largest Lyapunov exponent and run times.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use rayon::prelude::*;
+use rotor_rub::{Event, Field, Method, Options, Problem, Sample, State};
+
+use crate::analysis::classify::{Response, classify, distinct_points};
+use crate::analysis::lyapunov::largest_exponent;
+use crate::analysis::switches::Matching;
+use crate::compare::{legend, orbit};
+use crate::error::{CliError, Result};
+use crate::options::{SchemeArgs, describe, parse_positive, parse_reference};
+use crate::output::ensure_dir;
+use crate::plot::orbit::{OrbitFigure, Panel};
+use crate::plot::{self, ANALYTIC, REFERENCE};
+use crate::problem::ProblemArgs;
+use crate::trajectory::{self, dense_times, period_times};
+
+/// Options of the main job. The defaults reproduce Fig. 2; smaller values give a quick check.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Args {
+    #[command(flatten)]
+    pub problem: ProblemArgs,
+
+    #[command(flatten)]
+    pub scheme: SchemeArgs,
+
+    /// Numerical reference method: dop853 or rk45
+    #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference)]
+    pub reference: Method,
+
+    /// Tolerance of the reference method, > 0 [default: 1e-10]
+    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    pub reference_tol: Option<f64>,
+
+    /// Speed ratios η = Ω/ω_n, one panel each (comma-separated; each replaces speed_ratio)
+    #[arg(long, value_name = "η,...", value_delimiter = ',', value_parser = parse_positive,
+          default_value = "1,1.5,2,2.5,3,3.5")]
+    pub speeds: Vec<f64>,
+
+    /// First forcing period plotted (the transient before it is not shown)
+    #[arg(long, value_name = "P", default_value_t = 200)]
+    pub plot_from: u64,
+
+    /// Last forcing period plotted
+    #[arg(long, value_name = "P", default_value_t = 260)]
+    pub plot_to: u64,
+
+    /// Poincaré section length in forcing periods, from --plot-from on (classifies the response)
+    #[arg(long, value_name = "P", default_value_t = 100)]
+    pub section: u64,
+
+    /// Forcing periods of the Lyapunov estimate (renormalised once per period), from --plot-from
+    #[arg(long, value_name = "P", default_value_t = 100)]
+    pub lyapunov: u64,
+
+    /// Switch times are compared over the first this many forcing periods (before chaos
+    /// separates the two runs)
+    #[arg(long, value_name = "P", default_value_t = 20)]
+    pub match_periods: u64,
+
+    /// Directory for fig2.svg and fig2.png
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out_dir: PathBuf,
+}
+
+/// One method's results at one speed.
+struct MethodResult {
+    events: Vec<Event>,
+    orbit: Vec<Sample>,
+    response: Response,
+    distinct: usize,
+    lyapunov: f64,
+    elapsed: Duration,
+}
+
+/// Both methods at one speed.
+struct SpeedResult {
+    eta: f64,
+    offset: (f64, f64),
+    analytic: MethodResult,
+    reference: MethodResult,
+    matching: Matching,
+}
+
+fn run_method(problem: &Problem, options: &Options, args: &Args) -> Result<MethodResult> {
+    let eta = problem.params.speed_ratio;
+    let context = format!("{} at η = {eta}", options.method.name());
+    let wrap = |e: CliError| e.context(&context);
+    let period = problem.params.forcing_period();
+    let end_period = args.plot_to.max(args.plot_from + args.section);
+    let end = end_period as f64 * period;
+    let (from, to) = (args.plot_from as f64 * period, args.plot_to as f64 * period);
+    // Orbit samples and section points in one time-ordered list, tagged.
+    let mut times: Vec<(f64, bool)> = dense_times(from, to, period, 100)
+        .map(|t| (t, false))
+        .chain(period_times(args.plot_from, period, args.section).map(|t| (t, true)))
+        .collect();
+    times.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let propagator = trajectory::start(problem, options).map_err(wrap)?;
+    let (pass, samples) =
+        trajectory::run_collect(propagator, end, times.iter().map(|t| t.0)).map_err(wrap)?;
+    let (mut orbit, mut section) = (Vec::new(), Vec::<State>::new());
+    for (sample, &(_, is_section)) in samples.iter().zip(&times) {
+        if is_section {
+            section.push(sample.state);
+        } else {
+            orbit.push(*sample);
+        }
+    }
+    let start = Problem {
+        initial: section[0],
+        start_time: from,
+        ..*problem
+    };
+    let lyapunov = largest_exponent(&start, options, period, args.lyapunov as usize)
+        .map_err(|e| wrap(CliError::propagation("", e)))?;
+    Ok(MethodResult {
+        events: pass.events,
+        orbit,
+        response: classify(&section, Some(lyapunov)),
+        distinct: distinct_points(&section),
+        lyapunov,
+        elapsed: pass.elapsed,
+    })
+}
+
+fn run_speed(base: &Problem, eta: f64, args: &Args, options: [&Options; 2]) -> Result<SpeedResult> {
+    let mut problem = *base;
+    Field::SpeedRatio.set(&mut problem, eta);
+    problem
+        .validate()
+        .map_err(|e| CliError::input(format!("invalid parameters at η = {eta}: {e}")))?;
+    let analytic = run_method(&problem, options[0], args)?;
+    let reference = run_method(&problem, options[1], args)?;
+    let window = args.match_periods as f64 * problem.params.forcing_period();
+    let matching = Matching::new(&analytic.events, &reference.events, window);
+    Ok(SpeedResult {
+        eta,
+        offset: (problem.params.offset_x, problem.params.offset_y),
+        analytic,
+        reference,
+        matching,
+    })
+}
+
+fn ms(d: Duration) -> String {
+    format!("{:.1} ms", d.as_secs_f64() * 1e3)
+}
+
+fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) {
+    let (a, r) = (options[0].method.name(), options[1].method.name());
+    println!(
+        "Fig. 2: {} vs {}; {} forcing periods per run",
+        describe(options[0]),
+        describe(options[1]),
+        args.plot_to.max(args.plot_from + args.section)
+    );
+    println!(
+        "switch times compared on matched switches over forcing periods 0-{}; response from the Poincaré section over periods {}-{} and the largest Lyapunov exponent (Benettin, {} periods from period {}, per unit τ)",
+        args.match_periods,
+        args.plot_from,
+        args.plot_from + args.section,
+        args.lyapunov,
+        args.plot_from
+    );
+    println!(
+        "{:>5} | {:>15} | {:>9} | {:>9} | {:<16} {:>8} {:>8} | {:<16} {:>8} {:>8} | {:>10} {:>10}",
+        "η",
+        format!("switches {a}/{r}"),
+        "matched",
+        "max |Δτ|",
+        format!("class {a}"),
+        "points",
+        "λ",
+        format!("class {r}"),
+        "points",
+        "λ",
+        format!("time {a}"),
+        format!("time {r}"),
+    );
+    for s in results {
+        let m = &s.matching;
+        println!(
+            "{:>5} | {:>15} | {:>9} | {:>9} | {:<16} {:>8} {:>8.4} | {:<16} {:>8} {:>8.4} | {:>10} {:>10}",
+            s.eta,
+            format!("{}/{}", s.analytic.events.len(), s.reference.events.len()),
+            format!("{}/{}", m.matched(), m.pairs.len()),
+            m.max_dt().map_or_else(|| "-".into(), |d| format!("{d:.2e}")),
+            s.analytic.response.to_string(),
+            s.analytic.distinct,
+            s.analytic.lyapunov,
+            s.reference.response.to_string(),
+            s.reference.distinct,
+            s.reference.lyapunov,
+            ms(s.analytic.elapsed),
+            ms(s.reference.elapsed),
+        );
+    }
+}
+
+/// Run the main job.
+pub fn run(args: &Args) -> Result<()> {
+    if args.plot_to <= args.plot_from {
+        return Err(CliError::input(format!(
+            "--plot-to {} is invalid: it must be > --plot-from ({})",
+            args.plot_to, args.plot_from
+        )));
+    }
+    for (name, value) in [("--section", args.section), ("--lyapunov", args.lyapunov)] {
+        if value == 0 {
+            return Err(CliError::input(format!("{name} 0 is invalid: it must be >= 1")));
+        }
+    }
+    let base = args.problem.build()?;
+    let analytic = args.scheme.options(Method::Analytic);
+    let reference = Options {
+        tol: args.reference_tol,
+        ..Options::with_method(args.reference)
+    };
+    let options = [&analytic, &reference];
+    let results: Vec<SpeedResult> = args
+        .speeds
+        .par_iter()
+        .map(|&eta| run_speed(&base, eta, args, options))
+        .collect::<Result<_>>()?;
+    print_table(&results, args, options);
+
+    let letters = "abcdefghijklmnopqrstuvwxyz";
+    let panels = results
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let period = std::f64::consts::TAU / s.eta;
+            let window = args.plot_from as f64 * period..=args.plot_to as f64 * period;
+            Panel {
+                title: format!(
+                    "({}) η = {}: {}",
+                    letters.chars().nth(i % 26).unwrap_or('?'),
+                    s.eta,
+                    s.analytic.response
+                ),
+                offset: s.offset,
+                orbits: vec![
+                    orbit(&s.analytic.orbit, &s.analytic.events, window.clone(), ANALYTIC, false),
+                    orbit(&s.reference.orbit, &s.reference.events, window, REFERENCE, true),
+                ],
+            }
+        })
+        .collect();
+    let figure = OrbitFigure {
+        title: format!(
+            "Orbits over forcing periods {}-{} (x, y in clearances)",
+            args.plot_from, args.plot_to
+        ),
+        legend: legend(&analytic, &reference),
+        panels,
+        columns: 3.min(results.len()).max(1),
+        panel: (520, 520),
+    };
+    ensure_dir(&args.out_dir)?;
+    let svg = args.out_dir.join("fig2.svg");
+    let png = args.out_dir.join("fig2.png");
+    plot::save(&figure, &svg, &png)?;
+    println!("figures written to {} and {}", svg.display(), png.display());
+    Ok(())
+}

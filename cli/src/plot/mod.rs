@@ -1,0 +1,174 @@
+//! Plots (plotters), each written as SVG and PNG. Text is rendered with an embedded font
+//! (DejaVu Sans, registered with plotters' ab_glyph backend), so PNGs render the same on a
+//! machine without system fonts.
+
+pub mod orbit;
+pub mod scatter;
+pub mod spectrum;
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+
+use crate::error::{CliError, Result};
+use crate::output::AtomicFile;
+
+/// Colour of the analytic (or single) trajectory.
+pub const ANALYTIC: RGBColor = RGBColor(31, 119, 180);
+/// Colour of the numerical reference trajectory.
+pub const REFERENCE: RGBColor = RGBColor(40, 40, 40);
+/// Colour of the clearance circle.
+pub const CLEARANCE: RGBColor = RGBColor(150, 150, 150);
+/// Contact-start markers.
+pub const ENTER: RGBColor = RGBColor(220, 30, 30);
+/// Contact-end markers.
+pub const EXIT: RGBColor = RGBColor(20, 160, 40);
+
+/// Register the embedded font under the family name plotters uses for `"sans-serif"`.
+pub fn register_fonts() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        for (style, bytes) in [
+            (FontStyle::Normal, dejavu::sans::regular()),
+            (FontStyle::Bold, dejavu::sans::bold()),
+            (FontStyle::Italic, dejavu::sans::oblique()),
+            (FontStyle::Oblique, dejavu::sans::oblique()),
+        ] {
+            register_font("sans-serif", style, bytes)
+                .unwrap_or_else(|_| panic!("the embedded DejaVu font is valid"));
+        }
+    });
+}
+
+/// Something drawable on any plotters backend.
+pub trait Figure {
+    /// Size in pixels (SVG user units).
+    fn size(&self) -> (u32, u32);
+    /// Draw onto `root`.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
+}
+
+/// A plotters error as a message.
+pub fn err(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}
+
+/// Write `figure` to `svg` and `png` (both atomically).
+pub fn save(figure: &impl Figure, svg: &Path, png: &Path) -> Result<()> {
+    register_fonts();
+    let size = figure.size();
+    let svg_file = AtomicFile::create(svg)?;
+    let png_file = AtomicFile::create(png)?;
+    let failed = |dest: &Path, e: String| {
+        CliError::failure(format!("cannot draw {}: {e}", dest.display()))
+    };
+    {
+        let root = SVGBackend::new(svg_file.temp_path(), size).into_drawing_area();
+        figure.draw(&root).map_err(|e| failed(svg, e))?;
+        root.present().map_err(|e| failed(svg, err(e)))?;
+    }
+    {
+        let root = BitMapBackend::new(png_file.temp_path(), size).into_drawing_area();
+        figure.draw(&root).map_err(|e| failed(png, e))?;
+        root.present().map_err(|e| failed(png, err(e)))?;
+    }
+    svg_file.commit()?;
+    png_file.commit()
+}
+
+/// Write `figure` as `<stem>.svg` and `<stem>.png` next to `path` (any extension).
+pub fn save_beside(figure: &impl Figure, path: &Path) -> Result<[std::path::PathBuf; 2]> {
+    let svg = path.with_extension("svg");
+    let png = path.with_extension("png");
+    save(figure, &svg, &png)?;
+    Ok([svg, png])
+}
+
+/// A range covering `values` with a 5 % margin (a unit range around a single value).
+pub fn padded_range(values: impl IntoIterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return -1.0..1.0;
+    }
+    let pad = if hi > lo { 0.05 * (hi - lo) } else { 0.5 };
+    (lo - pad)..(hi + pad)
+}
+
+/// Equal-scale x and y ranges covering `points` for a plotting area of `w`×`h` pixels.
+pub fn square_ranges(
+    points: impl IntoIterator<Item = (f64, f64)>,
+    (w, h): (u32, u32),
+) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
+    let (xs, ys): (Vec<f64>, Vec<f64>) = points.into_iter().unzip();
+    let (x, y) = (padded_range(xs), padded_range(ys));
+    let (cx, cy) = ((x.start + x.end) / 2.0, (y.start + y.end) / 2.0);
+    let per_pixel = ((x.end - x.start) / w as f64).max((y.end - y.start) / h as f64);
+    let (hx, hy) = (per_pixel * w as f64 / 2.0, per_pixel * h as f64 / 2.0);
+    ((cx - hx)..(cx + hx), (cy - hy)..(cy + hy))
+}
+
+/// The clearance circle z = 1 around the stator centre.
+pub fn clearance_circle(offset: (f64, f64)) -> Vec<(f64, f64)> {
+    (0..=360)
+        .map(|k| {
+            let a = (k as f64).to_radians();
+            (offset.0 + a.cos(), offset.1 + a.sin())
+        })
+        .collect()
+}
+
+/// Draw a one-line legend of (sample, label) entries at pixel `(x, y)` of `area`.
+pub fn legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    (mut x, y): (i32, i32),
+    entries: &[(LegendMark, &str)],
+) -> Result<(), String> {
+    let font = ("sans-serif", 16).into_font();
+    for (mark, label) in entries {
+        match *mark {
+            LegendMark::Line(c) => area
+                .draw(&PathElement::new(vec![(x, y), (x + 30, y)], c.stroke_width(2)))
+                .map_err(err)?,
+            LegendMark::Dashed(c) => {
+                for k in 0..3 {
+                    let s = x + k * 11;
+                    area.draw(&PathElement::new(vec![(s, y), (s + 6, y)], c.stroke_width(2)))
+                        .map_err(err)?;
+                }
+            }
+            LegendMark::Dot(c) => area
+                .draw(&Circle::new((x + 15, y), 4, c.filled()))
+                .map_err(err)?,
+            LegendMark::Ring(c) => area
+                .draw(&Circle::new((x + 15, y), 4, c.stroke_width(1)))
+                .map_err(err)?,
+        }
+        let text_x = x + 36;
+        area.draw(&Text::new(label.to_string(), (text_x, y - 8), font.clone()))
+            .map_err(err)?;
+        let (w, _) = area.estimate_text_size(label, &font).map_err(err)?;
+        x = text_x + w as i32 + 24;
+    }
+    Ok(())
+}
+
+/// A legend entry's sample.
+#[derive(Clone, Copy)]
+pub enum LegendMark {
+    /// A solid line.
+    Line(RGBColor),
+    /// A dashed line.
+    Dashed(RGBColor),
+    /// A filled marker.
+    Dot(RGBColor),
+    /// A hollow marker.
+    Ring(RGBColor),
+}

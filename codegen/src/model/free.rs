@@ -1,0 +1,208 @@
+//! Free flight (`model.md` §4): steady-state harmonic response, damped frequency, and the robust
+//! closed form x_h = X·EC + P·ES, with EC = e^{−νs} cos βs and ES = e^{−νs} sin(βs)/β.
+
+use super::{Model, Rates};
+use crate::derive::derivative;
+
+pub(super) fn derive(m: &mut Model) {
+    free_particular(m);
+    damped_frequency(m);
+    free_homogeneous(m);
+    free_eval(m);
+}
+
+/// c11 … c44: the harmonic ansatz substituted into the free equations; coefficients of cos θ and
+/// sin θ set to zero.
+fn free_particular(m: &mut Model) {
+    let mut rates = Rates::new();
+    let ph = m.forcing_phasor(&mut rates);
+    let [c11, c22, c33, c44] = ["c11", "c22", "c33", "c44"].map(|n| m.var(n));
+    let q = harmonic(m, ph, [c11, c22, c33, c44]);
+    let forcing = m.unbalance(ph);
+    let r = m.equations_of_motion(q, &rates, q, forcing);
+    let mut eqs = m.coefficients(r[0], &ph);
+    eqs.extend(m.coefficients(r[1], &ph));
+    let c = m.solve(&eqs, &["c11", "c22", "c33", "c44"]);
+    m.add_formula(
+        "free_particular",
+        "Steady-state harmonic response of free flight: xp = c11 cos θ + c22 sin θ, yp = c33 cos θ + c44 sin θ.",
+        "model.md §4, eqs. (5)–(6)",
+        "harmonic ansatz substituted into the free equations of motion; the 4×4 system for the coefficients of cos θ and sin θ solved by Cramer's rule.",
+        &["nu", "eta", "f"],
+        "FreeParticular",
+        vec![
+            ("c11", "c11, cos θ coefficient of x", c[0]),
+            ("c22", "c22, sin θ coefficient of x", c[1]),
+            ("c33", "c33, cos θ coefficient of y", c[2]),
+            ("c44", "c44, sin θ coefficient of y", c[3]),
+        ],
+    );
+}
+
+/// The harmonic ansatz (c11 cos θ + c22 sin θ, c33 cos θ + c44 sin θ).
+pub(super) fn harmonic(m: &mut Model, ph: [crate::expr::ExprId; 2], c: [crate::expr::ExprId; 4]) -> [crate::expr::ExprId; 2] {
+    let g = &mut m.graph;
+    let a = g.mul(c[0], ph[0]);
+    let b = g.mul(c[1], ph[1]);
+    let x = g.add(a, b);
+    let a = g.mul(c[2], ph[0]);
+    let b = g.mul(c[3], ph[1]);
+    let y = g.add(a, b);
+    [x, y]
+}
+
+/// β² and γ²: the ansatz e^{−ντ} cos(√(b) τ) in a mode of stiffness ω² leaves the residual
+/// ω² − ν² − b at τ = 0, so b = ω² − ν² (free flight: ω² = 1).
+fn damped_frequency(m: &mut Model) {
+    let tau = m.var("tau");
+    let nu = m.var("nu");
+    let bsq = m.var("bsq");
+    let omega_sq = m.var("omega_sq");
+    let g = &mut m.graph;
+    let t_sym = g.symbol("tau");
+    let one = g.constant(1.0);
+    let rates = Rates::from([(t_sym, one)]);
+    let decay = {
+        let a = g.mul(nu, tau);
+        let a = g.neg(a);
+        g.exp(a)
+    };
+    let osc = {
+        let b = g.sqrt(bsq);
+        let a = g.mul(b, tau);
+        g.cos(a)
+    };
+    let x = g.mul(decay, osc);
+    let zero = g.constant(0.0);
+    let stiff = g.mul(omega_sq, x);
+    let r = m.equations_of_motion([x, zero], &rates, [stiff, zero], [zero, zero]);
+    let at0 = m.subst(r[0], &[("tau", zero)]);
+    let b = m.solve(&[at0], &["bsq"])[0];
+    m.add_formula(
+        "damped_frequency_sq",
+        "Squared damped frequency γ² = ω² − ν² of a mode of undamped frequency² ω² (β² for free flight, ω² = 1); negative when over-damped.",
+        "model.md §4 (β), §5 (γ_i), §6 cases 4–6, 11",
+        "ansatz e^{−ντ} cos(√b τ) substituted into the homogeneous equation x'' + 2νx' + ω²x = 0, residual at τ = 0 solved for b.",
+        &["omega_sq", "nu"],
+        "DampedFrequency",
+        vec![("gamma_sq", "γ² = ω² − ν²", b)],
+    );
+    let one = m.graph.constant(1.0);
+    let beta = m.subst(b, &[("omega_sq", one)]);
+    m.add_formula(
+        "free_damped_frequency_sq",
+        "Squared damped frequency β² = 1 − ν² of free flight (negative for ν > 1, zero at critical damping).",
+        "model.md §4",
+        "`damped_frequency_sq` at ω² = 1.",
+        &["nu"],
+        "FreeDampedFrequency",
+        vec![("beta_sq", "β² = 1 − ν²", beta)],
+    );
+}
+
+/// The robust basis: EC(0) = 1, ES(0) = 0, EC' = −ν EC − β² ES, ES' = EC − ν ES.
+pub(super) fn damped_basis(m: &mut Model, rates: &mut Rates, ec: &str, es: &str, bsq: &str) -> [crate::expr::ExprId; 2] {
+    let (c, s) = (m.var(ec), m.var(es));
+    let nu = m.var("nu");
+    let b = m.var(bsq);
+    let g = &mut m.graph;
+    let rc = {
+        let a = g.mul(nu, c);
+        let bb = g.mul(b, s);
+        let t = g.add(a, bb);
+        g.neg(t)
+    };
+    let rs = {
+        let a = g.mul(nu, s);
+        g.sub(c, a)
+    };
+    rates.insert(g.symbol(ec), rc);
+    rates.insert(g.symbol(es), rs);
+    [c, s]
+}
+
+/// Free trajectory x = X·EC + P·ES + xp (and y alike) as an expression of the basis values.
+fn free_trajectory(m: &mut Model, rates: &mut Rates) -> [crate::expr::ExprId; 2] {
+    let ph = m.forcing_phasor(rates);
+    let [ec, es] = damped_basis(m, rates, "ec", "es", "beta_sq");
+    let c = ["c11", "c22", "c33", "c44"].map(|n| m.var(n));
+    let p = harmonic(m, ph, c);
+    let [xh, yh, px, py] = ["xh", "yh", "px", "py"].map(|n| m.var(n));
+    let g = &mut m.graph;
+    let hx = {
+        let a = g.mul(xh, ec);
+        let b = g.mul(px, es);
+        g.add(a, b)
+    };
+    let hy = {
+        let a = g.mul(yh, ec);
+        let b = g.mul(py, es);
+        g.add(a, b)
+    };
+    [g.add(hx, p[0]), g.add(hy, p[1])]
+}
+
+/// X, P (and Y, Q) from the state at the segment start.
+fn free_homogeneous(m: &mut Model) {
+    let mut rates = Rates::new();
+    let q = free_trajectory(m, &mut rates);
+    let (one, zero) = (m.graph.constant(1.0), m.graph.constant(0.0));
+    let mut eqs = Vec::new();
+    for (i, (x0, v0)) in [("x0", "vx0"), ("y0", "vy0")].into_iter().enumerate() {
+        let pos = m.var(x0);
+        let vel = m.var(v0);
+        let d = derivative(&mut m.graph, q[i], &rates);
+        let e = m.graph.sub(q[i], pos);
+        eqs.push(m.subst(e, &[("ec", one), ("es", zero)]));
+        let e = m.graph.sub(d, vel);
+        eqs.push(m.subst(e, &[("ec", one), ("es", zero)]));
+    }
+    let c = m.solve(&eqs, &["xh", "px", "yh", "py"]);
+    m.add_formula(
+        "free_homogeneous",
+        "Constants X, P, Y, Q of the free homogeneous solution x_h = X·EC(s) + P·ES(s) from the state (x0, y0, vx0, vy0) and forcing phase (cos θ0, sin θ0) at the segment start (P = c2·β of the paper; no division by β).",
+        "model.md §4 (robust form), §6 cases 11–12",
+        "initial conditions of the trajectory X·EC + P·ES + xp at s = 0 (EC = 1, ES = 0) solved for X, P, Y, Q.",
+        &["x0", "y0", "vx0", "vy0", "c11", "c22", "c33", "c44", "ct", "st", "eta", "nu"],
+        "FreeHomogeneous",
+        vec![
+            ("xh", "X = x0 − xp(τ0)", c[0]),
+            ("px", "P = x0' − xp'(τ0) + ν X", c[1]),
+            ("yh", "Y = y0 − yp(τ0)", c[2]),
+            ("py", "Q = y0' − yp'(τ0) + ν Y", c[3]),
+        ],
+    );
+}
+
+/// State and switching function at local time s of a free segment.
+fn free_eval(m: &mut Model) {
+    let mut rates = Rates::new();
+    let q = free_trajectory(m, &mut rates);
+    let (ex, ey) = (m.var("ex"), m.var("ey"));
+    let g = &mut m.graph;
+    let vx = derivative(g, q[0], &rates);
+    let vy = derivative(g, q[1], &rates);
+    let u = g.sub(q[0], ex);
+    let v = g.sub(q[1], ey);
+    let uu = g.mul(u, u);
+    let vv = g.mul(v, v);
+    let m1 = g.constant(-1.0);
+    let h = g.sum(&[uu, vv, m1]);
+    let dh = derivative(g, h, &rates);
+    m.add_formula(
+        "free_eval",
+        "State (x, y, x', y') and switching function h = z² − 1 with h' on a free segment, from the basis values EC(s), ES(s) and the forcing phasor (cos θ, sin θ).",
+        "model.md §4, eq. (10)",
+        "the trajectory X·EC + P·ES + xp and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, (cos θ)' = −η sin θ, (sin θ)' = η cos θ.",
+        &["xh", "px", "yh", "py", "c11", "c22", "c33", "c44", "ec", "es", "ct", "st", "nu", "beta_sq", "eta", "ex", "ey"],
+        "FreeState",
+        vec![
+            ("x", "x", q[0]),
+            ("y", "y", q[1]),
+            ("vx", "x'", vx),
+            ("vy", "y'", vy),
+            ("h", "h = z² − 1", h),
+            ("dh", "h' = dh/dτ", dh),
+        ],
+    );
+}

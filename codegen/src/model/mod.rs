@@ -1,0 +1,184 @@
+//! The model, stated once (`model.md` §1), and the derivations of every formula from it.
+//!
+//! The equations of motion are written in one place ([`Model::equations_of_motion`]):
+//!
+//! ```text
+//! q'' + 2ν q' + q + K_s·G = F (cos θ, sin θ)
+//! ```
+//!
+//! with G = 0 in free flight, G = g(u, v) = (1 − 1/z)(u, v) in contact, and G = J q + D for the
+//! Taylor-linearized contact. Each derivation substitutes an ansatz into them and solves for the
+//! unknown constants with the engine's linear solver: nothing below types a closed form in.
+
+mod contact;
+mod free;
+mod linearization;
+mod polynomial;
+
+use std::collections::HashMap;
+
+use crate::derive::{derivative, partial, solve_linear};
+use crate::emit::{Formula, Output};
+use crate::expr::{ExprId, Graph, Symbol};
+
+/// The model's graph and the formulas derived from it, in emission order.
+pub struct Model {
+    /// The expression graph all formulas live in.
+    pub graph: Graph,
+    /// The derived formulas.
+    pub formulas: Vec<Formula>,
+}
+
+/// Build the model and derive every formula.
+pub fn derive_all() -> Model {
+    let mut m = Model { graph: Graph::new(), formulas: Vec::new() };
+    linearization::derive(&mut m);
+    free::derive(&mut m);
+    contact::derive(&mut m);
+    polynomial::derive(&mut m);
+    m
+}
+
+/// The time-dependent quantities of an ansatz: each symbol's rate d/dτ.
+pub(crate) type Rates = HashMap<Symbol, ExprId>;
+
+/// A 2-vector of expressions.
+pub(crate) type Vec2 = [ExprId; 2];
+
+impl Model {
+    pub(crate) fn sym(&mut self, name: &str) -> Symbol {
+        self.graph.symbol(name)
+    }
+
+    pub(crate) fn var(&mut self, name: &str) -> ExprId {
+        self.graph.input(name)
+    }
+
+    /// The forcing phasor's symbols (cos θ, sin θ) and their rates, θ = ητ + φ0:
+    /// d(cos θ)/dτ = −η sin θ, d(sin θ)/dτ = η cos θ.
+    pub(crate) fn forcing_phasor(&mut self, rates: &mut Rates) -> Vec2 {
+        let eta = self.var("eta");
+        let ct = self.var("ct");
+        let st = self.var("st");
+        let g = &mut self.graph;
+        let rate_c = {
+            let p = g.mul(eta, st);
+            g.neg(p)
+        };
+        let rate_s = g.mul(eta, ct);
+        let (cs, ss) = (g.symbol("ct"), g.symbol("st"));
+        rates.insert(cs, rate_c);
+        rates.insert(ss, rate_s);
+        [ct, st]
+    }
+
+    /// The residual of the equations of motion (`model.md` §1) for a trajectory `q(τ)` whose
+    /// time dependence is given by `rates`, with stiffness term `stiffness` (q + K_s·G for the
+    /// regime) and forcing `forcing` on the right-hand side.
+    pub(crate) fn equations_of_motion(
+        &mut self,
+        q: Vec2,
+        rates: &Rates,
+        stiffness: Vec2,
+        forcing: Vec2,
+    ) -> Vec2 {
+        let nu = self.var("nu");
+        let g = &mut self.graph;
+        let mut residual = [q[0]; 2];
+        for i in 0..2 {
+            let v = derivative(g, q[i], rates);
+            let a = derivative(g, v, rates);
+            let damping = {
+                let t = g.mul(nu, v);
+                g.scale(2.0, t)
+            };
+            let rhs = g.neg(forcing[i]);
+            residual[i] = g.sum(&[a, damping, stiffness[i], rhs]);
+        }
+        residual
+    }
+
+    /// The unbalance forcing F (cos θ, sin θ).
+    pub(crate) fn unbalance(&mut self, phasor: Vec2) -> Vec2 {
+        let f = self.var("f");
+        [self.graph.mul(f, phasor[0]), self.graph.mul(f, phasor[1])]
+    }
+
+    /// The stator stiffness matrix K_s.
+    pub(crate) fn stator_stiffness(&mut self) -> [[ExprId; 2]; 2] {
+        [[self.var("kxx"), self.var("kxy")], [self.var("kyx"), self.var("kyy")]]
+    }
+
+    /// The linearized contact stiffness Kl and constant Fd as inputs (outputs of
+    /// `linearized_stiffness`).
+    pub(crate) fn linearized_inputs(&mut self) -> ([[ExprId; 2]; 2], Vec2) {
+        (
+            [[self.var("fa1"), self.var("fb1")], [self.var("fb2"), self.var("fa2")]],
+            [self.var("fd1"), self.var("fd2")],
+        )
+    }
+
+    /// Kl·q + Fd for the linearized contact regime.
+    pub(crate) fn linear_stiffness_term(&mut self, kl: [[ExprId; 2]; 2], fd: Vec2, q: Vec2) -> Vec2 {
+        let g = &mut self.graph;
+        let mut out = [q[0]; 2];
+        for i in 0..2 {
+            let a = g.mul(kl[i][0], q[0]);
+            let b = g.mul(kl[i][1], q[1]);
+            out[i] = g.sum(&[a, b, fd[i]]);
+        }
+        out
+    }
+
+    /// Solve the equations for the named unknowns.
+    pub(crate) fn solve(&mut self, equations: &[ExprId], unknowns: &[&str]) -> Vec<ExprId> {
+        let syms: Vec<Symbol> = unknowns.iter().map(|u| self.graph.symbol(u)).collect();
+        solve_linear(&mut self.graph, equations, &syms).expect("the model's systems are solvable")
+    }
+
+    /// The coefficients of `e` with respect to symbols in which it is linear, by partial
+    /// differentiation.
+    pub(crate) fn coefficients(&mut self, e: ExprId, of: &[ExprId]) -> Vec<ExprId> {
+        of.iter()
+            .map(|&s| {
+                let sym = self.graph.as_symbol(s).expect("coefficients of symbols");
+                partial(&mut self.graph, e, sym)
+            })
+            .collect()
+    }
+
+    /// Substitute symbols (by name) with expressions.
+    pub(crate) fn subst(&mut self, e: ExprId, pairs: &[(&str, ExprId)]) -> ExprId {
+        let map: HashMap<Symbol, ExprId> =
+            pairs.iter().map(|&(n, v)| (self.graph.symbol(n), v)).collect();
+        self.graph.substitute(e, &map)
+    }
+
+    /// Record a formula.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn add_formula(
+        &mut self,
+        name: &str,
+        summary: &str,
+        source: &str,
+        derivation: &str,
+        inputs: &[&str],
+        output_type: &str,
+        outputs: Vec<(&str, &str, ExprId)>,
+    ) {
+        let inputs = inputs.iter().map(|n| self.graph.symbol(n)).collect();
+        let outputs = outputs
+            .into_iter()
+            .map(|(name, doc, expr)| Output { name: name.to_owned(), doc: doc.to_owned(), expr })
+            .collect();
+        self.formulas.push(Formula {
+            name: name.to_owned(),
+            summary: summary.to_owned(),
+            source: source.to_owned(),
+            derivation: derivation.to_owned(),
+            inputs,
+            output_type: output_type.to_owned(),
+            outputs,
+        });
+    }
+}

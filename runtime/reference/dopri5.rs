@@ -1,0 +1,108 @@
+//! Dormand–Prince 5(4) (`DOPRI5`, MATLAB's `ode45`): 7 stages with FSAL, local extrapolation
+//! (the 5th-order solution is propagated), error from the embedded 4th-order solution, and
+//! Shampine's 4th-order dense output.
+
+use super::ode::{OdeSystem, lin};
+use super::scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance, stage_input, weighted};
+use super::tableau_dopri5 as tab;
+
+/// The Dormand–Prince 5(4) pair (marker type; see [`Scheme`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Dopri5;
+
+/// Dense output of one DOPRI5 step: a quartic in θ = (t − t0)/h,
+/// `r0 + θ(r1 + (1−θ)(r2 + θ(r3 + (1−θ) r4)))` (Hairer's `CONTD5`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dopri5Dense<const N: usize> {
+    t0: f64,
+    h: f64,
+    r: [[f64; N]; 5],
+}
+
+impl<const N: usize> Interpolant<N> for Dopri5Dense<N> {
+    fn start(&self) -> f64 {
+        self.t0
+    }
+
+    fn end(&self) -> f64 {
+        self.t0 + self.h
+    }
+
+    fn eval(&self, t: f64) -> [f64; N] {
+        let [r0, r1, r2, r3, r4] = &self.r;
+        if self.h == 0.0 {
+            return *r0;
+        }
+        let th = (t - self.t0) / self.h;
+        let th1 = 1.0 - th;
+        let mut out = [0.0; N];
+        let rows = out.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3).zip(r4);
+        for (((((o, a0), a1), a2), a3), a4) in rows {
+            *o = a0 + th * (a1 + th1 * (a2 + th * (a3 + th1 * a4)));
+        }
+        out
+    }
+}
+
+impl<const N: usize> Scheme<N> for Dopri5 {
+    /// k1..k7 (k7 = f(t + h, y1)).
+    type Stages = [[f64; N]; 7];
+    type Dense = Dopri5Dense<N>;
+    const ORDER: i32 = 5;
+    const STAGE_EVALUATIONS: u64 = 6;
+    const ACCEPT_EVALUATIONS: u64 = 0;
+    const CONTROLLER: Controller = Controller {
+        safety: 0.9,
+        fac_min: 0.2,
+        fac_max: 10.0,
+        alpha: 0.2 - 0.04 * 0.75,
+        beta: 0.04,
+    };
+
+    fn attempt<S: OdeSystem<N> + ?Sized>(
+        sys: &S,
+        t: f64,
+        y: &[f64; N],
+        f0: &[f64; N],
+        h: f64,
+        tol: &Tolerance,
+    ) -> Attempt<N, Self::Stages> {
+        let mut k = [[0.0; N]; 7];
+        k[0] = *f0;
+        let rows: [&[f64]; 5] = [&tab::A2, &tab::A3, &tab::A4, &tab::A5, &tab::A6];
+        for (i, (row, c)) in rows.iter().zip(tab::C.iter().skip(1)).enumerate() {
+            let yi = stage_input(y, h, row, &k);
+            if let Some(slot) = k.get_mut(i + 1) {
+                *slot = sys.rhs(t + c * h, &yi);
+            }
+        }
+        let y1 = stage_input(y, h, &tab::B, &k);
+        k[6] = sys.rhs(t + h, &y1);
+        let e = weighted(&tab::E, &k);
+        let mut sum = 0.0;
+        for ((ei, a), b) in e.iter().zip(y.iter()).zip(y1.iter()) {
+            let r = h * ei / tol.scale(*a, *b);
+            sum += r * r;
+        }
+        let err = crate::math::sqrt(sum / N.max(1) as f64);
+        Attempt { y1, err, stages: k }
+    }
+
+    fn accept<S: OdeSystem<N> + ?Sized>(
+        _sys: &S,
+        t: f64,
+        y: &[f64; N],
+        _f0: &[f64; N],
+        h: f64,
+        attempt: &Attempt<N, Self::Stages>,
+    ) -> ([f64; N], Self::Dense) {
+        let k = &attempt.stages;
+        let [k1, .., k7] = k;
+        let ydiff = lin(&[(1.0, &attempt.y1), (-1.0, y)]);
+        let bspl = lin(&[(h, k1), (-1.0, &ydiff)]);
+        let r3 = lin(&[(1.0, &ydiff), (-h, k7), (-1.0, &bspl)]);
+        let r4 = lin(&[(h, &weighted(&tab::D, k))]);
+        let r = [*y, ydiff, bspl, r3, r4];
+        (*k7, Dopri5Dense { t0: t, h, r })
+    }
+}

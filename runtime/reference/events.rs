@@ -1,0 +1,134 @@
+//! Event location on a step's dense output: the first time in a step at which a switching
+//! function leaves the current regime, including a crossing and return inside one step (a
+//! grazing contact, `model.md` §6 case 13).
+//!
+//! The switching function is given as `g(y) = (s, s')`: the value, positive inside the current
+//! regime, and its time derivative (for the rotor, ±(h, h') with h = z² − 1 from
+//! [`crate::field::switching_function`]). The start of every step counts as inside, so a regime
+//! that starts exactly on the switching surface is never switched again at its first instant
+//! (`model.md` §6 case 15).
+
+use super::scheme::Interpolant;
+
+/// Interior sample points per step at which the switching function and its derivative are
+/// checked (the step is split into this many equal sub-intervals).
+pub const SUBDIVISIONS: usize = 8;
+
+/// Iteration cap of [`refine_crossing`] (it needs about 60 bisections at worst for `f64`).
+const MAX_REFINE_ITERATIONS: u32 = 400;
+
+/// Where `f` becomes negative between `inside` (where f ≥ 0, or treated so) and `outside`
+/// (where `f_outside` < 0), to the resolution of `f64`: a safeguarded Illinois (modified regula
+/// falsi) iteration that falls back to bisection whenever the bracket does not halve over two
+/// iterations.
+///
+/// Returns the outside end of the final bracket: a point with f < 0 (or the root itself), at most
+/// a few ulps past the crossing and strictly after `inside`.
+pub fn refine_crossing<F: FnMut(f64) -> f64>(
+    mut f: F,
+    inside: f64,
+    f_inside: f64,
+    outside: f64,
+    f_outside: f64,
+) -> f64 {
+    let (mut a, mut b) = (inside, outside);
+    // Secant weights (Illinois halves the weight of an end that is kept twice).
+    let (mut fa, mut fb) = (f_inside.max(0.0), f_outside);
+    let mut side = 0i8;
+    let mut width_before = [math_abs(b - a); 2];
+    let mut force_bisect = false;
+    for _ in 0..MAX_REFINE_ITERATIONS {
+        let mid = a + 0.5 * (b - a);
+        if mid == a || mid == b || !mid.is_finite() {
+            break;
+        }
+        let secant = b - fb * (b - a) / (fb - fa);
+        let inside_open = if a < b {
+            secant > a && secant < b
+        } else {
+            secant < a && secant > b
+        };
+        let c = if force_bisect || !inside_open { mid } else { secant };
+        let fc = f(c);
+        if fc == 0.0 {
+            return c;
+        }
+        if fc < 0.0 {
+            b = c;
+            fb = fc;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        } else {
+            // NaN lands here: treated as inside, the bracket still shrinks.
+            a = c;
+            fa = if fc.is_nan() { 0.0 } else { fc };
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        }
+        let width = math_abs(b - a);
+        force_bisect = width > 0.5 * width_before[0];
+        width_before = [width_before[1], width];
+    }
+    b
+}
+
+#[inline]
+fn math_abs(x: f64) -> f64 {
+    crate::math::abs(x)
+}
+
+/// The first time in `(t0, t1]` of the step described by `dense` (with exact end states `y0` at
+/// `t0` and `y1` at `t1`) at which `g(y).0` becomes negative, or `None`.
+///
+/// The step is split into [`SUBDIVISIONS`] sub-intervals. In each, a negative end value gives a
+/// bracket; otherwise, if the derivative goes from negative to positive, the minimum is located
+/// by root finding on the derivative and a negative value there gives a bracket (a crossing and
+/// return within the sub-interval). The bracket is then refined by [`refine_crossing`] on the
+/// dense output to the resolution of `f64`.
+pub fn first_crossing<const N: usize, D, G>(
+    dense: &D,
+    y0: &[f64; N],
+    y1: &[f64; N],
+    g: G,
+) -> Option<f64>
+where
+    D: Interpolant<N>,
+    G: Fn(&[f64; N]) -> (f64, f64),
+{
+    let t0 = dense.start();
+    let t1 = dense.end();
+    let value = |t: f64| g(&dense.eval(t)).0;
+    let (s0, mut ra) = g(y0);
+    // The start is inside by definition.
+    let mut sa = s0.max(0.0);
+    let mut ta = t0;
+    let n = SUBDIVISIONS as f64;
+    for k in 1..=SUBDIVISIONS {
+        let (tb, yb) = if k == SUBDIVISIONS {
+            (t1, *y1)
+        } else {
+            let tb = t0 + (t1 - t0) * (k as f64 / n);
+            (tb, dense.eval(tb))
+        };
+        let (sb, rb) = g(&yb);
+        if sb < 0.0 {
+            return Some(refine_crossing(value, ta, sa, tb, sb));
+        }
+        if ra < 0.0 && rb > 0.0 {
+            // A minimum of s inside (ta, tb): find it from the derivative.
+            let tm = refine_crossing(|t| -g(&dense.eval(t)).1, ta, -ra, tb, -rb);
+            let sm = value(tm);
+            if sm < 0.0 {
+                return Some(refine_crossing(value, ta, sa, tm, sm));
+            }
+        }
+        ta = tb;
+        sa = sb;
+        ra = rb;
+    }
+    None
+}

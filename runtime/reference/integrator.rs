@@ -1,0 +1,255 @@
+//! The adaptive driver shared by every [`Scheme`]: Hairer's initial step guess (`HINIT`), his
+//! step-size controller with optional PI stabilisation, step rejection, and step-size underflow
+//! detection. It owns no memory beyond fixed-size arrays.
+
+use core::marker::PhantomData;
+
+use super::ode::{OdeSystem, all_finite};
+use super::scheme::{Scheme, Tolerance};
+use crate::math;
+use crate::propagate::PropagationError;
+
+/// Consecutive rejections after which a step is declared impossible
+/// ([`PropagationError::StepSizeUnderflow`]); the controller shrinks h by at least 10 % per
+/// rejection, so this is only reached when the right-hand side is non-finite or the tolerance
+/// cannot be met.
+pub const MAX_REJECTIONS: u32 = 1000;
+
+/// Work counters of an integrator.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Right-hand-side evaluations.
+    pub evaluations: u64,
+    /// Accepted steps.
+    pub accepted: u64,
+    /// Rejected steps.
+    pub rejected: u64,
+}
+
+/// One accepted step: its ends, the data needed to redo it with a shorter size, and its dense
+/// output.
+#[derive(Clone, Copy, Debug)]
+pub struct AcceptedStep<const N: usize, D> {
+    /// Start time.
+    pub t0: f64,
+    /// State at `t0`.
+    pub y0: [f64; N],
+    /// f(t0, y0).
+    pub f0: [f64; N],
+    /// End time `t0 + h`.
+    pub t1: f64,
+    /// State at `t1`.
+    pub y1: [f64; N],
+    /// The dense output on `[t0, t1]`.
+    pub dense: D,
+}
+
+/// An adaptive explicit Runge–Kutta integrator for an `N`-state system with scheme `S`.
+///
+/// Steps go forward only. The integrator does not hold the system: every call takes it, so one
+/// integrator can be restarted on another vector field (a regime switch) with [`Self::restart`].
+#[derive(Clone, Copy, Debug)]
+pub struct Integrator<S: Scheme<N>, const N: usize> {
+    t: f64,
+    y: [f64; N],
+    f: [f64; N],
+    h: f64,
+    h_max: f64,
+    tol: Tolerance,
+    err_old: f64,
+    rejected_last: bool,
+    stats: Stats,
+    scheme: PhantomData<S>,
+}
+
+impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
+    /// Start at `(t, y)` with tolerances `tol` and largest step `h_max` (> 0; use
+    /// `f64::INFINITY` for none). The first step size comes from Hairer's `HINIT`.
+    pub fn new<F: OdeSystem<N> + ?Sized>(
+        sys: &F,
+        t: f64,
+        y: [f64; N],
+        tol: Tolerance,
+        h_max: f64,
+    ) -> Self {
+        let mut me = Integrator {
+            t,
+            y,
+            f: [0.0; N],
+            h: 0.0,
+            h_max: if h_max > 0.0 { h_max } else { f64::INFINITY },
+            tol,
+            err_old: 1e-4,
+            rejected_last: false,
+            stats: Stats::default(),
+            scheme: PhantomData,
+        };
+        me.restart(sys, t, y);
+        me
+    }
+
+    /// Restart at `(t, y)` on the field `sys` (for example after a regime switch): fresh first
+    /// stage, fresh initial step guess, controller memory cleared. Counters are kept.
+    pub fn restart<F: OdeSystem<N> + ?Sized>(&mut self, sys: &F, t: f64, y: [f64; N]) {
+        self.t = t;
+        self.y = y;
+        self.f = sys.rhs(t, &y);
+        self.stats.evaluations += 1;
+        self.err_old = 1e-4;
+        self.rejected_last = false;
+        self.h = self.initial_step(sys);
+    }
+
+    /// The current time.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// The current state.
+    pub fn state(&self) -> [f64; N] {
+        self.y
+    }
+
+    /// The step size the next [`Self::step`] will try first.
+    pub fn proposed_step(&self) -> f64 {
+        self.h
+    }
+
+    /// The tolerances.
+    pub fn tolerance(&self) -> Tolerance {
+        self.tol
+    }
+
+    /// Work counters.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Hairer's `HINIT`: a step whose explicit Euler error is about 1 % of the tolerance, from
+    /// ‖f0‖ and a finite-difference estimate of ‖f'‖, capped by `h_max`.
+    fn initial_step<F: OdeSystem<N> + ?Sized>(&mut self, sys: &F) -> f64 {
+        let tol = self.tol;
+        let (mut dnf, mut dny) = (0.0, 0.0);
+        for (y, f) in self.y.iter().zip(self.f.iter()) {
+            let sk = tol.scale(*y, *y);
+            dnf += (f / sk) * (f / sk);
+            dny += (y / sk) * (y / sk);
+        }
+        let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+            1e-6
+        } else {
+            math::sqrt(dny / dnf) * 0.01
+        };
+        if !(h > 0.0 && h.is_finite()) {
+            h = 1e-6;
+        }
+        h = h.min(self.h_max);
+        let mut y1 = self.y;
+        for (a, f) in y1.iter_mut().zip(self.f.iter()) {
+            *a += h * f;
+        }
+        let f1 = sys.rhs(self.t + h, &y1);
+        self.stats.evaluations += 1;
+        let mut der2 = 0.0;
+        for ((a, b), y) in f1.iter().zip(self.f.iter()).zip(self.y.iter()) {
+            let d = (a - b) / tol.scale(*y, *y);
+            der2 += d * d;
+        }
+        let der2 = math::sqrt(der2) / h;
+        let der12 = der2.max(math::sqrt(dnf));
+        let h1 = if der12 <= 1e-15 || !der12.is_finite() {
+            (h * 1e-3).max(1e-6)
+        } else {
+            math::pow(0.01 / der12, 1.0 / f64::from(S::ORDER))
+        };
+        let h = (100.0 * h).min(h1).min(self.h_max);
+        if h > 0.0 && h.is_finite() { h } else { 1e-6 }
+    }
+
+    /// One accepted step, not past `t_limit` (> the current time; `f64::INFINITY` for none).
+    /// Rejected trials are retried with a smaller step.
+    ///
+    /// # Errors
+    /// [`PropagationError::StepSizeUnderflow`] when the step falls below the resolution of the
+    /// time (h ≤ 10·ε·|t|) or [`MAX_REJECTIONS`] trials in a row fail;
+    /// [`PropagationError::InvalidTarget`] when `t_limit` is not after the current time.
+    pub fn step<F: OdeSystem<N> + ?Sized>(
+        &mut self,
+        sys: &F,
+        t_limit: f64,
+    ) -> Result<AcceptedStep<N, S::Dense>, PropagationError> {
+        // `!(a > b)` also rejects NaN.
+        if !(t_limit > self.t) {
+            return Err(PropagationError::InvalidTarget {
+                target: t_limit,
+                current: self.t,
+            });
+        }
+        let ctl = S::CONTROLLER;
+        let (fac_lo, fac_hi) = (1.0 / ctl.fac_max, 1.0 / ctl.fac_min);
+        let mut rejections = 0u32;
+        loop {
+            let mut h = self.h.min(self.h_max);
+            // Hairer's rule: take the remainder at once when it is within 1 % of a step.
+            if self.t + 1.01 * h >= t_limit {
+                h = t_limit - self.t;
+            }
+            if !(h > 10.0 * f64::EPSILON * math::abs(self.t)) || h < f64::MIN_POSITIVE {
+                return Err(PropagationError::StepSizeUnderflow { time: self.t });
+            }
+            let trial = S::attempt(sys, self.t, &self.y, &self.f, h, &self.tol);
+            self.stats.evaluations += S::STAGE_EVALUATIONS;
+            let err = if trial.err.is_nan() || !all_finite(&trial.y1) {
+                f64::INFINITY
+            } else {
+                trial.err
+            };
+            let fac11 = math::pow(err, ctl.alpha);
+            if err <= 1.0 {
+                // Lund stabilisation: fac = err^alpha / err_old^beta.
+                let fac = fac11 / math::pow(self.err_old, ctl.beta);
+                let fac = (fac / ctl.safety).min(fac_hi).max(fac_lo);
+                let mut h_new = h / fac;
+                if self.rejected_last {
+                    h_new = h_new.min(h);
+                }
+                self.err_old = err.max(1e-4);
+                self.rejected_last = false;
+                let (f1, dense) = S::accept(sys, self.t, &self.y, &self.f, h, &trial);
+                self.stats.evaluations += S::ACCEPT_EVALUATIONS;
+                self.stats.accepted += 1;
+                let step = AcceptedStep {
+                    t0: self.t,
+                    y0: self.y,
+                    f0: self.f,
+                    t1: if h == t_limit - self.t { t_limit } else { self.t + h },
+                    y1: trial.y1,
+                    dense,
+                };
+                self.t = step.t1;
+                self.y = trial.y1;
+                self.f = f1;
+                self.h = h_new.min(self.h_max);
+                return Ok(step);
+            }
+            self.stats.rejected += 1;
+            self.rejected_last = true;
+            self.h = h / (fac11 / ctl.safety).min(fac_hi);
+            rejections += 1;
+            if rejections >= MAX_REJECTIONS {
+                return Err(PropagationError::StepSizeUnderflow { time: self.t });
+            }
+        }
+    }
+
+    /// The state at `t` in `[step.t0, step.t1]` by one explicit step of exactly `t − step.t0`
+    /// from the step's start (not interpolated): as accurate as a step of the method.
+    pub fn redo<F: OdeSystem<N> + ?Sized>(
+        &self,
+        sys: &F,
+        step: &AcceptedStep<N, S::Dense>,
+        t: f64,
+    ) -> [f64; N] {
+        S::attempt(sys, step.t0, &step.y0, &step.f0, t - step.t0, &self.tol).y1
+    }
+}
