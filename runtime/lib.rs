@@ -8,6 +8,7 @@
 
 pub mod analytic;
 pub mod coefficients;
+pub mod compare;
 pub mod field;
 pub mod math;
 pub mod method;

@@ -116,7 +116,9 @@ impl Options {
 /// Any method behind one type (no heap): build it with [`Propagator::new`].
 pub struct Propagator(Inner);
 
-enum Inner {}
+enum Inner {
+    Analytic(crate::analytic::AnalyticPropagator),
+}
 
 impl Propagator {
     /// Validate `problem` and `options` and start the chosen method at the problem's start time.
@@ -129,24 +131,43 @@ impl Propagator {
                 value: tol,
             });
         }
-        Err(PropagationError::InvalidOption {
-            what: "method (not built yet)",
-            value: 0.0,
-        })
+        let inner = match options.method {
+            Method::Analytic => Inner::Analytic(crate::analytic::AnalyticPropagator::new(
+                problem,
+                options.contact_scheme,
+                tol,
+                options.step,
+            )?),
+            _ => {
+                return Err(PropagationError::InvalidOption {
+                    what: "method (not built yet)",
+                    value: 0.0,
+                });
+            }
+        };
+        Ok(Propagator(inner))
     }
 }
 
 impl Propagate for Propagator {
     fn time(&self) -> f64 {
-        match self.0 {}
+        match &self.0 {
+            Inner::Analytic(p) => p.time(),
+        }
     }
     fn state(&self) -> State {
-        match self.0 {}
+        match &self.0 {
+            Inner::Analytic(p) => p.state(),
+        }
     }
     fn regime(&self) -> Regime {
-        match self.0 {}
+        match &self.0 {
+            Inner::Analytic(p) => p.regime(),
+        }
     }
-    fn advance(&mut self, _target: f64) -> Result<Option<Event>, PropagationError> {
-        match self.0 {}
+    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+        match &mut self.0 {
+            Inner::Analytic(p) => p.advance(target),
+        }
     }
 }

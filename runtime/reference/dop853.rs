@@ -73,8 +73,17 @@ impl<const N: usize> Scheme<N> for Dop853 {
         let mut k = [[0.0; N]; 12];
         k[0] = *f0;
         let rows: [&[f64]; 11] = [
-            &tab::A2, &tab::A3, &tab::A4, &tab::A5, &tab::A6, &tab::A7, &tab::A8, &tab::A9,
-            &tab::A10, &tab::A11, &tab::A12,
+            &tab::A2,
+            &tab::A3,
+            &tab::A4,
+            &tab::A5,
+            &tab::A6,
+            &tab::A7,
+            &tab::A8,
+            &tab::A9,
+            &tab::A10,
+            &tab::A11,
+            &tab::A12,
         ];
         for (i, (row, c)) in rows.iter().zip(tab::C.iter().skip(1)).enumerate() {
             let yi = stage_input(y, h, row, &k);

@@ -48,7 +48,11 @@ pub fn refine_crossing<F: FnMut(f64) -> f64>(
         } else {
             secant < a && secant > b
         };
-        let c = if force_bisect || !inside_open { mid } else { secant };
+        let c = if force_bisect || !inside_open {
+            mid
+        } else {
+            secant
+        };
         let fc = f(c);
         if fc == 0.0 {
             return c;
@@ -131,4 +135,46 @@ where
         ra = rb;
     }
     None
+}
+
+/// Newton iterations of [`polish_switch`].
+const POLISH_ITERATIONS: u32 = 3;
+
+/// Polish a switch located on the dense output against the step solution itself: starting from
+/// `(t, y)` with `y = redo(t)` (the state by one explicit step from the step start), apply Newton
+/// steps `t ← t − s/s'` on the switching function of `redo(t)`, keeping a step only when it stays
+/// in `(t_start, t_end]`, moves `t` by at most `max_shift`, and reduces |s|. Returns the best
+/// `(t, y)`; its |s| is then at the rounding level of the step, not at the dense output's error.
+pub fn polish_switch<const N: usize, R, G>(
+    t_start: f64,
+    t_end: f64,
+    max_shift: f64,
+    (t, y): (f64, [f64; N]),
+    mut redo: R,
+    g: G,
+) -> (f64, [f64; N])
+where
+    R: FnMut(f64) -> [f64; N],
+    G: Fn(&[f64; N]) -> (f64, f64),
+{
+    let (mut best_t, mut best_y) = (t, y);
+    let (mut s, mut ds) = g(&y);
+    for _ in 0..POLISH_ITERATIONS {
+        if s == 0.0 || ds == 0.0 || !s.is_finite() || !ds.is_finite() {
+            break;
+        }
+        let shift = s / ds;
+        let t_new = best_t - shift;
+        let ok = math_abs(shift) <= max_shift && t_new > t_start && t_new <= t_end;
+        if !ok || t_new == best_t {
+            break;
+        }
+        let y_new = redo(t_new);
+        let (s_new, ds_new) = g(&y_new);
+        if !(math_abs(s_new) < math_abs(s)) {
+            break;
+        }
+        (best_t, best_y, s, ds) = (t_new, y_new, s_new, ds_new);
+    }
+    (best_t, best_y)
 }

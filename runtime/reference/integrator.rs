@@ -94,7 +94,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         self.t = t;
         self.y = y;
         self.f = sys.rhs(t, &y);
-        self.stats.evaluations += 1;
+        self.stats.evaluations = self.stats.evaluations.saturating_add(1);
         self.err_old = 1e-4;
         self.rejected_last = false;
         self.h = self.initial_step(sys);
@@ -149,7 +149,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             *a += h * f;
         }
         let f1 = sys.rhs(self.t + h, &y1);
-        self.stats.evaluations += 1;
+        self.stats.evaluations = self.stats.evaluations.saturating_add(1);
         let mut der2 = 0.0;
         for ((a, b), y) in f1.iter().zip(self.f.iter()).zip(self.y.iter()) {
             let d = (a - b) / tol.scale(*y, *y);
@@ -178,8 +178,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         sys: &F,
         t_limit: f64,
     ) -> Result<AcceptedStep<N, S::Dense>, PropagationError> {
-        // `!(a > b)` also rejects NaN.
-        if !(t_limit > self.t) {
+        if t_limit.is_nan() || t_limit <= self.t {
             return Err(PropagationError::InvalidTarget {
                 target: t_limit,
                 current: self.t,
@@ -194,11 +193,11 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             if self.t + 1.01 * h >= t_limit {
                 h = t_limit - self.t;
             }
-            if !(h > 10.0 * f64::EPSILON * math::abs(self.t)) || h < f64::MIN_POSITIVE {
+            if h.is_nan() || h <= 10.0 * f64::EPSILON * math::abs(self.t) || h < f64::MIN_POSITIVE {
                 return Err(PropagationError::StepSizeUnderflow { time: self.t });
             }
             let trial = S::attempt(sys, self.t, &self.y, &self.f, h, &self.tol);
-            self.stats.evaluations += S::STAGE_EVALUATIONS;
+            self.stats.evaluations = self.stats.evaluations.saturating_add(S::STAGE_EVALUATIONS);
             let err = if trial.err.is_nan() || !all_finite(&trial.y1) {
                 f64::INFINITY
             } else {
@@ -216,13 +215,18 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                 self.err_old = err.max(1e-4);
                 self.rejected_last = false;
                 let (f1, dense) = S::accept(sys, self.t, &self.y, &self.f, h, &trial);
-                self.stats.evaluations += S::ACCEPT_EVALUATIONS;
-                self.stats.accepted += 1;
+                self.stats.evaluations =
+                    self.stats.evaluations.saturating_add(S::ACCEPT_EVALUATIONS);
+                self.stats.accepted = self.stats.accepted.saturating_add(1);
                 let step = AcceptedStep {
                     t0: self.t,
                     y0: self.y,
                     f0: self.f,
-                    t1: if h == t_limit - self.t { t_limit } else { self.t + h },
+                    t1: if h == t_limit - self.t {
+                        t_limit
+                    } else {
+                        self.t + h
+                    },
                     y1: trial.y1,
                     dense,
                 };
@@ -232,7 +236,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                 self.h = h_new.min(self.h_max);
                 return Ok(step);
             }
-            self.stats.rejected += 1;
+            self.stats.rejected = self.stats.rejected.saturating_add(1);
             self.rejected_last = true;
             self.h = h / (fac11 / ctl.safety).min(fac_hi);
             rejections += 1;
@@ -245,11 +249,12 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
     /// The state at `t` in `[step.t0, step.t1]` by one explicit step of exactly `t − step.t0`
     /// from the step's start (not interpolated): as accurate as a step of the method.
     pub fn redo<F: OdeSystem<N> + ?Sized>(
-        &self,
+        &mut self,
         sys: &F,
         step: &AcceptedStep<N, S::Dense>,
         t: f64,
     ) -> [f64; N] {
+        self.stats.evaluations = self.stats.evaluations.saturating_add(S::STAGE_EVALUATIONS);
         S::attempt(sys, step.t0, &step.y0, &step.f0, t - step.t0, &self.tol).y1
     }
 }

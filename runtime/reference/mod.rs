@@ -1,4 +1,35 @@
-//! Numerical reference integrators (owned by the reference-integrator work; see issue 4).
+//! Numerical reference integrators (issue 4): adaptive Dormand–Prince 5(4) and DOP853 on the full
+//! piecewise equations, with switch location on the dense output.
+//!
+//! - [`OdeSystem`], [`Scheme`], [`Integrator`]: a small generic adaptive Runge–Kutta core on
+//!   fixed-size `[f64; N]` states (no heap), reusable on other systems (the hybrid method's
+//!   6-state [`PhasorRotorSystem`]).
+//! - [`Dopri5`], [`Dop853`]: the two pairs with their dense outputs.
+//! - [`first_crossing`]: event location on a dense output, grazing contacts included.
+//! - [`Dop853Propagator`], [`Rk45Propagator`]: the [`crate::Propagate`] implementations.
+
+mod dop853;
+mod dopri5;
+mod events;
+mod integrator;
+mod ode;
+mod propagator;
+mod scheme;
+mod system;
+mod tableau_dop853;
+mod tableau_dopri5;
+
+pub use dop853::{Dop853, Dop853Dense};
+pub use dopri5::{Dopri5, Dopri5Dense};
+pub use events::{SUBDIVISIONS, first_crossing, polish_switch, refine_crossing};
+pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
+pub use ode::OdeSystem;
+pub use propagator::{
+    BASE_STEP_BUDGET, Dop853Propagator, MIN_TOLERANCE, ReferencePropagator, Rk45Propagator,
+    STEPS_PER_TIME_UNIT,
+};
+pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
+pub use system::{PhasorRotorSystem, RotorSystem, initial_regime, inside_measure};
 
 /// Default `tol` (relative and absolute) of the reference integrators.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;

@@ -1,0 +1,133 @@
+//! The free-flight segment (`model.md` §4): exact closed form in local time.
+
+use super::basis::{free_basis, free_basis_bound};
+use super::segment::{Bounds, Point, Segment};
+use crate::coefficients::{self as coef, FreeHomogeneous, FreeParticular};
+use crate::math;
+use crate::params::{Params, State};
+
+/// Free flight from a state at time τ0, valid for all s = τ − τ0 ≥ 0 until contact.
+#[derive(Clone, Copy, Debug)]
+pub struct FreeSegment {
+    nu: f64,
+    eta: f64,
+    beta_sq: f64,
+    offset: (f64, f64),
+    phase0: (f64, f64),
+    particular: FreeParticular,
+    homogeneous: FreeHomogeneous,
+}
+
+/// Per-parameter-set constants of free flight (computed once per propagation).
+#[derive(Clone, Copy, Debug)]
+pub struct FreeConstants {
+    /// β² = 1 − ν².
+    pub beta_sq: f64,
+    /// Steady-state harmonic response.
+    pub particular: FreeParticular,
+}
+
+impl FreeConstants {
+    /// Derived constants for `params`.
+    pub fn new(params: &Params) -> Self {
+        FreeConstants {
+            beta_sq: coef::free_damped_frequency_sq(params.damping_ratio).beta_sq,
+            particular: coef::free_particular(
+                params.damping_ratio,
+                params.speed_ratio,
+                params.forcing_amplitude(),
+            ),
+        }
+    }
+}
+
+impl FreeSegment {
+    /// The free segment through `state` at absolute time `t0`.
+    pub fn new(params: &Params, constants: &FreeConstants, t0: f64, state: State) -> Self {
+        let (st, ct) = math::sin_cos(math::wrap_angle(params.speed_ratio * t0 + params.phase));
+        let p = constants.particular;
+        let homogeneous = coef::free_homogeneous(
+            state.x,
+            state.y,
+            state.vx,
+            state.vy,
+            p.c11,
+            p.c22,
+            p.c33,
+            p.c44,
+            ct,
+            st,
+            params.speed_ratio,
+            params.damping_ratio,
+        );
+        FreeSegment {
+            nu: params.damping_ratio,
+            eta: params.speed_ratio,
+            beta_sq: constants.beta_sq,
+            offset: (params.offset_x, params.offset_y),
+            phase0: (ct, st),
+            particular: p,
+            homogeneous,
+        }
+    }
+
+    /// Forcing phasor (cos θ, sin θ) at local time s by angle addition from the segment start.
+    fn phasor(&self, s: f64) -> (f64, f64) {
+        let (sd, cd) = math::sin_cos(self.eta * s);
+        let (c0, s0) = self.phase0;
+        (c0 * cd - s0 * sd, s0 * cd + c0 * sd)
+    }
+
+    /// Upper bound of |r − ε| for all s ≥ `lo`: the steady orbit's reach plus the decaying
+    /// transient. Below 1 means no contact can ever happen again after `lo`.
+    pub fn reach_after(&self, lo: f64) -> f64 {
+        let b = self.bounds(lo, f64::INFINITY);
+        b.radius
+    }
+}
+
+impl Segment for FreeSegment {
+    fn point(&self, s: f64) -> Point {
+        let (ec, es) = free_basis(self.nu, self.beta_sq, s);
+        let (ct, st) = self.phasor(s);
+        let (h, p) = (&self.homogeneous, &self.particular);
+        let r = coef::free_eval(
+            h.xh,
+            h.px,
+            h.yh,
+            h.py,
+            p.c11,
+            p.c22,
+            p.c33,
+            p.c44,
+            ec,
+            es,
+            ct,
+            st,
+            self.nu,
+            self.beta_sq,
+            self.eta,
+            self.offset.0,
+            self.offset.1,
+        );
+        Point { state: State::new(r.x, r.y, r.vx, r.vy), h: r.h, dh: r.dh }
+    }
+
+    fn bounds(&self, lo: f64, hi: f64) -> Bounds {
+        let (ec, es) = free_basis_bound(self.nu, self.beta_sq, lo, hi);
+        let (h, p) = (&self.homogeneous, &self.particular);
+        let pos = math::hypot(h.xh, h.yh);
+        let vel = math::hypot(h.px, h.py);
+        let (nu, b2) = (self.nu, math::abs(self.beta_sq));
+        // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
+        let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
+        let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
+        let amp = math::sqrt(p.c11 * p.c11 + p.c22 * p.c22 + p.c33 * p.c33 + p.c44 * p.c44);
+        let off = math::hypot(self.offset.0, self.offset.1);
+        Bounds {
+            radius: pos * ec + vel * es + amp + off,
+            speed: pos * dec + vel * des + self.eta * amp,
+            accel: pos * ddec + vel * ddes + self.eta * self.eta * amp,
+        }
+    }
+}

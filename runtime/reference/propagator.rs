@@ -1,0 +1,323 @@
+//! The reference propagators: an adaptive Runge–Kutta integration of the full piecewise equations
+//! (`model.md` §1) behind [`Propagate`], with switches located on the dense output.
+//!
+//! How a run proceeds:
+//! - The regime at the start is decided by [`initial_regime`]; the field is always the current
+//!   regime's, never chosen by the sign of h.
+//! - Steps are taken freely (never shortened to a requested time); after each accepted step the
+//!   first switch inside it is searched by [`first_crossing`]. A found switch is refined on the
+//!   dense output to the resolution of `f64`, and the state there is recomputed by one explicit
+//!   step of exactly the needed size from the step's start; a few Newton corrections on that
+//!   step solution ([`polish_switch`]) then put the switch state on z = 1 to rounding level.
+//!   The integration restarts at the switch on the other regime's field, the switch time
+//!   counting as inside the new regime.
+//! - A requested time inside the current step is served from its dense output, so sampling never
+//!   changes the step sequence or the trajectory.
+//! - Errors: [`PropagationError::Diverged`] when a step ends beyond [`DIVERGENCE_RADIUS`] (z, in
+//!   clearances); [`PropagationError::StepSizeUnderflow`] when the step size collapses or one
+//!   `advance` call exceeds its step budget ([`BASE_STEP_BUDGET`]). After a divergence or an
+//!   underflow the propagator stays at its last good time and returns the same error again.
+//!
+//! Tolerance semantics: per step, `rtol = atol = tol` in Hairer's mixed norm
+//! (`‖err_i / (tol + tol·max(|y0_i|, |y1_i|))‖_rms ≤ 1`). This bounds the local error, not the
+//! global one. Measured on free flight over 50 forcing periods at `tol = 1e-12`, the global error
+//! is 2e-12 (DOP853) and 1e-12 (RK45); switch times of the Fig. 2 cases change by less than 2e-11
+//! between `tol = 1e-12` and `1e-13`. Contacts whose penetration depth in z is below about
+//! `10·tol` may be missed.
+
+use super::dop853::Dop853;
+use super::dopri5::Dopri5;
+use super::events::{first_crossing, polish_switch};
+use super::integrator::{AcceptedStep, Integrator, Stats};
+use super::scheme::{Interpolant, Scheme, Tolerance};
+use super::system::{RotorSystem, initial_regime, inside_measure};
+use crate::field;
+use crate::params::{Params, Problem, State};
+use crate::propagate::{DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime};
+
+/// Smallest accepted tolerance (below it the error control asks for less than the rounding
+/// error of a step).
+pub const MIN_TOLERANCE: f64 = 1e-14;
+
+/// Step budget of one [`Propagate::advance`] call: this many steps plus
+/// [`STEPS_PER_TIME_UNIT`] per unit of the requested time span. Exceeding it reports
+/// [`PropagationError::StepSizeUnderflow`] (the steps became too small to make progress).
+pub const BASE_STEP_BUDGET: f64 = 1.0e6;
+
+/// See [`BASE_STEP_BUDGET`].
+pub const STEPS_PER_TIME_UNIT: f64 = 1.0e5;
+
+/// The reference propagator for any [`Scheme`] on the 4-state rotor field. Use it through
+/// [`Dop853Propagator`] or [`Rk45Propagator`].
+#[derive(Clone, Copy, Debug)]
+pub struct ReferencePropagator<S: Scheme<4>> {
+    params: Params,
+    regime: Regime,
+    integrator: Integrator<S, 4>,
+    time: f64,
+    state: State,
+    step: Option<AcceptedStep<4, S::Dense>>,
+    pending: Option<Event>,
+    events: u64,
+    failure: Option<PropagationError>,
+}
+
+impl<S: Scheme<4>> ReferencePropagator<S> {
+    /// Validate `problem` and `tol` (finite, ≥ [`MIN_TOLERANCE`]) and start at the problem's
+    /// start time.
+    ///
+    /// # Errors
+    /// [`PropagationError::InvalidProblem`] or [`PropagationError::InvalidOption`] with
+    /// `what = "tol"`.
+    pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
+        problem.validate()?;
+        if !(tol.is_finite() && tol >= MIN_TOLERANCE) {
+            return Err(PropagationError::InvalidOption {
+                what: "tol",
+                value: tol,
+            });
+        }
+        let params = problem.params;
+        let t0 = problem.start_time;
+        let regime = initial_regime(&params, t0, &problem.initial);
+        let sys = RotorSystem { params, regime };
+        let integrator = Integrator::new(
+            &sys,
+            t0,
+            problem.initial.to_array(),
+            Tolerance::uniform(tol),
+            max_step(&params),
+        );
+        Ok(ReferencePropagator {
+            params,
+            regime,
+            integrator,
+            time: t0,
+            state: problem.initial,
+            step: None,
+            pending: None,
+            events: 0,
+            failure: None,
+        })
+    }
+
+    /// Work counters of the integration so far.
+    pub fn stats(&self) -> Stats {
+        self.integrator.stats()
+    }
+
+    /// The number of switches reported so far.
+    pub fn event_count(&self) -> u64 {
+        self.events
+    }
+
+    /// The tolerance (`rtol = atol`).
+    pub fn tolerance(&self) -> f64 {
+        self.integrator.tolerance().rtol
+    }
+
+    fn system(&self) -> RotorSystem {
+        RotorSystem {
+            params: self.params,
+            regime: self.regime,
+        }
+    }
+
+    /// Report `event`: move there, switch the field and restart the integration.
+    fn apply(&mut self, event: Event) -> Event {
+        self.time = event.time;
+        self.state = event.state;
+        self.regime = event.kind.regime_after();
+        self.step = None;
+        self.pending = None;
+        self.events = self.events.saturating_add(1);
+        let sys = self.system();
+        self.integrator
+            .restart(&sys, event.time, event.state.to_array());
+        event
+    }
+
+    /// Take one step and look for a switch in it.
+    fn take_step(&mut self) -> Result<(), PropagationError> {
+        let sys = self.system();
+        let step = self.integrator.step(&sys, f64::INFINITY)?;
+        let end = State::from_array(step.y1);
+        if !end.is_finite() || field::radius(&self.params, end.x, end.y) > DIVERGENCE_RADIUS {
+            return Err(PropagationError::Diverged {
+                time: step.t1,
+                state: end,
+            });
+        }
+        let (params, regime) = (self.params, self.regime);
+        let crossing = first_crossing(&step.dense, &step.y0, &step.y1, |y: &[f64; 4]| {
+            inside_measure(&params, regime, y)
+        });
+        self.pending = crossing.map(|t| {
+            let t = t.max(step.t0).min(step.t1);
+            let y = if t == step.t1 {
+                step.y1
+            } else {
+                self.integrator.redo(&sys, &step, t)
+            };
+            // The dense output and the step solution differ by about the tolerance: put the
+            // switch on z = 1 of the step solution (the trajectory the integration continues).
+            let max_shift = 1e-3 * (step.t1 - step.t0);
+            let integrator = &mut self.integrator;
+            let (t, y) = polish_switch(
+                step.t0,
+                step.t1,
+                max_shift,
+                (t, y),
+                |t| integrator.redo(&sys, &step, t),
+                |y: &[f64; 4]| inside_measure(&params, regime, y),
+            );
+            let kind = match regime {
+                Regime::Free => EventKind::Enter,
+                Regime::Contact => EventKind::Exit,
+            };
+            Event {
+                time: t,
+                kind,
+                state: State::from_array(y),
+            }
+        });
+        self.step = Some(step);
+        Ok(())
+    }
+}
+
+/// The largest step: a quarter of the shorter of the forcing period and the free natural period
+/// 2π, so that the switching function is sampled at least 4·[`super::events::SUBDIVISIONS`]
+/// times per period even at loose tolerances.
+fn max_step(params: &Params) -> f64 {
+    let period = params.forcing_period().min(core::f64::consts::TAU);
+    if period > 0.0 {
+        0.25 * period
+    } else {
+        f64::INFINITY
+    }
+}
+
+impl<S: Scheme<4>> Propagate for ReferencePropagator<S> {
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn state(&self) -> State {
+        self.state
+    }
+
+    fn regime(&self) -> Regime {
+        self.regime
+    }
+
+    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+        if !(target.is_finite() && target >= self.time) {
+            return Err(PropagationError::InvalidTarget {
+                target,
+                current: self.time,
+            });
+        }
+        if target == self.time {
+            return Ok(None);
+        }
+        let budget = BASE_STEP_BUDGET + STEPS_PER_TIME_UNIT * (target - self.time);
+        let mut steps = 0.0;
+        loop {
+            if let Some(event) = self.pending
+                && target >= event.time
+            {
+                return Ok(Some(self.apply(event)));
+            }
+            if let Some(step) = &self.step
+                && target <= step.t1
+            {
+                self.time = target;
+                self.state = if target == step.t1 {
+                    State::from_array(step.y1)
+                } else {
+                    State::from_array(step.dense.eval(target))
+                };
+                return Ok(None);
+            }
+            if let Some(e) = self.failure {
+                return Err(e);
+            }
+            if steps >= budget {
+                return Err(PropagationError::StepSizeUnderflow {
+                    time: self.integrator.time(),
+                });
+            }
+            steps += 1.0;
+            if let Err(e) = self.take_step() {
+                // The integration cannot go on: stay at the last good time and repeat the error.
+                self.failure = Some(e);
+                return Err(e);
+            }
+        }
+    }
+}
+
+macro_rules! reference_propagator {
+    ($(#[$doc:meta])* $name:ident, $scheme:ty) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug)]
+        pub struct $name(ReferencePropagator<$scheme>);
+
+        impl $name {
+            /// Validate `problem` and `tol` (finite and ≥ [`MIN_TOLERANCE`]; `rtol = atol = tol`)
+            /// and start at the problem's start time.
+            ///
+            /// # Errors
+            /// [`PropagationError::InvalidProblem`], or [`PropagationError::InvalidOption`] with
+            /// `what = "tol"`.
+            pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
+                ReferencePropagator::new(problem, tol).map($name)
+            }
+
+            /// Work counters of the integration so far.
+            pub fn stats(&self) -> Stats {
+                self.0.stats()
+            }
+
+            /// The number of switches reported so far.
+            pub fn event_count(&self) -> u64 {
+                self.0.event_count()
+            }
+
+            /// The tolerance (`rtol = atol`).
+            pub fn tolerance(&self) -> f64 {
+                self.0.tolerance()
+            }
+        }
+
+        impl Propagate for $name {
+            fn time(&self) -> f64 {
+                self.0.time()
+            }
+            fn state(&self) -> State {
+                self.0.state()
+            }
+            fn regime(&self) -> Regime {
+                self.0.regime()
+            }
+            fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+                self.0.advance(target)
+            }
+        }
+    };
+}
+
+reference_propagator!(
+    /// Adaptive DOP853 (Dormand–Prince 8(5,3), Hairer's code) on the full piecewise equations,
+    /// with switches located on its 7th-order dense output. See the module documentation.
+    Dop853Propagator,
+    Dop853
+);
+
+reference_propagator!(
+    /// Adaptive Dormand–Prince 5(4) (MATLAB's `ode45`) on the full piecewise equations, with
+    /// switches located on its 4th-order dense output. See the module documentation.
+    Rk45Propagator,
+    Dopri5
+);

@@ -1,0 +1,99 @@
+//! The rotor's equations of motion as [`OdeSystem`]s: the 4-state field the reference
+//! propagators integrate, and the 6-state form with the forcing carried as a rotating phasor (for
+//! the hybrid method's contact phase, `model.md` §8).
+
+use super::ode::OdeSystem;
+use crate::field;
+use crate::params::{Params, State};
+use crate::propagate::Regime;
+
+/// The regime's vector field on `[x, y, x', y']` ([`field::derivative`]): the regime is fixed,
+/// not chosen by the sign of the switching function, so a trajectory just past a switch keeps the
+/// field it was given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotorSystem {
+    /// The model parameters.
+    pub params: Params,
+    /// Which field to integrate.
+    pub regime: Regime,
+}
+
+impl OdeSystem<4> for RotorSystem {
+    #[inline]
+    fn rhs(&self, t: f64, y: &[f64; 4]) -> [f64; 4] {
+        field::derivative(&self.params, self.regime, t, &State::from_array(*y)).to_array()
+    }
+}
+
+/// The regime's vector field on `[x, y, x', y', c, s]`, where (c, s) = (cos θ, sin θ) is the
+/// forcing phasor with c' = −η s, s' = η c: no trigonometry in the right-hand side. Start it with
+/// `c = cos(η t0 + φ0)`, `s = sin(η t0 + φ0)`; the time argument is not used.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhasorRotorSystem {
+    /// The model parameters.
+    pub params: Params,
+    /// Which field to integrate.
+    pub regime: Regime,
+}
+
+impl PhasorRotorSystem {
+    /// The 6-state vector `[x, y, x', y', cos θ, sin θ]` at time `t` for rotor state `s`.
+    pub fn initial(params: &Params, t: f64, s: &State) -> [f64; 6] {
+        let (sin_t, cos_t) = crate::math::sin_cos(params.speed_ratio * t + params.phase);
+        [s.x, s.y, s.vx, s.vy, cos_t, sin_t]
+    }
+
+    /// The rotor part of a 6-state vector.
+    pub fn rotor_state(y: &[f64; 6]) -> State {
+        let [x, yy, vx, vy, _, _] = *y;
+        State::new(x, yy, vx, vy)
+    }
+}
+
+impl OdeSystem<6> for PhasorRotorSystem {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
+        let [x, yy, vx, vy, c, s] = *y;
+        let state = State::new(x, yy, vx, vy);
+        let (ax, ay) = field::acceleration_with_phasor(&self.params, self.regime, c, s, &state);
+        let eta = self.params.speed_ratio;
+        [vx, vy, ax, ay, -eta * s, eta * c]
+    }
+}
+
+/// The switching function oriented so that it is positive inside `regime`:
+/// `(σ h, σ h')` with h = z² − 1, σ = +1 in contact and −1 in free flight. Works on any state
+/// vector whose first four components are `[x, y, x', y']`.
+#[inline]
+pub fn inside_measure<const N: usize>(params: &Params, regime: Regime, y: &[f64; N]) -> (f64, f64) {
+    let mut s = [0.0; 4];
+    for (a, b) in s.iter_mut().zip(y.iter()) {
+        *a = *b;
+    }
+    let (h, dh) = field::switching_function(params, &State::from_array(s));
+    match regime {
+        Regime::Contact => (h, dh),
+        Regime::Free => (-h, -dh),
+    }
+}
+
+/// The regime of a state on or off the switching surface (`model.md` §6 case 14): by the sign of
+/// h = z² − 1; on z = 1 exactly, by the sign of z' (radial velocity), then of z'' (the field is
+/// continuous there, so the free acceleration is used); free when all three vanish.
+pub fn initial_regime(params: &Params, t: f64, s: &State) -> Regime {
+    let (h, dh) = field::switching_function(params, s);
+    let sign = if h != 0.0 {
+        h
+    } else if dh != 0.0 {
+        dh
+    } else {
+        let (ax, ay) = field::acceleration(params, Regime::Free, t, s);
+        let (u, v) = (s.x - params.offset_x, s.y - params.offset_y);
+        s.vx * s.vx + s.vy * s.vy + u * ax + v * ay
+    };
+    if sign > 0.0 {
+        Regime::Contact
+    } else {
+        Regime::Free
+    }
+}
