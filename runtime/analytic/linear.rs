@@ -98,17 +98,29 @@ impl Linearization {
     }
 
     /// The segment from `state` at s = 0 with the extra cubic forcing `forcing`
-    /// (`[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`; zeros for none).
-    pub fn segment(&self, state: State, forcing: [f64; 8]) -> LinearSegment {
+    /// (`[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`; zeros for none), to be evaluated on
+    /// s ∈ [0, `horizon`].
+    ///
+    /// The response to the cubic forcing is taken from the generated polynomial particular
+    /// solution when ‖Kl‖·horizon² > 1. For shorter horizons that form cancels badly (its
+    /// coefficients grow like (‖Kl‖h²)⁻ᵏ while the response is O(h²)), so the zero-state response
+    /// is summed as its Taylor series instead (see [`Response`]).
+    pub fn segment(&self, state: State, forcing: [f64; 8], horizon: f64) -> LinearSegment {
         let k = &self.kl;
-        let poly = if forcing.iter().all(|&a| a == 0.0) {
-            [0.0; 8]
+        let response = if forcing.iter().all(|&a| a == 0.0) {
+            Response::None
+        } else if self.norm_kl * horizon * horizon <= 1.0 {
+            Response::Series(series_response(k, self.nu, &forcing))
         } else {
             let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = forcing;
             let b = coef::polynomial_particular(
                 k.fa1, k.fb1, k.fb2, k.fa2, self.nu, a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y,
             );
-            [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y]
+            Response::Polynomial([b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y])
+        };
+        let poly = match &response {
+            Response::Polynomial(b) => *b,
+            _ => [0.0; 8],
         };
         let p = self.particular_state(0.0);
         let start = coef::contact_homogeneous_start(
@@ -118,7 +130,7 @@ impl Linearization {
             state.vy - p[3] - poly[3],
             self.nu,
         );
-        LinearSegment { lin: *self, poly, q0: [start.q0x, start.q0y], w0: [start.w0x, start.w0y] }
+        LinearSegment { lin: *self, response, q0: [start.q0x, start.q0y], w0: [start.w0x, start.w0y] }
     }
 
     /// The matrix-function scalars and decay at local time `s` (shared by every segment of this
@@ -128,11 +140,58 @@ impl Linearization {
     }
 }
 
+/// Number of Taylor coefficients of the series response (degree `SERIES_TERMS − 1`); with
+/// ‖Kl‖h² ≤ 1 the first neglected term is below 1e-16 of the forcing's response.
+const SERIES_TERMS: usize = 20;
+
+/// How the response to the extra cubic forcing is represented.
+#[derive(Clone, Copy, Debug)]
+pub enum Response {
+    /// No extra forcing.
+    None,
+    /// The generated cubic particular solution (its homogeneous complement is in q0, w0).
+    Polynomial([f64; 8]),
+    /// The zero-state response as a Taylor polynomial Σ c_m s^m (x and y coefficients), from
+    /// the equations of motion: c0 = c1 = 0 and
+    /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`model.md` §3).
+    Series([[f64; 2]; SERIES_TERMS]),
+}
+
+fn series_response(k: &LinearizedContact, nu: f64, a: &[f64; 8]) -> [[f64; 2]; SERIES_TERMS] {
+    let mut c = [[0.0; 2]; SERIES_TERMS];
+    for m in 0..SERIES_TERMS - 2 {
+        let (f0, f1) = if m < 4 { (a[2 * m], a[2 * m + 1]) } else { (0.0, 0.0) };
+        let d = ((m + 2) * (m + 1)) as f64;
+        let damp = 2.0 * nu * (m + 1) as f64;
+        let [cx, cy] = c[m];
+        let [nx, ny] = c[m + 1];
+        c[m + 2] = [
+            (f0 - damp * nx - k.fa1 * cx - k.fb1 * cy) / d,
+            (f1 - damp * ny - k.fb2 * cx - k.fa2 * cy) / d,
+        ];
+    }
+    c
+}
+
+/// Position and velocity of a Taylor polynomial at s (Horner).
+fn series_eval(c: &[[f64; 2]; SERIES_TERMS], s: f64) -> [f64; 4] {
+    let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
+    for m in (0..SERIES_TERMS).rev() {
+        x = x * s + c[m][0];
+        y = y * s + c[m][1];
+        if m > 0 {
+            vx = vx * s + m as f64 * c[m][0];
+            vy = vy * s + m as f64 * c[m][1];
+        }
+    }
+    [x, y, vx, vy]
+}
+
 /// A linearized contact segment: [`Linearization`] plus initial state and cubic forcing.
 #[derive(Clone, Copy, Debug)]
 pub struct LinearSegment {
     lin: Linearization,
-    poly: [f64; 8],
+    response: Response,
     q0: [f64; 2],
     w0: [f64; 2],
 }
@@ -161,9 +220,15 @@ impl LinearSegment {
             f.sd,
         );
         let p = l.particular_state(s);
-        let b = &self.poly;
-        let q = coef::polynomial_eval(b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], s);
-        State::new(h.x + p[0] + q.x, h.y + p[1] + q.y, h.vx + p[2] + q.vx, h.vy + p[3] + q.vy)
+        let q = match &self.response {
+            Response::None => [0.0; 4],
+            Response::Polynomial(b) => {
+                let q = coef::polynomial_eval(b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], s);
+                [q.x, q.y, q.vx, q.vy]
+            }
+            Response::Series(c) => series_eval(c, s),
+        };
+        State::new(h.x + p[0] + q[0], h.y + p[1] + q[1], h.vx + p[2] + q[2], h.vy + p[3] + q[3])
     }
 
     /// The linearization this segment belongs to.
@@ -191,11 +256,31 @@ impl Segment for LinearSegment {
         let c = &l.particular;
         let amp = math::sqrt(c.c11 * c.c11 + c.c22 * c.c22 + c.c33 * c.c33 + c.c44 * c.c44);
         let shift = math::hypot(c.c55 - l.offset.0, c.c66 - l.offset.1);
-        let b = |k: usize| math::hypot(self.poly[2 * k], self.poly[2 * k + 1]);
-        let (b1, b2, b3) = (b(1), b(2), b(3));
-        let pr = b(0) + hi * (b1 + hi * (b2 + hi * b3));
-        let pv = b1 + hi * (2.0 * b2 + 3.0 * hi * b3);
-        let pa = 2.0 * b2 + 6.0 * hi * b3;
+        // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi.
+        let (mut pr, mut pv, mut pa) = (0.0, 0.0, 0.0);
+        let mut add = |m: usize, norm: f64| {
+            let mf = m as f64;
+            pr += norm * math::pow(hi, mf);
+            if m >= 1 {
+                pv += mf * norm * math::pow(hi, mf - 1.0);
+            }
+            if m >= 2 {
+                pa += mf * (mf - 1.0) * norm * math::pow(hi, mf - 2.0);
+            }
+        };
+        match &self.response {
+            Response::None => {}
+            Response::Polynomial(b) => {
+                for m in 0..4 {
+                    add(m, math::hypot(b[2 * m], b[2 * m + 1]));
+                }
+            }
+            Response::Series(c) => {
+                for (m, cm) in c.iter().enumerate() {
+                    add(m, math::hypot(cm[0], cm[1]));
+                }
+            }
+        }
         Bounds {
             radius: rh + amp + shift + pr,
             speed: vh + l.eta * amp + pv,

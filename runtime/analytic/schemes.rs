@@ -42,7 +42,7 @@ fn remainder(params: &Params, lin: &Linearization, s: &State) -> (f64, f64) {
 /// exprb2: the linearized closed form from `state` at time `t` over `h`.
 pub fn exprb2(params: &Params, t: f64, state: State, h: f64) -> Result<SubStep, Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
-    let segment = lin.segment(state, [0.0; 8]);
+    let segment = lin.segment(state, [0.0; 8], h);
     let end = segment.state_with(h, &lin.scalars(h));
     Ok(SubStep { segment, h, end, error: 0.0 })
 }
@@ -51,18 +51,18 @@ pub fn exprb2(params: &Params, t: f64, state: State, h: f64) -> Result<SubStep, 
 /// (max norm, each component scaled by tol·(1 + |w|)).
 pub fn exprb43(params: &Params, t: f64, state: State, h: f64, tol: f64) -> Result<SubStep, Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
-    let free = lin.segment(state, [0.0; 8]);
+    let free = lin.segment(state, [0.0; 8], h);
     let u2 = free.state_with(0.5 * h, &lin.scalars(0.5 * h));
     let (n2x, n2y) = remainder(params, &lin, &u2);
     let at_h = lin.scalars(h);
-    let u3 = lin.segment(state, [n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).state_with(h, &at_h);
+    let u3 = lin.segment(state, [n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], h).state_with(h, &at_h);
     let (n3x, n3y) = remainder(params, &lin, &u3);
     let (h2, h3) = (h * h, h * h * h);
     let a2 = ((8.0 * n2x - n3x) / h2, (8.0 * n2y - n3y) / h2);
     let a3 = ((-8.0 * n2x + 2.0 * n3x) / h3, (-8.0 * n2y + 2.0 * n3y) / h3);
-    let segment = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1]);
+    let segment = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1], h);
     let end = segment.state_with(h, &at_h);
-    let embedded = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0]).state_with(h, &at_h);
+    let embedded = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0], h).state_with(h, &at_h);
     let (e, y0, y1) = (embedded.to_array(), state.to_array(), end.to_array());
     let mut error: f64 = 0.0;
     for i in 0..4 {

@@ -171,7 +171,7 @@ where
         }
         let y_new = redo(t_new);
         let (s_new, ds_new) = g(&y_new);
-        if !(math_abs(s_new) < math_abs(s)) {
+        if s_new.is_nan() || math_abs(s_new) >= math_abs(s) {
             break;
         }
         (best_t, best_y, s, ds) = (t_new, y_new, s_new, ds_new);

@@ -5,7 +5,7 @@
 use core::marker::PhantomData;
 
 use super::ode::{OdeSystem, all_finite};
-use super::scheme::{Scheme, Tolerance};
+use super::scheme::{Controller, Scheme, Tolerance};
 use crate::math;
 use crate::propagate::PropagationError;
 
@@ -56,6 +56,7 @@ pub struct Integrator<S: Scheme<N>, const N: usize> {
     h: f64,
     h_max: f64,
     tol: Tolerance,
+    controller: Controller,
     err_old: f64,
     rejected_last: bool,
     stats: Stats,
@@ -79,6 +80,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             h: 0.0,
             h_max: if h_max > 0.0 { h_max } else { f64::INFINITY },
             tol,
+            controller: S::CONTROLLER,
             err_old: 1e-4,
             rejected_last: false,
             stats: Stats::default(),
@@ -97,7 +99,17 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         self.stats.evaluations = self.stats.evaluations.saturating_add(1);
         self.err_old = 1e-4;
         self.rejected_last = false;
-        self.h = self.initial_step(sys);
+        let guess = self.initial_step(sys);
+        self.h = if self.h > 0.0 { guess.min(self.h) } else { guess };
+    }
+
+    /// Replace the step-size controller (the default is the scheme's
+    /// [`Scheme::CONTROLLER`]; for example set `beta = 0.04` and `alpha = 1/8 − 0.2·beta` for
+    /// DOP853 with PI stabilisation, as its `BETA` option does).
+    #[must_use]
+    pub fn with_controller(mut self, controller: Controller) -> Self {
+        self.controller = controller;
+        self
     }
 
     /// The current time.
@@ -184,7 +196,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                 current: self.t,
             });
         }
-        let ctl = S::CONTROLLER;
+        let ctl = self.controller;
         let (fac_lo, fac_hi) = (1.0 / ctl.fac_max, 1.0 / ctl.fac_min);
         let mut rejections = 0u32;
         loop {
@@ -237,6 +249,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                 return Ok(step);
             }
             self.stats.rejected = self.stats.rejected.saturating_add(1);
+            std::eprintln!("REJ first={} rej_last={} err={err:.2e} h={h:.3e}", self.err_old == 1e-4, self.rejected_last);
             self.rejected_last = true;
             self.h = h / (fac11 / ctl.safety).min(fac_hi);
             rejections += 1;
@@ -258,3 +271,5 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         S::attempt(sys, step.t0, &step.y0, &step.f0, t - step.t0, &self.tol).y1
     }
 }
+
+extern crate std;

@@ -7,6 +7,29 @@
 //! - [`Dopri5`], [`Dop853`]: the two pairs with their dense outputs.
 //! - [`first_crossing`]: event location on a dense output, grazing contacts included.
 //! - [`Dop853Propagator`], [`Rk45Propagator`]: the [`crate::Propagate`] implementations.
+//!
+//! ```
+//! use rotor_rub::reference::{Dop853, Dop853Propagator, Integrator, Interpolant, Tolerance};
+//! use rotor_rub::{Preset, Propagate, events};
+//!
+//! // The paper's preset: switches over 5 forcing periods.
+//! let problem = Preset::Paper.problem();
+//! let mut prop = Dop853Propagator::new(&problem, 1e-10)?;
+//! let end = 5.0 * problem.params.forcing_period();
+//! let switches = events(&mut prop, end).collect::<Result<Vec<_>, _>>()?;
+//! assert!(switches.len() >= 2);
+//!
+//! // The integrator core on any closure: y'' = −y over a quarter period.
+//! let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
+//! let mut integ = Integrator::<Dop853, 2>::new(&f, 0.0, [1.0, 0.0], Tolerance::uniform(1e-12), 1.0);
+//! let quarter = core::f64::consts::FRAC_PI_2;
+//! while integ.time() < quarter {
+//!     let step = integ.step(&f, quarter)?;
+//!     let _midpoint = step.dense.eval(0.5 * (step.t0 + step.t1));
+//! }
+//! assert!(integ.state()[0].abs() < 1e-11);
+//! # Ok::<(), rotor_rub::PropagationError>(())
+//! ```
 
 mod dop853;
 mod dopri5;
