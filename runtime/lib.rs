@@ -15,6 +15,8 @@ pub mod method;
 pub mod params;
 pub mod propagate;
 pub mod reference;
+#[cfg(feature = "proptest")]
+pub mod strategies;
 
 pub use method::{ContactScheme, Method, Options, Propagator};
 pub use params::{Field, ParamError, Params, Preset, Problem, State};

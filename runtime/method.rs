@@ -118,6 +118,8 @@ pub struct Propagator(Inner);
 
 enum Inner {
     Analytic(crate::analytic::AnalyticPropagator),
+    Dop853(crate::reference::Dop853Propagator),
+    Rk45(crate::reference::Rk45Propagator),
 }
 
 impl Propagator {
@@ -138,9 +140,11 @@ impl Propagator {
                 tol,
                 options.step,
             )?),
-            _ => {
+            Method::Dop853 => Inner::Dop853(crate::reference::Dop853Propagator::new(problem, tol)?),
+            Method::Rk45 => Inner::Rk45(crate::reference::Rk45Propagator::new(problem, tol)?),
+            Method::Hybrid => {
                 return Err(PropagationError::InvalidOption {
-                    what: "method (not built yet)",
+                    what: "method hybrid (not available yet)",
                     value: 0.0,
                 });
             }
@@ -153,21 +157,29 @@ impl Propagate for Propagator {
     fn time(&self) -> f64 {
         match &self.0 {
             Inner::Analytic(p) => p.time(),
+            Inner::Dop853(p) => p.time(),
+            Inner::Rk45(p) => p.time(),
         }
     }
     fn state(&self) -> State {
         match &self.0 {
             Inner::Analytic(p) => p.state(),
+            Inner::Dop853(p) => p.state(),
+            Inner::Rk45(p) => p.state(),
         }
     }
     fn regime(&self) -> Regime {
         match &self.0 {
             Inner::Analytic(p) => p.regime(),
+            Inner::Dop853(p) => p.regime(),
+            Inner::Rk45(p) => p.regime(),
         }
     }
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
         match &mut self.0 {
             Inner::Analytic(p) => p.advance(target),
+            Inner::Dop853(p) => p.advance(target),
+            Inner::Rk45(p) => p.advance(target),
         }
     }
 }

@@ -99,8 +99,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         self.stats.evaluations = self.stats.evaluations.saturating_add(1);
         self.err_old = 1e-4;
         self.rejected_last = false;
-        let guess = self.initial_step(sys);
-        self.h = if self.h > 0.0 { guess.min(self.h) } else { guess };
+        self.h = self.initial_step(sys);
     }
 
     /// Replace the step-size controller (the default is the scheme's
@@ -249,7 +248,6 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                 return Ok(step);
             }
             self.stats.rejected = self.stats.rejected.saturating_add(1);
-            std::eprintln!("REJ first={} rej_last={} err={err:.2e} h={h:.3e}", self.err_old == 1e-4, self.rejected_last);
             self.rejected_last = true;
             self.h = h / (fac11 / ctl.safety).min(fac_hi);
             rejections += 1;
@@ -271,5 +269,3 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         S::attempt(sys, step.t0, &step.y0, &step.f0, t - step.t0, &self.tol).y1
     }
 }
-
-extern crate std;

@@ -1,0 +1,231 @@
+//! The analytic propagator against independent computations: switch continuity and z = 1 over
+//! random problems, convergence orders of exprb2 and exprb43, a grazing and a start-on-boundary
+//! case with exact events, agreement with DOP853 on the paper's Fig. 2 cases, typed errors.
+
+use proptest::prelude::*;
+use rotor_rub::compare::compare_events;
+use rotor_rub::{
+    ContactScheme, Event, EventKind, Method, Options, Preset, Problem, Propagate, PropagationError,
+    Propagator, Regime, State, advance_to, events,
+};
+
+fn run(problem: &Problem, options: &Options, periods: f64) -> Result<Vec<Event>, PropagationError> {
+    let mut p = Propagator::new(problem, options)?;
+    events(&mut p, periods * problem.params.forcing_period()).collect()
+}
+
+fn z(problem: &Problem, s: &State) -> f64 {
+    (s.x - problem.params.offset_x).hypot(s.y - problem.params.offset_y)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    /// Every switch lies on z = 1, kinds alternate, the state is continuous across it (the new
+    /// segment starts from the old one's state: checked by a short step against a Taylor
+    /// estimate), and nothing is NaN; failures are typed errors only.
+    #[test]
+    fn switches_are_continuous_and_on_the_boundary(problem in rotor_rub::strategies::degenerate_problem()) {
+        let opts = Options::default();
+        let mut p = match Propagator::new(&problem, &opts) {
+            Ok(p) => p,
+            Err(e) => {
+                let expected = matches!(e, PropagationError::Diverged { .. } | PropagationError::SingularContact { .. });
+                prop_assert!(expected, "unexpected error {}", e);
+                return Ok(());
+            }
+        };
+        let end = 3.0 * problem.params.forcing_period();
+        let mut last_kind: Option<EventKind> = None;
+        for _ in 0..200 {
+            match p.advance(end) {
+                Ok(Some(ev)) => {
+                    prop_assert!(ev.state.is_finite());
+                    prop_assert!((z(&problem, &ev.state) - 1.0).abs() <= 1e-12, "z = {}", z(&problem, &ev.state));
+                    if let Some(k) = last_kind { prop_assert_ne!(k, ev.kind); }
+                    last_kind = Some(ev.kind);
+                    prop_assert_eq!(p.regime(), ev.kind.regime_after());
+                    // Continuity: a step of δ from the switch moves the state by δ·v + O(δ²).
+                    let d = 1e-7;
+                    let s0 = ev.state;
+                    let mut passed = None;
+                    match advance_to(&mut p, ev.time + d, |e| passed = Some(e.kind)) {
+                        Ok(sample) => {
+                            if passed.is_some() {
+                                // A contact shorter than δ: its exit was passed on the way.
+                                last_kind = passed;
+                                continue;
+                            }
+                            let s1 = sample.state;
+                            let scale = 1.0 + s0.x.abs().max(s0.y.abs()).max(s0.vx.abs()).max(s0.vy.abs());
+                            prop_assert!((s1.x - s0.x - d * s0.vx).abs() <= 1e-12 * scale + 1e-10 * scale);
+                            prop_assert!((s1.y - s0.y - d * s0.vy).abs() <= 1e-12 * scale + 1e-10 * scale);
+                            prop_assert!((s1.vx - s0.vx).abs() <= 1e-4 * scale, "velocity jump");
+                        }
+                        Err(PropagationError::Diverged { .. }) => return Ok(()),
+                        Err(e) => prop_assert!(false, "unexpected error {e}"),
+                    }
+                }
+                Ok(None) => break,
+                Err(PropagationError::Diverged { .. } | PropagationError::SingularContact { .. }) => break,
+                Err(e) => prop_assert!(false, "unexpected error {e}"),
+            }
+        }
+        prop_assert!(p.state().is_finite());
+    }
+}
+
+/// Start deep in contact; error at τ = 0.2 of fixed-step runs against a fine exprb43 run.
+fn fixed_step_error(scheme: ContactScheme, h: f64) -> f64 {
+    let mut problem = Preset::Paper.problem();
+    problem.params.offset_x = 0.0;
+    problem.params.offset_y = 0.0;
+    problem.initial = State::new(1.05, 0.0, 0.0, 1.0);
+    let end = 0.2;
+    let state_at = |scheme, h| {
+        let opts = Options { contact_scheme: scheme, step: Some(h), ..Options::default() };
+        let mut p = Propagator::new(&problem, &opts).unwrap();
+        let s = advance_to(&mut p, end, |e| panic!("no switch expected, got {e:?}")).unwrap();
+        assert_eq!(s.regime, Regime::Contact);
+        s.state
+    };
+    let reference = state_at(ContactScheme::Exprb43, end / 1024.0);
+    let s = state_at(scheme, h);
+    (s.x - reference.x).hypot(s.y - reference.y).hypot((s.vx - reference.vx).hypot(s.vy - reference.vy))
+}
+
+#[test]
+fn exprb2_is_second_order() {
+    let (e1, e2) = (fixed_step_error(ContactScheme::Exprb2, 0.2 / 32.0), fixed_step_error(ContactScheme::Exprb2, 0.2 / 64.0));
+    let ratio = e1 / e2;
+    assert!((ratio - 4.0).abs() <= 0.6, "exprb2 error ratio {ratio} ({e1:e} / {e2:e})");
+}
+
+#[test]
+fn exprb43_is_fourth_order() {
+    let (e1, e2) = (fixed_step_error(ContactScheme::Exprb43, 0.2 / 16.0), fixed_step_error(ContactScheme::Exprb43, 0.2 / 32.0));
+    let ratio = e1 / e2;
+    assert!((ratio - 16.0).abs() <= 5.0, "exprb43 error ratio {ratio} ({e1:e} / {e2:e})");
+}
+
+/// A steady free orbit (a circle of radius R about the origin) that just reaches z = 1 + δ once per
+/// period with the stator offset along x: the first entry time is known in closed form.
+#[test]
+fn grazing_contact_is_found_with_exact_entry() {
+    let mut problem = Preset::Paper.problem();
+    let p = &mut problem.params;
+    let (eta, nu) = (p.speed_ratio, p.damping_ratio);
+    let f = p.forcing_amplitude();
+    let d = (1.0 - eta * eta).powi(2) + (2.0 * nu * eta).powi(2);
+    let (c11, c22) = (f * (1.0 - eta * eta) / d, 2.0 * nu * eta * f / d);
+    let radius = c11.hypot(c22);
+    let depth = 1.2e-5;
+    let e = 1.0 + depth - radius;
+    p.offset_x = e;
+    p.offset_y = 0.0;
+    problem.initial = State::new(c11, -c22, eta * c22, eta * c11);
+    // x_p = R cos(θ − ψ); |r_p − ε|² = R² + e² − 2e x_p > 1 while cos(θ − ψ) < c0,
+    // c0 = (R² + e² − 1)/(2eR) ≈ −1: θ − ψ ∈ (arccos c0, 2π − arccos c0).
+    let psi = c22.atan2(c11);
+    let opening = ((radius * radius + e * e - 1.0) / (2.0 * e * radius)).acos();
+    let half_width = std::f64::consts::PI - opening;
+    let mut entry = (psi + opening) / eta;
+    let period = std::f64::consts::TAU / eta;
+    while entry < 0.0 {
+        entry += period;
+    }
+    let exit_rigid = entry + 2.0 * half_width / eta;
+    let evs = run(&problem, &Options::default(), 1.2 * entry / period + 0.2).unwrap();
+    assert!(evs.len() >= 2, "grazing contact missed: {evs:?}");
+    assert_eq!(evs[0].kind, EventKind::Enter);
+    assert!((evs[0].time - entry).abs() <= 1e-9, "entry {} vs exact {entry}", evs[0].time);
+    assert_eq!(evs[1].kind, EventKind::Exit);
+    let duration = evs[1].time - evs[0].time;
+    assert!(duration > 0.0 && duration < 0.02, "contact lasts {duration}");
+    // The contact force is tiny (K·δ): the exit is within 1e-5 of the rigid-orbit prediction.
+    assert!((evs[1].time - exit_rigid).abs() <= 1e-5, "exit {} vs {exit_rigid}", evs[1].time);
+    // DOP853 at a tight tolerance agrees on both switches.
+    let reference = run(&problem, &Options { tol: Some(1e-12), ..Options::with_method(Method::Dop853) }, 1.2 * entry / period + 0.2).unwrap();
+    assert!((reference[0].time - evs[0].time).abs() <= 1e-8);
+    assert!((reference[1].time - evs[1].time).abs() <= 1e-6);
+}
+
+#[test]
+fn start_on_boundary_is_decided_by_radial_velocity() {
+    let mut problem = Preset::Paper.problem();
+    problem.params.offset_x = 0.0;
+    problem.params.offset_y = 0.0;
+    for (vx, regime, first) in [(0.5, Regime::Contact, EventKind::Exit), (-0.5, Regime::Free, EventKind::Enter)] {
+        problem.initial = State::new(1.0, 0.0, vx, 0.3);
+        let mut p = Propagator::new(&problem, &Options::default()).unwrap();
+        assert_eq!(p.regime(), regime);
+        let ev = p.advance(50.0).unwrap().expect("a switch follows");
+        assert_eq!(ev.kind, first);
+        assert!(ev.time > 1e-3, "zero-length re-detection at {}", ev.time);
+        let reference = run(&problem, &Options { tol: Some(1e-12), ..Options::with_method(Method::Dop853) }, 50.0 / problem.params.forcing_period()).unwrap();
+        assert_eq!(reference[0].kind, first);
+        assert!((reference[0].time - ev.time).abs() <= 1e-6, "{} vs {}", reference[0].time, ev.time);
+    }
+}
+
+/// Analytic vs DOP853 over 20 periods for the six Fig. 2 speeds and both presets: same kinds,
+/// switch times within 1e-6 at default tolerances and 1e-9 at tol = 1e-11 (all switches, or the
+/// first 20 for chaotic motion), same counts where the motion is not chaotic.
+#[test]
+fn agrees_with_dop853_on_fig2_cases() {
+    // Chaotic per model.md §9: paper preset η = 1.5.
+    for preset in Preset::ALL {
+        for eta in [1.0, 1.5, 2.0, 2.5, 3.0, 3.5] {
+            let mut problem = preset.problem();
+            problem.params.speed_ratio = eta;
+            let chaotic = preset == Preset::Paper && eta == 1.5;
+            let reference = run(&problem, &Options { tol: Some(1e-13), ..Options::with_method(Method::Dop853) }, 20.0).unwrap();
+            for (tol, bound) in [(None, 1e-6), (Some(1e-11), 1e-9)] {
+                let analytic = run(&problem, &Options { tol, ..Options::default() }, 20.0).unwrap();
+                let n = if chaotic { 20 } else { reference.len() };
+                if !chaotic {
+                    assert_eq!(analytic.len(), reference.len(), "{preset:?} η={eta} tol={tol:?}: switch counts");
+                }
+                let c = compare_events(&analytic[..n.min(analytic.len())], &reference[..n.min(reference.len())], bound);
+                assert!(c.agrees(), "{preset:?} η={eta} tol={tol:?}: {c:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn invalid_inputs_give_typed_errors() {
+    let mut problem = Preset::Paper.problem();
+    problem.params.damping_ratio = -0.1;
+    assert!(matches!(Propagator::new(&problem, &Options::default()), Err(PropagationError::InvalidProblem(_))));
+    problem = Preset::Paper.problem();
+    problem.initial.x = f64::NAN;
+    assert!(matches!(Propagator::new(&problem, &Options::default()), Err(PropagationError::InvalidProblem(_))));
+    problem = Preset::Paper.problem();
+    for tol in [0.0, -1.0, f64::NAN, 2.0] {
+        let r = Propagator::new(&problem, &Options { tol: Some(tol), ..Options::default() });
+        assert!(matches!(r, Err(PropagationError::InvalidOption { what: "tol", .. })), "tol {tol}");
+    }
+    let r = Propagator::new(&problem, &Options { step: Some(-1.0), ..Options::default() });
+    assert!(matches!(r, Err(PropagationError::InvalidOption { what: "step", .. })));
+    let mut p = Propagator::new(&problem, &Options::default()).unwrap();
+    p.advance(1.0).unwrap();
+    assert!(matches!(p.advance(0.5), Err(PropagationError::InvalidTarget { .. })));
+    assert!(matches!(p.advance(f64::INFINITY), Err(PropagationError::InvalidTarget { .. })));
+}
+
+/// Contact-sparse motion settles on the non-contact orbit; a million forcing periods then cost
+/// nothing and nothing overflows (local time, `model.md` §6 case 12).
+#[test]
+fn a_million_periods_in_local_time() {
+    let mut problem = Preset::Paper.problem();
+    problem.params.offset_x = 0.0;
+    problem.params.offset_y = 0.0;
+    let mut p = Propagator::new(&problem, &Options::default()).unwrap();
+    let end = 1e6 * problem.params.forcing_period();
+    let n = events(&mut p, end).map(|e| e.unwrap()).count();
+    assert!(n > 0 && n < 100, "{n} switches in the start-up transient");
+    let s = p.state();
+    assert!(s.is_finite() && p.time() == end);
+    assert!((z(&problem, &s) - 0.603).abs() < 0.01, "steady free orbit radius {}", z(&problem, &s));
+}
