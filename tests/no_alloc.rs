@@ -39,8 +39,16 @@ fn propagation_over_1000_periods_allocates_nothing() {
         strobe += 1;
     }
     let after = ALLOCATIONS.load(Ordering::SeqCst);
-    assert_eq!(after, before, "propagation allocated {} times", after - before);
-    assert!(switches > 1000, "the paper preset rubs every period: {switches} switches");
+    assert_eq!(
+        after,
+        before,
+        "propagation allocated {} times",
+        after - before
+    );
+    assert!(
+        switches > 1000,
+        "the paper preset rubs every period: {switches} switches"
+    );
     assert_eq!(strobe, 10);
     assert!(p.time() > 1000.0 * period);
 }

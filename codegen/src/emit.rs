@@ -87,7 +87,11 @@ impl Emitter<'_> {
 
     fn literal(v: f64) -> (TokenStream, Prec) {
         let lit = Literal::f64_unsuffixed(v.abs());
-        if v < 0.0 { (quote!(-#lit), Prec::Unary) } else { (quote!(#lit), Prec::Atom) }
+        if v < 0.0 {
+            (quote!(-#lit), Prec::Unary)
+        } else {
+            (quote!(#lit), Prec::Atom)
+        }
     }
 
     /// The node itself written out (its operands by reference).
@@ -111,7 +115,11 @@ impl Emitter<'_> {
                 if n < 0 {
                     self.counts.div += 1;
                     let one = Self::literal(1.0).0;
-                    if k > 1 { (quote!(#one / (#out)), Prec::Product) } else { (quote!(#one / #out), Prec::Product) }
+                    if k > 1 {
+                        (quote!(#one / (#out)), Prec::Product)
+                    } else {
+                        (quote!(#one / #out), Prec::Product)
+                    }
                 } else if k > 1 {
                     (out, Prec::Product)
                 } else {
@@ -138,14 +146,17 @@ impl Emitter<'_> {
         }
         match self.g.node(t) {
             Node::Const(bits) => f64::from_bits(*bits) < 0.0,
-            Node::Mul(fs) => fs.iter().any(|&f| self.g.as_const(f).is_some_and(|c| c < 0.0)),
+            Node::Mul(fs) => fs
+                .iter()
+                .any(|&f| self.g.as_const(f).is_some_and(|c| c < 0.0)),
             _ => false,
         }
     }
 
     fn sum(&mut self, ts: &[ExprId]) -> (TokenStream, Prec) {
         // Positive terms first, so the sum reads `a + b - c`.
-        let mut ordered: Vec<(ExprId, bool)> = ts.iter().map(|&t| (t, self.negative_term(t))).collect();
+        let mut ordered: Vec<(ExprId, bool)> =
+            ts.iter().map(|&t| (t, self.negative_term(t))).collect();
         ordered.sort_by_key(|&(_, neg)| neg);
         let mut out = TokenStream::new();
         for (k, &(t, neg)) in ordered.iter().enumerate() {
@@ -160,7 +171,11 @@ impl Emitter<'_> {
             };
             if k > 0 {
                 self.counts.add += 1;
-                out.extend(if neg { quote!(- #term) } else { quote!(+ #term) });
+                out.extend(if neg {
+                    quote!(- #term)
+                } else {
+                    quote!(+ #term)
+                });
             } else if neg {
                 out.extend(quote!(-(#term)));
             } else {
@@ -246,9 +261,18 @@ pub fn emit_formula(g: &Graph, f: &Formula) -> Emitted {
     let plan = plan(g, &outputs);
     for &s in &f.inputs {
         let used = outputs.iter().any(|&o| g.depends_on(o, s));
-        assert!(used, "input `{}` of `{}` is unused", g.symbol_name(s), f.name);
+        assert!(
+            used,
+            "input `{}` of `{}` is unused",
+            g.symbol_name(s),
+            f.name
+        );
     }
-    let mut em = Emitter { g, plan: &plan, counts: OpCounts::default() };
+    let mut em = Emitter {
+        g,
+        plan: &plan,
+        counts: OpCounts::default(),
+    };
     let mut lets = TokenStream::new();
     for (k, &id) in plan.bindings.iter().enumerate() {
         let (e, _) = em.inline(id);
@@ -294,5 +318,9 @@ pub fn emit_formula(g: &Graph, f: &Formula) -> Emitted {
             #ty { #fields }
         }
     };
-    Emitted { tokens, before: plan.before, after: em.counts }
+    Emitted {
+        tokens,
+        before: plan.before,
+        after: em.counts,
+    }
 }

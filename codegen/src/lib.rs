@@ -53,7 +53,10 @@ pub fn generate() -> Generated {
         let _ = writeln!(header, "// {:<28}  after: {after}", "");
     }
     header.push('\n');
-    Generated { source: header + &formatted, counts }
+    Generated {
+        source: header + &formatted,
+        counts,
+    }
 }
 
 /// Write `contents` to `path` only if the bytes differ (keeps builds incremental).

@@ -71,13 +71,21 @@ pub fn plan(g: &Graph, outputs: &[ExprId]) -> Plan {
         .copied()
         .filter(|&id| !is_leaf(id) && (uses[&id] >= 2 || forced.contains(&id)))
         .collect();
-    let temp_index = bindings.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    let temp_index = bindings
+        .iter()
+        .enumerate()
+        .map(|(k, &id)| (id, k))
+        .collect();
     let mut memo = HashMap::new();
     let mut before = OpCounts::default();
     for &o in outputs {
         before += tree_ops(g, o, &mut memo);
     }
-    Plan { bindings, temp_index, before }
+    Plan {
+        bindings,
+        temp_index,
+        before,
+    }
 }
 
 fn visit(
@@ -93,10 +101,8 @@ fn visit(
     }
     for c in g.children(id) {
         *uses.entry(c).or_insert(0) += 1;
-        if let Node::Pow(_, n) = g.node(id) {
-            if n.abs() >= 2 {
-                forced.insert(c);
-            }
+        if matches!(g.node(id), Node::Pow(_, n) if n.abs() >= 2) {
+            forced.insert(c);
         }
         visit(g, c, uses, forced, visited, order);
     }
@@ -125,7 +131,11 @@ fn tree_ops(g: &Graph, id: ExprId, memo: &mut HashMap<ExprId, OpCounts>) -> OpCo
                     Node::Const(bits) => num += u64::from(f64::from_bits(bits).abs() != 1.0),
                     Node::Pow(b, n) => {
                         let k = u64::from(n.unsigned_abs());
-                        if n < 0 { den += k } else { num += k }
+                        if n < 0 {
+                            den += k
+                        } else {
+                            num += k
+                        }
                         let base = tree_ops(g, b, memo);
                         for _ in 0..k {
                             c += base;
@@ -150,7 +160,11 @@ fn tree_ops(g: &Graph, id: ExprId, memo: &mut HashMap<ExprId, OpCounts>) -> OpCo
             }
         }
         Node::Call(f, a) => {
-            if f == Func::Sqrt { c.sqrt = 1 } else { c.transcendental = 1 }
+            if f == Func::Sqrt {
+                c.sqrt = 1
+            } else {
+                c.transcendental = 1
+            }
             c += tree_ops(g, a, memo);
         }
     }

@@ -105,12 +105,18 @@ struct Complex {
 
 impl Complex {
     fn mul(self, o: Complex) -> Complex {
-        Complex { re: self.re * o.re - self.im * o.im, im: self.re * o.im + self.im * o.re }
+        Complex {
+            re: self.re * o.re - self.im * o.im,
+            im: self.re * o.im + self.im * o.re,
+        }
     }
 
     fn div(self, o: Complex) -> Complex {
         let d = o.re * o.re + o.im * o.im;
-        Complex { re: (self.re * o.re + self.im * o.im) / d, im: (self.im * o.re - self.re * o.im) / d }
+        Complex {
+            re: (self.re * o.re + self.im * o.im) / d,
+            im: (self.im * o.re - self.re * o.im) / d,
+        }
     }
 
     /// Principal square root.
@@ -118,33 +124,61 @@ impl Complex {
         let r = math::hypot(self.re, self.im);
         let re = math::sqrt(0.5 * (r + self.re));
         let im = math::sqrt(0.5 * (r - self.re));
-        Complex { re, im: if self.im < 0.0 { -im } else { im } }
+        Complex {
+            re,
+            im: if self.im < 0.0 { -im } else { im },
+        }
     }
 
     /// (cos z, sin z).
     fn cos_sin(self) -> (Complex, Complex) {
         let (s, c) = math::sin_cos(self.re);
         let (ch, sh) = (math::cosh(self.im), math::sinh(self.im));
-        (Complex { re: c * ch, im: -s * sh }, Complex { re: s * ch, im: c * sh })
+        (
+            Complex {
+                re: c * ch,
+                im: -s * sh,
+            },
+            Complex {
+                re: s * ch,
+                im: c * sh,
+            },
+        )
     }
 }
 
 /// (cos(√μ s), sin(√μ s)/√μ) for complex μ.
 fn cos_sinc_complex(mu: Complex, s: f64) -> (Complex, Complex) {
-    let x = Complex { re: mu.re * s * s, im: mu.im * s * s };
+    let x = Complex {
+        re: mu.re * s * s,
+        im: mu.im * s * s,
+    };
     if math::hypot(x.re, x.im) < SERIES_LIMIT {
         // Horner in complex arithmetic, as `series`.
         let one = Complex { re: 1.0, im: 0.0 };
         let step = |acc: Complex, k: f64| {
             let t = x.mul(acc);
-            Complex { re: 1.0 - t.re / k, im: -t.im / k }
+            Complex {
+                re: 1.0 - t.re / k,
+                im: -t.im / k,
+            }
         };
         let c = step(step(step(step(one, 56.0), 30.0), 12.0), 2.0);
         let sn = step(step(step(step(one, 72.0), 42.0), 20.0), 6.0);
-        return (c, Complex { re: sn.re * s, im: sn.im * s });
+        return (
+            c,
+            Complex {
+                re: sn.re * s,
+                im: sn.im * s,
+            },
+        );
     }
     let r = mu.sqrt();
-    let (c, sn) = Complex { re: r.re * s, im: r.im * s }.cos_sin();
+    let (c, sn) = Complex {
+        re: r.re * s,
+        im: r.im * s,
+    }
+    .cos_sin();
     (c, sn.div(r))
 }
 
@@ -172,7 +206,12 @@ pub fn matrix_function(gamma_sq_mean: f64, disc: f64, s: f64) -> MatrixFunction 
         // f(A) ≈ f(γ̄²) I + f'(γ̄²) B: error O(Δ·f'') (cases 7–8).
         let (c, sn) = cos_sinc(gamma_sq_mean, s);
         let (dc, dsn) = cos_sinc_derivative(gamma_sq_mean, s);
-        return MatrixFunction { cc: c, cd: dc, sc: sn, sd: dsn };
+        return MatrixFunction {
+            cc: c,
+            cd: dc,
+            sc: sn,
+            sd: dsn,
+        };
     }
     if disc > 0.0 {
         let (c1, s1) = cos_sinc(gamma_sq_mean + e, s);
@@ -185,7 +224,18 @@ pub fn matrix_function(gamma_sq_mean: f64, disc: f64, s: f64) -> MatrixFunction 
         }
     } else {
         // f(γ̄² + ie) and its conjugate: even part Re f, odd part Im f / e.
-        let (c, sn) = cos_sinc_complex(Complex { re: gamma_sq_mean, im: e }, s);
-        MatrixFunction { cc: c.re, cd: c.im / e, sc: sn.re, sd: sn.im / e }
+        let (c, sn) = cos_sinc_complex(
+            Complex {
+                re: gamma_sq_mean,
+                im: e,
+            },
+            s,
+        );
+        MatrixFunction {
+            cc: c.re,
+            cd: c.im / e,
+            sc: sn.re,
+            sd: sn.im / e,
+        }
     }
 }

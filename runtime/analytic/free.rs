@@ -110,7 +110,11 @@ impl Segment for FreeSegment {
             self.offset.0,
             self.offset.1,
         );
-        Point { state: State::new(r.x, r.y, r.vx, r.vy), h: r.h, dh: r.dh }
+        Point {
+            state: State::new(r.x, r.y, r.vx, r.vy),
+            h: r.h,
+            dh: r.dh,
+        }
     }
 
     fn bounds(&self, lo: f64, hi: f64) -> Bounds {

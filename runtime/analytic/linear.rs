@@ -39,7 +39,8 @@ impl Linearization {
         );
         let nu = p.damping_ratio;
         let modes = coef::contact_modes(kl.fa1, kl.fb1, kl.fb2, kl.fa2, nu);
-        let scale = 1.0 + math::abs(kl.fa1) + math::abs(kl.fa2) + math::abs(kl.fb1) + math::abs(kl.fb2);
+        let scale =
+            1.0 + math::abs(kl.fa1) + math::abs(kl.fa2) + math::abs(kl.fb1) + math::abs(kl.fb2);
         if math::abs(modes.det) <= 1e-12 * scale * scale {
             return Err(Singular);
         }
@@ -55,14 +56,26 @@ impl Linearization {
             p.forcing_amplitude(),
         );
         let c = &particular;
-        let all = [c.c11, c.c22, c.c33, c.c44, c.c55, c.c66, modes.disc, modes.omega_sq_mean];
+        let all = [
+            c.c11,
+            c.c22,
+            c.c33,
+            c.c44,
+            c.c55,
+            c.c66,
+            modes.disc,
+            modes.omega_sq_mean,
+        ];
         if all.iter().any(|v| !v.is_finite()) {
             return Err(Singular);
         }
         let (st, ct) = math::sin_cos(math::wrap_angle(p.speed_ratio * t0 + p.phase));
         let nn = nu * nu;
         let norm_a = math::sqrt(
-            (kl.fa1 - nn) * (kl.fa1 - nn) + (kl.fa2 - nn) * (kl.fa2 - nn) + kl.fb1 * kl.fb1 + kl.fb2 * kl.fb2,
+            (kl.fa1 - nn) * (kl.fa1 - nn)
+                + (kl.fa2 - nn) * (kl.fa2 - nn)
+                + kl.fb1 * kl.fb1
+                + kl.fb2 * kl.fb2,
         );
         let norm_kl =
             math::sqrt(kl.fa1 * kl.fa1 + kl.fa2 * kl.fa2 + kl.fb1 * kl.fb1 + kl.fb2 * kl.fb2);
@@ -93,7 +106,9 @@ impl Linearization {
     fn particular_state(&self, s: f64) -> [f64; 4] {
         let (ct, st) = self.phasor(s);
         let c = &self.particular;
-        let p = coef::contact_particular_eval(c.c11, c.c22, c.c33, c.c44, c.c55, c.c66, ct, st, self.eta);
+        let p = coef::contact_particular_eval(
+            c.c11, c.c22, c.c33, c.c44, c.c55, c.c66, ct, st, self.eta,
+        );
         [p.x, p.y, p.vx, p.vy]
     }
 
@@ -130,13 +145,21 @@ impl Linearization {
             state.vy - p[3] - poly[3],
             self.nu,
         );
-        LinearSegment { lin: *self, response, q0: [start.q0x, start.q0y], w0: [start.w0x, start.w0y] }
+        LinearSegment {
+            lin: *self,
+            response,
+            q0: [start.q0x, start.q0y],
+            w0: [start.w0x, start.w0y],
+        }
     }
 
     /// The matrix-function scalars and decay at local time `s` (shared by every segment of this
     /// linearization evaluated at the same `s`).
     pub fn scalars(&self, s: f64) -> (f64, MatrixFunction) {
-        (math::exp(-self.nu * s), matrix_function(self.modes.gamma_sq_mean, self.modes.disc, s))
+        (
+            math::exp(-self.nu * s),
+            matrix_function(self.modes.gamma_sq_mean, self.modes.disc, s),
+        )
     }
 }
 
@@ -146,6 +169,10 @@ const SERIES_TERMS: usize = 20;
 
 /// How the response to the extra cubic forcing is represented.
 #[derive(Clone, Copy, Debug)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "the runtime has no heap to box into"
+)]
 pub enum Response {
     /// No extra forcing.
     None,
@@ -160,7 +187,11 @@ pub enum Response {
 fn series_response(k: &LinearizedContact, nu: f64, a: &[f64; 8]) -> [[f64; 2]; SERIES_TERMS] {
     let mut c = [[0.0; 2]; SERIES_TERMS];
     for m in 0..SERIES_TERMS - 2 {
-        let (f0, f1) = if m < 4 { (a[2 * m], a[2 * m + 1]) } else { (0.0, 0.0) };
+        let (f0, f1) = if m < 4 {
+            (a[2 * m], a[2 * m + 1])
+        } else {
+            (0.0, 0.0)
+        };
         let d = ((m + 2) * (m + 1)) as f64;
         let damp = 2.0 * nu * (m + 1) as f64;
         let [cx, cy] = c[m];
@@ -228,7 +259,12 @@ impl LinearSegment {
             }
             Response::Series(c) => series_eval(c, s),
         };
-        State::new(h.x + p[0] + q[0], h.y + p[1] + q[1], h.vx + p[2] + q[2], h.vy + p[3] + q[3])
+        State::new(
+            h.x + p[0] + q[0],
+            h.y + p[1] + q[1],
+            h.vx + p[2] + q[2],
+            h.vy + p[3] + q[3],
+        )
     }
 
     /// The linearization this segment belongs to.

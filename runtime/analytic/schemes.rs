@@ -10,7 +10,7 @@
 //!   (`polynomial_particular`, derived by the generator), and w1's segment evaluated at 0 < s < h
 //!   is the scheme's continuous extension used for exit location and sampling.
 
-use super::linear::{Linearization, LinearSegment, Singular};
+use super::linear::{LinearSegment, Linearization, Singular};
 use crate::field;
 use crate::math;
 use crate::params::{Params, State};
@@ -44,25 +44,40 @@ pub fn exprb2(params: &Params, t: f64, state: State, h: f64) -> Result<SubStep, 
     let lin = Linearization::new(params, t, state.x, state.y)?;
     let segment = lin.segment(state, [0.0; 8], h);
     let end = segment.state_with(h, &lin.scalars(h));
-    Ok(SubStep { segment, h, end, error: 0.0 })
+    Ok(SubStep {
+        segment,
+        h,
+        end,
+        error: 0.0,
+    })
 }
 
 /// exprb43 from `state` at time `t` over `h`, with the embedded error in units of `tol`
 /// (max norm, each component scaled by tol·(1 + |w|)).
-pub fn exprb43(params: &Params, t: f64, state: State, h: f64, tol: f64) -> Result<SubStep, Singular> {
+pub fn exprb43(
+    params: &Params,
+    t: f64,
+    state: State,
+    h: f64,
+    tol: f64,
+) -> Result<SubStep, Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
     let free = lin.segment(state, [0.0; 8], h);
     let u2 = free.state_with(0.5 * h, &lin.scalars(0.5 * h));
     let (n2x, n2y) = remainder(params, &lin, &u2);
     let at_h = lin.scalars(h);
-    let u3 = lin.segment(state, [n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], h).state_with(h, &at_h);
+    let u3 = lin
+        .segment(state, [n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], h)
+        .state_with(h, &at_h);
     let (n3x, n3y) = remainder(params, &lin, &u3);
     let (h2, h3) = (h * h, h * h * h);
     let a2 = ((8.0 * n2x - n3x) / h2, (8.0 * n2y - n3y) / h2);
     let a3 = ((-8.0 * n2x + 2.0 * n3x) / h3, (-8.0 * n2y + 2.0 * n3y) / h3);
     let segment = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1], h);
     let end = segment.state_with(h, &at_h);
-    let embedded = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0], h).state_with(h, &at_h);
+    let embedded = lin
+        .segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0], h)
+        .state_with(h, &at_h);
     let (e, y0, y1) = (embedded.to_array(), state.to_array(), end.to_array());
     let mut error: f64 = 0.0;
     for i in 0..4 {
@@ -72,5 +87,10 @@ pub fn exprb43(params: &Params, t: f64, state: State, h: f64, tol: f64) -> Resul
     if !error.is_finite() {
         error = f64::INFINITY;
     }
-    Ok(SubStep { segment, h, end, error })
+    Ok(SubStep {
+        segment,
+        h,
+        end,
+        error,
+    })
 }

@@ -46,5 +46,9 @@ pub trait Segment {
 pub fn point_of(state: State, offset_x: f64, offset_y: f64) -> Point {
     let u = state.x - offset_x;
     let v = state.y - offset_y;
-    Point { state, h: u * u + v * v - 1.0, dh: 2.0 * (u * state.vx + v * state.vy) }
+    Point {
+        state,
+        h: u * u + v * v - 1.0,
+        dh: 2.0 * (u * state.vx + v * state.vy),
+    }
 }

@@ -58,10 +58,11 @@ pub fn first_crossing<S: Segment>(
 ) -> Option<(f64, Point)> {
     let sign = direction.sign();
     let mut a = lo;
-    let mut pa = start;
     // The start belongs to the current regime whatever rounding says.
-    let clamp = |p: Point| Point { h: if sign * p.h > 0.0 { 0.0 } else { p.h }, ..p };
-    pa = clamp(pa);
+    let mut pa = Point {
+        h: if sign * start.h > 0.0 { 0.0 } else { start.h },
+        ..start
+    };
     while a < hi {
         let b = (a + max_chunk).min(hi);
         let pb = seg.point(b);
@@ -109,7 +110,11 @@ fn upper_bound(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64) -> f64 {
     // linear: c0 + c1 t.
     let c0 = ga - gb + dgb * len - 0.5 * m2 * len * len;
     let c1 = dga - dgb + m2 * len;
-    let t = if c1 > 0.0 { (-c0 / c1).clamp(0.0, len) } else { 0.5 * len };
+    let t = if c1 > 0.0 {
+        (-c0 / c1).clamp(0.0, len)
+    } else {
+        0.5 * len
+    };
     let meet = ga + dga * t + 0.5 * m2 * t * t;
     ga.max(gb).max(meet)
 }
@@ -131,10 +136,18 @@ fn refine<S: Segment>(
             break;
         }
         // Newton from the end with the smaller residual, else the secant, else bisection.
-        let (gs, ds, s0) = if -ga < gb { (ga, dga, a) } else { (gb, sign * pb.dh, b) };
+        let (gs, ds, s0) = if -ga < gb {
+            (ga, dga, a)
+        } else {
+            (gb, sign * pb.dh, b)
+        };
         let mut t = if ds != 0.0 { s0 - gs / ds } else { f64::NAN };
         if !(t > a && t < b) {
-            t = if gb != ga { a - ga * (b - a) / (gb - ga) } else { f64::NAN };
+            t = if gb != ga {
+                a - ga * (b - a) / (gb - ga)
+            } else {
+                f64::NAN
+            };
         }
         if !(t > a && t < b) {
             t = a + 0.5 * (b - a);

@@ -59,8 +59,12 @@ fn diff_memo(
                 if g.is_const(di, 0.0) {
                     continue;
                 }
-                let mut factors: Vec<_> =
-                    fs.iter().enumerate().filter(|&(j, _)| j != i).map(|(_, &f)| f).collect();
+                let mut factors: Vec<_> = fs
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, _)| j != i)
+                    .map(|(_, &f)| f)
+                    .collect();
                 factors.push(di);
                 terms.push(g.product(&factors));
             }

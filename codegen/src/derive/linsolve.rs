@@ -48,8 +48,8 @@ pub fn solve_linear(
     let mut solution: Vec<Option<ExprId>> = vec![None; n];
     let mut remaining: Vec<usize> = (0..n).collect();
     while !remaining.is_empty() {
-        let (rows, cols) = smallest_block(g, &m, &remaining, &solution)
-            .ok_or(SolveError::Underdetermined)?;
+        let (rows, cols) =
+            smallest_block(g, &m, &remaining, &solution).ok_or(SolveError::Underdetermined)?;
         // Move known unknowns to the right-hand side.
         let mut block_rhs = Vec::with_capacity(rows.len());
         for &i in &rows {
@@ -62,15 +62,20 @@ pub fn solve_linear(
             }
             block_rhs.push(g.sum(&terms));
         }
-        let block: Vec<Vec<ExprId>> =
-            rows.iter().map(|&i| cols.iter().map(|&j| m[i][j]).collect()).collect();
+        let block: Vec<Vec<ExprId>> = rows
+            .iter()
+            .map(|&i| cols.iter().map(|&j| m[i][j]).collect())
+            .collect();
         let values = cramer(g, &block, &block_rhs);
         for (k, &j) in cols.iter().enumerate() {
             solution[j] = Some(values[k]);
         }
         remaining.retain(|i| !rows.contains(i));
     }
-    Ok(solution.into_iter().map(|v| v.expect("every unknown solved")).collect())
+    Ok(solution
+        .into_iter()
+        .map(|v| v.expect("every unknown solved"))
+        .collect())
 }
 
 /// The smallest set of remaining equations whose still-unknown unknowns are exactly as many as
@@ -84,7 +89,10 @@ fn smallest_block(
     let r = remaining.len();
     let mut best: Option<(Vec<usize>, Vec<usize>)> = None;
     for mask in 1u32..(1 << r) {
-        let rows: Vec<usize> = (0..r).filter(|k| mask & (1 << k) != 0).map(|k| remaining[k]).collect();
+        let rows: Vec<usize> = (0..r)
+            .filter(|k| mask & (1 << k) != 0)
+            .map(|k| remaining[k])
+            .collect();
         if best.as_ref().is_some_and(|(b, _)| b.len() <= rows.len()) {
             continue;
         }
@@ -141,7 +149,13 @@ pub fn determinant<R: AsRef<[ExprId]>>(g: &mut Graph, a: &[R]) -> ExprId {
                 let minor: Vec<Vec<ExprId>> = a[1..]
                     .iter()
                     .copied()
-                    .map(|row| row.iter().enumerate().filter(|&(k, _)| k != j).map(|(_, &e)| e).collect())
+                    .map(|row| {
+                        row.iter()
+                            .enumerate()
+                            .filter(|&(k, _)| k != j)
+                            .map(|(_, &e)| e)
+                            .collect()
+                    })
                     .collect();
                 let d = determinant(g, &minor);
                 let t = g.mul(a[0][j], d);

@@ -240,11 +240,17 @@ impl Graph {
             Node::Const(_) => id,
             Node::Input(s) => map.get(&s).copied().unwrap_or(id),
             Node::Add(ts) => {
-                let ts: Vec<_> = ts.iter().map(|&t| self.substitute_memo(t, map, memo)).collect();
+                let ts: Vec<_> = ts
+                    .iter()
+                    .map(|&t| self.substitute_memo(t, map, memo))
+                    .collect();
                 self.sum(&ts)
             }
             Node::Mul(fs) => {
-                let fs: Vec<_> = fs.iter().map(|&f| self.substitute_memo(f, map, memo)).collect();
+                let fs: Vec<_> = fs
+                    .iter()
+                    .map(|&f| self.substitute_memo(f, map, memo))
+                    .collect();
                 self.product(&fs)
             }
             Node::Pow(b, n) => {
@@ -278,10 +284,8 @@ impl Graph {
             if !seen.insert(e) {
                 continue;
             }
-            if let Node::Input(t) = self.node(e) {
-                if *t == s {
-                    return true;
-                }
+            if matches!(self.node(e), Node::Input(t) if *t == s) {
+                return true;
             }
             stack.extend(self.children(e));
         }

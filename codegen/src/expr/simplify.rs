@@ -40,7 +40,11 @@ impl Graph {
             if c == 0.0 {
                 continue;
             }
-            out.push(if c == 1.0 { rest } else { self.scaled_term(c, rest) });
+            out.push(if c == 1.0 {
+                rest
+            } else {
+                self.scaled_term(c, rest)
+            });
         }
         match out.len() {
             0 => self.constant(0.0),
@@ -119,11 +123,9 @@ impl Graph {
             return self.constant(constant);
         }
         if constant != 1.0 {
-            if out.len() == 1 {
-                if let Node::Add(ts) = self.node(out[0]).clone() {
-                    let scaled: Vec<_> = ts.iter().map(|&t| self.scale(constant, t)).collect();
-                    return self.sum(&scaled);
-                }
+            if let (1, Node::Add(ts)) = (out.len(), self.node(out[0]).clone()) {
+                let scaled: Vec<_> = ts.iter().map(|&t| self.scale(constant, t)).collect();
+                return self.sum(&scaled);
             }
             out.push(self.constant(constant));
         }

@@ -244,7 +244,10 @@ fn matrix_function_trajectory(m: &mut Model) -> ([ExprId; 2], Rates) {
         ["sigma", "nu", "decay", "cc", "cd", "sc", "sd"].map(|n| m.var(n));
     let [q0x, q0y, w0x, w0y] = ["q0x", "q0y", "w0x", "w0y"].map(|n| m.var(n));
     let g = &mut m.graph;
-    let b = [[g.sub(kl[0][0], sigma), kl[0][1]], [kl[1][0], g.sub(kl[1][1], sigma)]];
+    let b = [
+        [g.sub(kl[0][0], sigma), kl[0][1]],
+        [kl[1][0], g.sub(kl[1][1], sigma)],
+    ];
     let tr_b = g.add(b[0][0], b[1][1]);
     let det_b = determinant(g, &b);
     let nn = g.mul(nu, nu);
@@ -266,7 +269,13 @@ fn matrix_function_trajectory(m: &mut Model) -> ([ExprId; 2], Rates) {
         let t = g.mul(nu, decay);
         g.neg(t)
     };
-    for (name, r) in [("cc", r_cc), ("cd", r_cd), ("sc", cc), ("sd", cd), ("decay", r_decay)] {
+    for (name, r) in [
+        ("cc", r_cc),
+        ("cd", r_cd),
+        ("sc", cc),
+        ("sd", cd),
+        ("decay", r_decay),
+    ] {
         let s = g.symbol(name);
         rates.insert(s, r);
     }
@@ -296,7 +305,13 @@ fn matrix_function_trajectory(m: &mut Model) -> ([ExprId; 2], Rates) {
 fn homogeneous_start(m: &mut Model) {
     let (q, rates) = matrix_function_trajectory(m);
     let (one, zero) = (m.graph.constant(1.0), m.graph.constant(0.0));
-    let at0 = [("decay", one), ("cc", one), ("cd", zero), ("sc", zero), ("sd", zero)];
+    let at0 = [
+        ("decay", one),
+        ("cc", one),
+        ("cd", zero),
+        ("sc", zero),
+        ("sd", zero),
+    ];
     let mut eqs = Vec::new();
     for (i, (p, v)) in [("xh0", "vxh0"), ("yh0", "vyh0")].into_iter().enumerate() {
         let dq = derivative(&mut m.graph, q[i], &rates);

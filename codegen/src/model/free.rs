@@ -40,7 +40,11 @@ fn free_particular(m: &mut Model) {
 }
 
 /// The harmonic ansatz (c11 cos θ + c22 sin θ, c33 cos θ + c44 sin θ).
-pub(super) fn harmonic(m: &mut Model, ph: [crate::expr::ExprId; 2], c: [crate::expr::ExprId; 4]) -> [crate::expr::ExprId; 2] {
+pub(super) fn harmonic(
+    m: &mut Model,
+    ph: [crate::expr::ExprId; 2],
+    c: [crate::expr::ExprId; 4],
+) -> [crate::expr::ExprId; 2] {
     let g = &mut m.graph;
     let a = g.mul(c[0], ph[0]);
     let b = g.mul(c[1], ph[1]);
@@ -101,7 +105,13 @@ fn damped_frequency(m: &mut Model) {
 }
 
 /// The robust basis: EC(0) = 1, ES(0) = 0, EC' = −ν EC − β² ES, ES' = EC − ν ES.
-pub(super) fn damped_basis(m: &mut Model, rates: &mut Rates, ec: &str, es: &str, bsq: &str) -> [crate::expr::ExprId; 2] {
+pub(super) fn damped_basis(
+    m: &mut Model,
+    rates: &mut Rates,
+    ec: &str,
+    es: &str,
+    bsq: &str,
+) -> [crate::expr::ExprId; 2] {
     let (c, s) = (m.var(ec), m.var(es));
     let nu = m.var("nu");
     let b = m.var(bsq);

@@ -31,7 +31,10 @@ pub struct Model {
 
 /// Build the model and derive every formula.
 pub fn derive_all() -> Model {
-    let mut m = Model { graph: Graph::new(), formulas: Vec::new() };
+    let mut m = Model {
+        graph: Graph::new(),
+        formulas: Vec::new(),
+    };
     linearization::derive(&mut m);
     free::derive(&mut m);
     contact::derive(&mut m);
@@ -106,20 +109,31 @@ impl Model {
 
     /// The stator stiffness matrix K_s.
     pub(crate) fn stator_stiffness(&mut self) -> [[ExprId; 2]; 2] {
-        [[self.var("kxx"), self.var("kxy")], [self.var("kyx"), self.var("kyy")]]
+        [
+            [self.var("kxx"), self.var("kxy")],
+            [self.var("kyx"), self.var("kyy")],
+        ]
     }
 
     /// The linearized contact stiffness Kl and constant Fd as inputs (outputs of
     /// `linearized_stiffness`).
     pub(crate) fn linearized_inputs(&mut self) -> ([[ExprId; 2]; 2], Vec2) {
         (
-            [[self.var("fa1"), self.var("fb1")], [self.var("fb2"), self.var("fa2")]],
+            [
+                [self.var("fa1"), self.var("fb1")],
+                [self.var("fb2"), self.var("fa2")],
+            ],
             [self.var("fd1"), self.var("fd2")],
         )
     }
 
     /// Kl·q + Fd for the linearized contact regime.
-    pub(crate) fn linear_stiffness_term(&mut self, kl: [[ExprId; 2]; 2], fd: Vec2, q: Vec2) -> Vec2 {
+    pub(crate) fn linear_stiffness_term(
+        &mut self,
+        kl: [[ExprId; 2]; 2],
+        fd: Vec2,
+        q: Vec2,
+    ) -> Vec2 {
         let g = &mut self.graph;
         let mut out = [q[0]; 2];
         for i in 0..2 {
@@ -149,8 +163,10 @@ impl Model {
 
     /// Substitute symbols (by name) with expressions.
     pub(crate) fn subst(&mut self, e: ExprId, pairs: &[(&str, ExprId)]) -> ExprId {
-        let map: HashMap<Symbol, ExprId> =
-            pairs.iter().map(|&(n, v)| (self.graph.symbol(n), v)).collect();
+        let map: HashMap<Symbol, ExprId> = pairs
+            .iter()
+            .map(|&(n, v)| (self.graph.symbol(n), v))
+            .collect();
         self.graph.substitute(e, &map)
     }
 
@@ -169,7 +185,11 @@ impl Model {
         let inputs = inputs.iter().map(|n| self.graph.symbol(n)).collect();
         let outputs = outputs
             .into_iter()
-            .map(|(name, doc, expr)| Output { name: name.to_owned(), doc: doc.to_owned(), expr })
+            .map(|(name, doc, expr)| Output {
+                name: name.to_owned(),
+                doc: doc.to_owned(),
+                expr,
+            })
             .collect();
         self.formulas.push(Formula {
             name: name.to_owned(),

@@ -4,8 +4,18 @@
 use super::{Model, Rates};
 use crate::derive::{derivative, nth_derivative};
 
-const B: [[&str; 2]; 4] = [["b0x", "b0y"], ["b1x", "b1y"], ["b2x", "b2y"], ["b3x", "b3y"]];
-const A: [[&str; 2]; 4] = [["a0x", "a0y"], ["a1x", "a1y"], ["a2x", "a2y"], ["a3x", "a3y"]];
+const B: [[&str; 2]; 4] = [
+    ["b0x", "b0y"],
+    ["b1x", "b1y"],
+    ["b2x", "b2y"],
+    ["b3x", "b3y"],
+];
+const A: [[&str; 2]; 4] = [
+    ["a0x", "a0y"],
+    ["a1x", "a1y"],
+    ["a2x", "a2y"],
+    ["a3x", "a3y"],
+];
 
 pub(super) fn derive(m: &mut Model) {
     polynomial_particular(m);
@@ -51,8 +61,22 @@ fn polynomial_particular(m: &mut Model) {
         .into_iter()
         .chain(A.iter().flatten().copied())
         .collect();
-    let docs = ["b0 (constant), x", "b0, y", "b1 (linear), x", "b1, y", "b2 (quadratic), x", "b2, y", "b3 (cubic), x", "b3, y"];
-    let outputs = unknowns.iter().zip(docs).zip(sol).map(|((&n, d), e)| (n, d, e)).collect();
+    let docs = [
+        "b0 (constant), x",
+        "b0, y",
+        "b1 (linear), x",
+        "b1, y",
+        "b2 (quadratic), x",
+        "b2, y",
+        "b3 (cubic), x",
+        "b3, y",
+    ];
+    let outputs = unknowns
+        .iter()
+        .zip(docs)
+        .zip(sol)
+        .map(|((&n, d), e)| (n, d, e))
+        .collect();
     m.add_formula(
         "polynomial_particular",
         "Cubic particular solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² + a3 s³.",
@@ -69,7 +93,10 @@ fn polynomial_eval(m: &mut Model) {
     let one = m.graph.constant(1.0);
     let rates = Rates::from([(s_sym, one)]);
     let q = [cubic(m, &B, 0), cubic(m, &B, 1)];
-    let v = [derivative(&mut m.graph, q[0], &rates), derivative(&mut m.graph, q[1], &rates)];
+    let v = [
+        derivative(&mut m.graph, q[0], &rates),
+        derivative(&mut m.graph, q[1], &rates),
+    ];
     let inputs: Vec<&str> = B.iter().flatten().copied().chain(["s"]).collect();
     m.add_formula(
         "polynomial_eval",
@@ -78,6 +105,11 @@ fn polynomial_eval(m: &mut Model) {
         "the cubic and its derivative.",
         &inputs,
         "PolynomialState",
-        vec![("x", "x", q[0]), ("y", "y", q[1]), ("vx", "x'", v[0]), ("vy", "y'", v[1])],
+        vec![
+            ("x", "x", q[0]),
+            ("y", "y", q[1]),
+            ("vx", "x'", v[0]),
+            ("vy", "y'", v[1]),
+        ],
     );
 }
