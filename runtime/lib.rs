@@ -10,6 +10,7 @@ pub mod analytic;
 pub mod coefficients;
 pub mod compare;
 pub mod field;
+pub mod hybrid;
 pub mod math;
 pub mod method;
 pub mod params;

@@ -120,6 +120,7 @@ enum Inner {
     Analytic(crate::analytic::AnalyticPropagator),
     Dop853(crate::reference::Dop853Propagator),
     Rk45(crate::reference::Rk45Propagator),
+    Hybrid(crate::hybrid::HybridPropagator),
 }
 
 impl Propagator {
@@ -142,12 +143,7 @@ impl Propagator {
             )?),
             Method::Dop853 => Inner::Dop853(crate::reference::Dop853Propagator::new(problem, tol)?),
             Method::Rk45 => Inner::Rk45(crate::reference::Rk45Propagator::new(problem, tol)?),
-            Method::Hybrid => {
-                return Err(PropagationError::InvalidOption {
-                    what: "method hybrid (not available yet)",
-                    value: 0.0,
-                });
-            }
+            Method::Hybrid => Inner::Hybrid(crate::hybrid::HybridPropagator::new(problem, tol)?),
         };
         Ok(Propagator(inner))
     }
@@ -159,6 +155,7 @@ impl Propagate for Propagator {
             Inner::Analytic(p) => p.time(),
             Inner::Dop853(p) => p.time(),
             Inner::Rk45(p) => p.time(),
+            Inner::Hybrid(p) => p.time(),
         }
     }
     fn state(&self) -> State {
@@ -166,6 +163,7 @@ impl Propagate for Propagator {
             Inner::Analytic(p) => p.state(),
             Inner::Dop853(p) => p.state(),
             Inner::Rk45(p) => p.state(),
+            Inner::Hybrid(p) => p.state(),
         }
     }
     fn regime(&self) -> Regime {
@@ -173,6 +171,7 @@ impl Propagate for Propagator {
             Inner::Analytic(p) => p.regime(),
             Inner::Dop853(p) => p.regime(),
             Inner::Rk45(p) => p.regime(),
+            Inner::Hybrid(p) => p.regime(),
         }
     }
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
@@ -180,6 +179,7 @@ impl Propagate for Propagator {
             Inner::Analytic(p) => p.advance(target),
             Inner::Dop853(p) => p.advance(target),
             Inner::Rk45(p) => p.advance(target),
+            Inner::Hybrid(p) => p.advance(target),
         }
     }
 }

@@ -221,11 +221,11 @@ fn start_on_boundary_is_decided_by_radial_velocity() {
     }
 }
 
-/// Analytic vs DOP853 over 20 periods for the six Fig. 2 speeds and both presets: same kinds,
+/// Analytic, hybrid and RK45 vs DOP853 (tol 1e-13) over 20 periods for the six Fig. 2 speeds and both presets: same kinds,
 /// switch times within 1e-6 at default tolerances and 1e-9 at tol = 1e-11 (all switches, or the
 /// first 20 for chaotic motion), same counts where the motion is not chaotic.
 #[test]
-fn agrees_with_dop853_on_fig2_cases() {
+fn methods_agree_on_fig2_cases() {
     // Chaotic per model.md §9: paper preset η = 1.5.
     for preset in Preset::ALL {
         for eta in [1.0, 1.5, 2.0, 2.5, 3.0, 3.5] {
@@ -241,22 +241,24 @@ fn agrees_with_dop853_on_fig2_cases() {
                 20.0,
             )
             .unwrap();
-            for (tol, bound) in [(None, 1e-6), (Some(1e-11), 1e-9)] {
-                let analytic = run(
-                    &problem,
-                    &Options {
-                        tol,
-                        ..Options::default()
-                    },
-                    20.0,
-                )
-                .unwrap();
+            let runs = [
+                (Method::Analytic, None, 1e-6),
+                (Method::Analytic, Some(1e-11), 1e-9),
+                (Method::Hybrid, None, 1e-6),
+                (Method::Rk45, None, 1e-6),
+            ];
+            for (method, tol, bound) in runs {
+                let options = Options {
+                    tol,
+                    ..Options::with_method(method)
+                };
+                let analytic = run(&problem, &options, 20.0).unwrap();
                 let n = if chaotic { 20 } else { reference.len() };
                 if !chaotic {
                     assert_eq!(
                         analytic.len(),
                         reference.len(),
-                        "{preset:?} η={eta} tol={tol:?}: switch counts"
+                        "{method:?} {preset:?} η={eta} tol={tol:?}: switch counts"
                     );
                 }
                 let c = compare_events(
@@ -264,7 +266,10 @@ fn agrees_with_dop853_on_fig2_cases() {
                     &reference[..n.min(reference.len())],
                     bound,
                 );
-                assert!(c.agrees(), "{preset:?} η={eta} tol={tol:?}: {c:?}");
+                assert!(
+                    c.agrees(),
+                    "{method:?} {preset:?} η={eta} tol={tol:?}: {c:?}"
+                );
             }
         }
     }
@@ -330,7 +335,10 @@ fn a_million_periods_in_local_time() {
     problem.params.offset_y = 0.0;
     let mut p = Propagator::new(&problem, &Options::default()).unwrap();
     let end = 1e6 * problem.params.forcing_period();
-    let n = events(&mut p, end).collect::<Result<Vec<_>, _>>().unwrap().len();
+    let n = events(&mut p, end)
+        .collect::<Result<Vec<_>, _>>()
+        .unwrap()
+        .len();
     assert!(n > 0 && n < 100, "{n} switches in the start-up transient");
     let s = p.state();
     assert!(s.is_finite() && p.time() == end);

@@ -292,29 +292,27 @@ impl Segment for LinearSegment {
         let c = &l.particular;
         let amp = math::sqrt(c.c11 * c.c11 + c.c22 * c.c22 + c.c33 * c.c33 + c.c44 * c.c44);
         let shift = math::hypot(c.c55 - l.offset.0, c.c66 - l.offset.1);
-        // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi.
+        // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi (1-norms bound the
+        // Euclidean ones).
         let (mut pr, mut pv, mut pa) = (0.0, 0.0, 0.0);
-        let mut add = |m: usize, norm: f64| {
-            let mf = m as f64;
-            pr += norm * math::pow(hi, mf);
-            if m >= 1 {
-                pv += mf * norm * math::pow(hi, mf - 1.0);
-            }
-            if m >= 2 {
-                pa += mf * (mf - 1.0) * norm * math::pow(hi, mf - 2.0);
+        let mut add = |coefficients: &mut dyn Iterator<Item = f64>| {
+            // p2 = hi^(m−2), p1 = hi^(m−1), p0 = hi^m.
+            let (mut p2, mut p1, mut p0) = (0.0, 0.0, 1.0);
+            for (m, norm) in coefficients.enumerate() {
+                let mf = m as f64;
+                pr += norm * p0;
+                pv += mf * norm * p1;
+                pa += mf * (mf - 1.0) * norm * p2;
+                (p2, p1, p0) = (if m == 0 { 1.0 } else { p1 }, p0, p0 * hi);
             }
         };
         match &self.response {
             Response::None => {}
             Response::Polynomial(b) => {
-                for m in 0..4 {
-                    add(m, math::hypot(b[2 * m], b[2 * m + 1]));
-                }
+                add(&mut b.chunks_exact(2).map(|c| math::abs(c[0]) + math::abs(c[1])));
             }
             Response::Series(c) => {
-                for (m, cm) in c.iter().enumerate() {
-                    add(m, math::hypot(cm[0], cm[1]));
-                }
+                add(&mut c.iter().map(|c| math::abs(c[0]) + math::abs(c[1])));
             }
         }
         Bounds {

@@ -1,7 +1,8 @@
 //! The analytic propagator: exact free flight, re-linearized closed-form contact, switches
 //! located on the closed forms (`model.md` §4–§8).
 
-use super::free::{FreeConstants, FreeSegment};
+use super::free::FreeConstants;
+use super::free_flight::{FreeAdvance, FreeFlight};
 use super::schemes::{SubStep, exprb2, exprb43};
 use super::segment::{Point, Segment, point_of};
 use super::switch::{Direction, first_crossing};
@@ -21,13 +22,7 @@ const MAX_ATTEMPTS: u32 = 60;
     reason = "the runtime has no heap to box into"
 )]
 enum Piece {
-    Free {
-        t0: f64,
-        segment: FreeSegment,
-        searched: f64,
-        last: Point,
-        settled: bool,
-    },
+    Free(FreeFlight),
     Contact {
         t0: f64,
         step: SubStep,
@@ -42,42 +37,11 @@ pub struct AnalyticPropagator {
     tol: f64,
     fixed_step: Option<f64>,
     free: FreeConstants,
-    chunk: f64,
     h_max: f64,
     h_next: f64,
     time: f64,
     state: State,
     piece: Piece,
-}
-
-/// The regime of a state, deciding a start exactly on z = 1 by the radial velocity and then the
-/// radial acceleration (`model.md` §6 case 14).
-pub fn initial_regime(params: &Params, tau: f64, state: &State) -> Regime {
-    let p = point_of(*state, params.offset_x, params.offset_y);
-    let on_boundary = math::abs(p.h) <= 4.0 * f64::EPSILON;
-    if !on_boundary {
-        return if p.h > 0.0 {
-            Regime::Contact
-        } else {
-            Regime::Free
-        };
-    }
-    if p.dh != 0.0 {
-        return if p.dh > 0.0 {
-            Regime::Contact
-        } else {
-            Regime::Free
-        };
-    }
-    // h'' = 2(|r'|² + (r − ε)·r''); on z = 1 both fields agree (g = 0).
-    let (ax, ay) = field::acceleration(params, Regime::Free, tau, state);
-    let (u, v) = (state.x - params.offset_x, state.y - params.offset_y);
-    let ddh = 2.0 * (state.vx * state.vx + state.vy * state.vy + u * ax + v * ay);
-    if ddh > 0.0 {
-        Regime::Contact
-    } else {
-        Regime::Free
-    }
 }
 
 impl AnalyticPropagator {
@@ -119,26 +83,19 @@ impl AnalyticPropagator {
             tol,
             fixed_step,
             free: FreeConstants::new(&params),
-            chunk: 0.5 / omega,
             h_max: 1.0 / omega_contact,
             h_next: 0.1 / omega_contact,
             time: problem.start_time,
             state: problem.initial,
-            piece: Piece::Free {
-                t0: 0.0,
-                segment: FreeSegment::new(
-                    &params,
-                    &FreeConstants::new(&params),
-                    0.0,
-                    problem.initial,
-                ),
-                searched: 0.0,
-                last: point_of(problem.initial, 0.0, 0.0),
-                settled: false,
-            },
+            piece: Piece::Free(FreeFlight::new(
+                &params,
+                &FreeConstants::new(&params),
+                problem.start_time,
+                problem.initial,
+            )),
         };
         let t0 = problem.start_time;
-        me.piece = match initial_regime(&params, t0, &problem.initial) {
+        me.piece = match field::regime_of(&params, t0, &problem.initial) {
             Regime::Free => me.free_piece(t0, problem.initial)?,
             Regime::Contact => me.contact_piece(t0, problem.initial)?,
         };
@@ -155,15 +112,12 @@ impl AnalyticPropagator {
 
     fn free_piece(&self, t0: f64, state: State) -> Result<Piece, PropagationError> {
         self.check_bounded(t0, state)?;
-        let segment = FreeSegment::new(&self.params, &self.free, t0, state);
-        let last = point_of(state, self.params.offset_x, self.params.offset_y);
-        Ok(Piece::Free {
+        Ok(Piece::Free(FreeFlight::new(
+            &self.params,
+            &self.free,
             t0,
-            segment,
-            searched: 0.0,
-            last,
-            settled: false,
-        })
+            state,
+        )))
     }
 
     fn contact_piece(&mut self, t0: f64, state: State) -> Result<Piece, PropagationError> {
@@ -220,7 +174,7 @@ impl Propagate for AnalyticPropagator {
 
     fn regime(&self) -> Regime {
         match self.piece {
-            Piece::Free { .. } => Regime::Free,
+            Piece::Free(_) => Regime::Free,
             Piece::Contact { .. } => Regime::Contact,
         }
     }
@@ -237,47 +191,23 @@ impl Propagate for AnalyticPropagator {
         }
         loop {
             match &mut self.piece {
-                Piece::Free {
-                    t0,
-                    segment,
-                    searched,
-                    last,
-                    settled,
-                } => {
-                    let s_target = target - *t0;
-                    if !*settled && segment.reach_after(*searched) < 1.0 {
-                        // No contact can happen again: free flight to any time needs no search.
-                        *settled = true;
+                Piece::Free(flight) => match flight.advance(target) {
+                    FreeAdvance::Reached(state) => {
+                        self.time = target;
+                        self.state = state;
+                        return Ok(None);
                     }
-                    if !*settled {
-                        let chunk = self.chunk;
-                        if let Some((s, p)) = first_crossing(
-                            segment,
-                            *searched,
-                            *last,
-                            s_target,
-                            Direction::Up,
-                            chunk,
-                        ) {
-                            let t = *t0 + s;
-                            let state = p.state;
-                            self.piece = self.contact_piece(t, state)?;
-                            self.time = t;
-                            self.state = state;
-                            return Ok(Some(Event {
-                                time: t,
-                                kind: EventKind::Enter,
-                                state,
-                            }));
-                        }
+                    FreeAdvance::Contact { time, state } => {
+                        self.piece = self.contact_piece(time, state)?;
+                        self.time = time;
+                        self.state = state;
+                        return Ok(Some(Event {
+                            time,
+                            kind: EventKind::Enter,
+                            state,
+                        }));
                     }
-                    let p = segment.point(s_target);
-                    *searched = s_target;
-                    *last = p;
-                    self.time = target;
-                    self.state = p.state;
-                    return Ok(None);
-                }
+                },
                 Piece::Contact { t0, step, exit } => {
                     let s_target = target - *t0;
                     if let Some((s, p)) = exit.filter(|(s, _)| *s <= s_target) {

@@ -38,6 +38,7 @@ mod integrator;
 mod ode;
 mod propagator;
 mod scheme;
+mod switch;
 mod system;
 mod tableau_dop853;
 mod tableau_dopri5;
@@ -52,7 +53,8 @@ pub use propagator::{
     STEPS_PER_TIME_UNIT,
 };
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
-pub use system::{PhasorRotorSystem, RotorSystem, initial_regime, inside_measure};
+pub use switch::switch_in_step;
+pub use system::{PhasorRotorSystem, RotorSystem, inside_measure};
 
 /// Default `tol` (relative and absolute) of the reference integrators.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;

@@ -2,7 +2,7 @@
 //! (`model.md` §1) behind [`Propagate`], with switches located on the dense output.
 //!
 //! How a run proceeds:
-//! - The regime at the start is decided by [`initial_regime`]; the field is always the current
+//! - The regime at the start is decided by [`crate::field::regime_of`]; the field is always the current
 //!   regime's, never chosen by the sign of h.
 //! - Steps are taken freely (never shortened to a requested time); after each accepted step the
 //!   first switch inside it is searched by [`first_crossing`]. A found switch is refined on the
@@ -27,10 +27,10 @@
 
 use super::dop853::Dop853;
 use super::dopri5::Dopri5;
-use super::events::{first_crossing, polish_switch};
 use super::integrator::{AcceptedStep, Integrator, Stats};
 use super::scheme::{Interpolant, Scheme, Tolerance};
-use super::system::{RotorSystem, initial_regime, inside_measure};
+use super::switch::switch_in_step;
+use super::system::RotorSystem;
 use crate::field;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime};
@@ -79,7 +79,7 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         }
         let params = problem.params;
         let t0 = problem.start_time;
-        let regime = initial_regime(&params, t0, &problem.initial);
+        let regime = field::regime_of(&params, t0, &problem.initial);
         let sys = RotorSystem { params, regime };
         let integrator = Integrator::new(
             &sys,
@@ -148,39 +148,17 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
                 state: end,
             });
         }
-        let (params, regime) = (self.params, self.regime);
-        let crossing = first_crossing(&step.dense, &step.y0, &step.y1, |y: &[f64; 4]| {
-            inside_measure(&params, regime, y)
-        });
-        self.pending = crossing.map(|t| {
-            let t = t.max(step.t0).min(step.t1);
-            let y = if t == step.t1 {
-                step.y1
-            } else {
-                self.integrator.redo(&sys, &step, t)
-            };
-            // The dense output and the step solution differ by about the tolerance: put the
-            // switch on z = 1 of the step solution (the trajectory the integration continues).
-            let max_shift = 1e-3 * (step.t1 - step.t0);
-            let integrator = &mut self.integrator;
-            let (t, y) = polish_switch(
-                step.t0,
-                step.t1,
-                max_shift,
-                (t, y),
-                |t| integrator.redo(&sys, &step, t),
-                |y: &[f64; 4]| inside_measure(&params, regime, y),
-            );
-            let kind = match regime {
-                Regime::Free => EventKind::Enter,
-                Regime::Contact => EventKind::Exit,
-            };
-            Event {
+        let regime = self.regime;
+        self.pending = switch_in_step(&mut self.integrator, &sys, &step, &self.params, regime).map(
+            |(t, y)| Event {
                 time: t,
-                kind,
+                kind: match regime {
+                    Regime::Free => EventKind::Enter,
+                    Regime::Contact => EventKind::Exit,
+                },
                 state: State::from_array(y),
-            }
-        });
+            },
+        );
         self.step = Some(step);
         Ok(())
     }

@@ -76,24 +76,3 @@ pub fn inside_measure<const N: usize>(params: &Params, regime: Regime, y: &[f64;
         Regime::Free => (-h, -dh),
     }
 }
-
-/// The regime of a state on or off the switching surface (`model.md` §6 case 14): by the sign of
-/// h = z² − 1; on z = 1 exactly, by the sign of z' (radial velocity), then of z'' (the field is
-/// continuous there, so the free acceleration is used); free when all three vanish.
-pub fn initial_regime(params: &Params, t: f64, s: &State) -> Regime {
-    let (h, dh) = field::switching_function(params, s);
-    let sign = if h != 0.0 {
-        h
-    } else if dh != 0.0 {
-        dh
-    } else {
-        let (ax, ay) = field::acceleration(params, Regime::Free, t, s);
-        let (u, v) = (s.x - params.offset_x, s.y - params.offset_y);
-        s.vx * s.vx + s.vy * s.vy + u * ax + v * ay
-    };
-    if sign > 0.0 {
-        Regime::Contact
-    } else {
-        Regime::Free
-    }
-}

@@ -324,9 +324,11 @@ pub struct SegmentCheck {
     pub velocity: f64,
     /// |state(s) − exp(M s) w0| / (1 + |exp(M s) w0|), against the augmented linear system.
     pub expm: f64,
-    /// Cancellation factor (1 + |start| + Σ|b_k|)/(1 + |start|) of the polynomial particular
-    /// solution when the runtime uses it (1 otherwise): its coefficients grow like det(Kl)^−k and
-    /// cancel against the homogeneous part, so every rounding error above scales with it.
+    /// Cancellation factor 1 + (Σ|c_ij| + Σ|b_k|)/(1 + |start|): the particular solutions'
+    /// size relative to the start state. The closed form is particular + homogeneous, the
+    /// homogeneous part starts at (start − particular), so rounding errors scale with this. The
+    /// polynomial particular coefficients b_k grow like det(Kl)^−(k+1) when Kl is nearly
+    /// singular and dominate it there.
     pub cancellation: f64,
 }
 
@@ -334,8 +336,8 @@ fn norm4(s: &State) -> f64 {
     (s.x * s.x + s.y * s.y + s.vx * s.vx + s.vy * s.vy).sqrt()
 }
 
-/// Check `Linearization::new(case).segment(state, a, horizon)` on [0, horizon] (horizon ≥ 1 so
-/// that [`SAMPLE_TIMES`] lie inside): initial state, ODE residual by finite differences of the
+/// Check `Linearization::new(case).segment(state, a, horizon)` at [`SAMPLE_TIMES`]·horizon (the
+/// stencil step is ≤ 0.02·horizon so it stays inside [0, horizon]): initial state, ODE residual by finite differences of the
 /// segment's own velocity, velocity against the position's derivative, and the exact solution
 /// of the augmented linear system.
 pub fn check_contact_segment(case: &Case, state: State, a: [f64; 8], horizon: f64) -> SegmentCheck {
@@ -344,16 +346,22 @@ pub fn check_contact_segment(case: &Case, state: State, a: [f64; 8], horizon: f6
     let seg = lin.segment(state, a, horizon);
     let k = lin.kl;
     let (nu, eta, f) = (case.nu, case.eta, case.forcing());
-    let mut out = SegmentCheck { cancellation: 1.0, ..SegmentCheck::default() };
-    // The runtime's choice (`Linearization::segment`): polynomial particular solution when the
-    // forcing is non-zero and ‖Kl‖_F·horizon² > 1.
-    if a.iter().any(|&c| c != 0.0) && kl_matrix(&k).norm() * horizon * horizon > 1.0 {
+    let mut out = SegmentCheck::default();
+    // Magnitudes that cancel in the closed form: the particular solution (harmonic and constant)
+    // and, when the runtime uses it (`Linearization::segment`: non-zero forcing and
+    // ‖Kl‖_F·horizon² > 1), the polynomial particular solution.
+    let c = coef::contact_particular(k.fa1, k.fb1, k.fb2, k.fa2, k.fd1, k.fd2, nu, eta, f);
+    let mut big = c.c11.abs() + c.c22.abs() + c.c33.abs() + c.c44.abs() + c.c55.abs() + c.c66.abs();
+    if a.iter().any(|&v| v != 0.0) && kl_matrix(&k).norm() * horizon * horizon > 1.0 {
         let b = coef::polynomial_particular(
             k.fa1, k.fb1, k.fb2, k.fa2, nu, a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7],
         );
-        let sum = [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y].iter().map(|v| v.abs()).sum::<f64>();
-        out.cancellation = 1.0 + sum / (1.0 + norm4(&state));
+        big += [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y]
+            .iter()
+            .map(|v| v.abs())
+            .sum::<f64>();
     }
+    out.cancellation = 1.0 + big / (1.0 + norm4(&state));
     let s0 = seg.point(0.0).state;
     let d = State::new(
         s0.x - state.x,
@@ -363,7 +371,7 @@ pub fn check_contact_segment(case: &Case, state: State, a: [f64; 8], horizon: f6
     );
     out.initial = norm4(&d) / (1.0 + norm4(&state));
     let rate = contact_rate(&k, nu, eta);
-    let h = fd_step(rate);
+    let h = fd_step(rate).min(0.02 * horizon);
     let sys = contact_system(&k, nu, eta, f, &a);
     let w0 = augmented(&state, case.theta(0.0));
     let poly = |s: f64, i: usize| a[i] + a[2 + i] * s + a[4 + i] * s * s + a[6 + i] * s * s * s;

@@ -1,0 +1,176 @@
+//! Homogeneous solutions: `contact_homogeneous_start` + `contact_homogeneous_eval` with the
+//! runtime's `matrix_function`, and `free_homogeneous` + `free_eval` with `free_basis`
+//! (`model.md` §4, §5), against the matrix exponential of the first-order system.
+
+use proptest::prelude::*;
+use rotor_rub::State;
+use rotor_rub::analytic::basis::{free_basis, matrix_function};
+use rotor_rub::coefficients::{self as coef, LinearizedContact};
+
+use crate::support::*;
+
+fn norm4(s: &State) -> f64 {
+    (s.x * s.x + s.y * s.y + s.vx * s.vx + s.vy * s.vy).sqrt()
+}
+
+/// The homogeneous contact solution from the generated start and evaluation formulas at local
+/// time `s` (σ = mean of Kl's eigenvalues, so B = Kl − σI is the trace-free part used by
+/// `matrix_function`).
+pub fn homogeneous_at(l: &LinearizedContact, nu: f64, init: [f64; 4], s: f64) -> State {
+    let m = coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, nu);
+    let st = coef::contact_homogeneous_start(init[0], init[1], init[2], init[3], nu);
+    let f = matrix_function(m.gamma_sq_mean, m.disc, s);
+    let h = coef::contact_homogeneous_eval(
+        l.fa1,
+        l.fb1,
+        l.fb2,
+        l.fa2,
+        m.omega_sq_mean,
+        nu,
+        st.q0x,
+        st.q0y,
+        st.w0x,
+        st.w0y,
+        (-nu * s).exp(),
+        f.cc,
+        f.cd,
+        f.sc,
+        f.sd,
+    );
+    State::new(h.x, h.y, h.vx, h.vy)
+}
+
+/// Largest |closed form − exp(M s) q0| / (1 + |exp(M s) q0|) over [`SAMPLE_TIMES`], and the
+/// error at s = 0 relative to 1 + |q0|.
+pub fn homogeneous_errors(l: &LinearizedContact, nu: f64, init: [f64; 4]) -> (f64, f64) {
+    let start = State::new(init[0], init[1], init[2], init[3]);
+    let at0 = homogeneous_at(l, nu, init, 0.0);
+    let d0 = State::new(at0.x - start.x, at0.y - start.y, at0.vx - start.vx, at0.vy - start.vy);
+    let initial = norm4(&d0) / (1.0 + norm4(&start));
+    let free_of_forcing = LinearizedContact { fd1: 0.0, fd2: 0.0, ..*l };
+    let sys = contact_system(&free_of_forcing, nu, 1.0, 0.0, &[0.0; 8]);
+    let w0 = augmented(&start, 0.0);
+    let mut worst: f64 = 0.0;
+    for &s in &SAMPLE_TIMES {
+        let got = homogeneous_at(l, nu, init, s);
+        let want = propagate(&sys, &w0, s);
+        let d = State::new(got.x - want.x, got.y - want.y, got.vx - want.vx, got.vy - want.vy);
+        worst = worst.max(norm4(&d) / (1.0 + norm4(&want)));
+    }
+    (initial, worst)
+}
+
+proptest! {
+    #![proptest_config(config(256))]
+
+    /// For any Kl of the random ensemble (real, complex, negative, near-repeated ω²): the start
+    /// state is reproduced at s = 0 (rel. 1e-14: C = I, S = 0, only a few roundings), and the
+    /// solution matches exp(M s) of the 4×4 first-order system to rel. 1e-10 (measured ≲ 1e-13;
+    /// expm's own error is ≈ 1e-14·‖exp(|M|s)‖, and `matrix_function`'s confluent branch, used
+    /// when √|Δ| ≤ 1e-5(1 + |γ̄²|), truncates at O(Δ) ≲ 1e-10 relative).
+    #[test]
+    fn contact_homogeneous_matches_matrix_exponential(
+        case in any_case(),
+        init in proptest::array::uniform4(-2.0..2.0f64),
+    ) {
+        let l = case.linearized();
+        let (initial, worst) = homogeneous_errors(&l, case.nu, init);
+        prop_assert!(initial <= 1e-14, "initial error {initial:e}");
+        prop_assert!(worst <= 1e-10, "error vs expm {worst:e}");
+    }
+
+    /// Free flight from the generated formulas directly: free_particular, free_homogeneous,
+    /// free_basis, free_eval. The start state is reproduced at s = 0, h = z² − 1 and
+    /// h' = 2(u x' + v y') are consistent with the state, and the state matches exp(M s) of the
+    /// forced free system (6 states with the forcing phasor; rel. 1e-11, measured ≲ 1e-15).
+    #[test]
+    fn free_homogeneous_and_eval_match_matrix_exponential(
+        case in any_case(),
+        state in proptest::array::uniform4(-2.0..2.0f64),
+    ) {
+        check_free_formulas(&case, State::new(state[0], state[1], state[2], state[3]))?;
+    }
+}
+
+/// See [`free_homogeneous_and_eval_match_matrix_exponential`].
+pub fn check_free_formulas(case: &Case, start: State) -> Result<(), TestCaseError> {
+    let (nu, eta, f) = (case.nu, case.eta, case.forcing());
+    let p = coef::free_particular(nu, eta, f);
+    let beta_sq = coef::free_damped_frequency_sq(nu).beta_sq;
+    let th0 = case.theta(0.0);
+    let h = coef::free_homogeneous(
+        start.x, start.y, start.vx, start.vy, p.c11, p.c22, p.c33, p.c44, th0.cos(), th0.sin(), eta, nu,
+    );
+    let eval = |s: f64| {
+        let (ec, es) = free_basis(nu, beta_sq, s);
+        let th = case.theta(s);
+        coef::free_eval(
+            h.xh, h.px, h.yh, h.py, p.c11, p.c22, p.c33, p.c44, ec, es, th.cos(), th.sin(), nu, beta_sq,
+            eta, case.offset.0, case.offset.1,
+        )
+    };
+    let scale0 = 1.0 + norm4(&start) + p.c11.abs() + p.c22.abs();
+    let e0 = eval(0.0);
+    let d0 = State::new(e0.x - start.x, e0.y - start.y, e0.vx - start.vx, e0.vy - start.vy);
+    prop_assert!(norm4(&d0) <= 1e-14 * scale0 * (1.0 + eta), "start not reproduced: {e0:?} vs {start:?}");
+    let sys = free_system(nu, eta, f);
+    let w0 = augmented(&start, th0);
+    for &s in &SAMPLE_TIMES {
+        let e = eval(s);
+        let (u, v) = (e.x - case.offset.0, e.y - case.offset.1);
+        prop_assert!((e.h - (u * u + v * v - 1.0)).abs() <= 1e-13 * (1.0 + u * u + v * v));
+        prop_assert!((e.dh - 2.0 * (u * e.vx + v * e.vy)).abs() <= 1e-13 * (1.0 + u.hypot(v) * e.vx.hypot(e.vy)));
+        let want = propagate(&sys, &w0, s);
+        let d = State::new(e.x - want.x, e.y - want.y, e.vx - want.vx, e.vy - want.vy);
+        let err = norm4(&d) / (1.0 + norm4(&want));
+        prop_assert!(err <= 1e-11, "s = {s}: {e:?} vs exact {want:?} ({err:e})");
+    }
+    Ok(())
+}
+
+/// ν < 1, ν = 1 exactly (β = 0: the series branch of `free_basis` for every s), ν > 1
+/// (β² < 0: cosh/sinh), through the generated formulas and through `FreeSegment`: start
+/// reproduced, ODE residual by finite differences ≤ 1e-9 of the forcing F (no growth in free
+/// flight, so the forcing scale bounds the terms), agreement with expm.
+#[test]
+fn free_flight_in_every_damping_regime() {
+    for nu in [0.05, 0.3, 0.999, 1.0, 1.001, 1.3, 1.5, 3.0] {
+        for (eta, f) in [(0.7, 0.4), (1.0, 0.02), (2.5, 1.7)] {
+            let case = Case {
+                nu,
+                eta,
+                f,
+                k: [[0.0; 2]; 2],
+                offset: (0.3, -0.2),
+                phase: 0.4,
+                t0: 3.0,
+                x0: 0.0,
+                y0: 0.0,
+            };
+            let start = State::new(0.2, -0.7, 1.3, 0.4);
+            check_free_formulas(&case, start).unwrap_or_else(|e| panic!("ν = {nu}, η = {eta}: {e}"));
+            let c = check_free_segment(&case, start);
+            assert!(c.initial <= 1e-14, "ν = {nu}: initial {:e}", c.initial);
+            assert!(c.residual_forcing <= 1e-9, "ν = {nu}, η = {eta}: residual {:e} of F", c.residual_forcing);
+            assert!(c.velocity <= 1e-10, "ν = {nu}: velocity {:e}", c.velocity);
+            assert!(c.expm <= 1e-11, "ν = {nu}: expm {:e}", c.expm);
+        }
+    }
+    // ν = 1 really is the degenerate case: β² = 0 exactly.
+    assert_eq!(coef::free_damped_frequency_sq(1.0).beta_sq, 0.0);
+}
+
+proptest! {
+    #![proptest_config(config(128))]
+
+    /// `FreeSegment` over the random ensemble: start reproduced, FD residual ≤ 1e-9·F (measured
+    /// ≲ 1e-11), velocity consistent with position, and exp(M s) agreement.
+    #[test]
+    fn free_segment_solves_free_ode(case in any_case(), state in proptest::array::uniform4(-2.0..2.0f64)) {
+        let c = check_free_segment(&case, State::new(state[0], state[1], state[2], state[3]));
+        prop_assert!(c.initial <= 1e-14, "initial {:e}", c.initial);
+        prop_assert!(c.residual_forcing <= 1e-9, "residual {:e} of F", c.residual_forcing);
+        prop_assert!(c.velocity <= 1e-10, "velocity {:e}", c.velocity);
+        prop_assert!(c.expm <= 1e-11, "expm {:e}", c.expm);
+    }
+}
