@@ -25,3 +25,8 @@ pub use propagate::{
     Event, EventKind, Propagate, PropagationError, Regime, Sample, advance_to, events, poincare,
     poincare_times, samples,
 };
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
