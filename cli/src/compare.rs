@@ -31,7 +31,7 @@ pub struct Args {
     pub reference: Method,
 
     /// Tolerance of the reference method, > 0 [default: 1e-10]
-    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
     pub reference_tol: Option<f64>,
 
     /// Directory for compare.csv (the switch table), compare.svg and compare.png (the orbits)
@@ -39,7 +39,7 @@ pub struct Args {
     pub out_dir: PathBuf,
 
     /// Plot the orbits from this forcing period on (0 = from the start)
-    #[arg(long, value_name = "P", default_value_t = 0.0, value_parser = crate::options::parse_finite)]
+    #[arg(long, value_name = "P", default_value_t = 0.0, value_parser = crate::options::parse_finite, allow_hyphen_values = true)]
     pub plot_from: f64,
 }
 
@@ -146,7 +146,13 @@ pub fn run(args: &Args) -> Result<()> {
     )?;
     for pair in &matching.pairs {
         let kind = pair.a.or(pair.b).map_or("", |e| e.kind.name());
-        csv.row((kind, pair.a.map(|e| e.time), pair.b.map(|e| e.time), pair.dt(), pair.dstate()))?;
+        csv.row((
+            kind,
+            pair.a.map(|e| e.time),
+            pair.b.map(|e| e.time),
+            pair.dt(),
+            pair.dstate(),
+        ))?;
     }
     let figure = OrbitFigure {
         title: format!(

@@ -34,11 +34,11 @@ pub struct Args {
     pub reference: Method,
 
     /// Tolerance of the reference method, > 0 [default: 1e-10]
-    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
     pub reference_tol: Option<f64>,
 
     /// Speed ratios η = Ω/ω_n, one panel each (comma-separated; each replaces speed_ratio)
-    #[arg(long, value_name = "η,...", value_delimiter = ',', value_parser = parse_positive,
+    #[arg(long, value_name = "η,...", value_delimiter = ',', value_parser = parse_positive, allow_hyphen_values = true,
           default_value = "1,1.5,2,2.5,3,3.5")]
     pub speeds: Vec<f64>,
 
@@ -51,11 +51,11 @@ pub struct Args {
     pub plot_to: u64,
 
     /// Poincaré section length in forcing periods, from --plot-from on (classifies the response)
-    #[arg(long, value_name = "P", default_value_t = 100)]
+    #[arg(long, value_name = "P", default_value_t = 100, value_parser = crate::options::at_least(1))]
     pub section: u64,
 
     /// Forcing periods of the Lyapunov estimate (renormalised once per period), from --plot-from
-    #[arg(long, value_name = "P", default_value_t = 100)]
+    #[arg(long, value_name = "P", default_value_t = 100, value_parser = crate::options::at_least(1))]
     pub lyapunov: u64,
 
     /// Switch times are compared over the first this many forcing periods (before chaos
@@ -129,14 +129,10 @@ fn run_method(problem: &Problem, options: &Options, args: &Args) -> Result<Metho
     })
 }
 
-fn run_speed(base: &Problem, eta: f64, args: &Args, options: [&Options; 2]) -> Result<SpeedResult> {
-    let mut problem = *base;
-    Field::SpeedRatio.set(&mut problem, eta);
-    problem
-        .validate()
-        .map_err(|e| CliError::input(format!("invalid parameters at η = {eta}: {e}")))?;
-    let analytic = run_method(&problem, options[0], args)?;
-    let reference = run_method(&problem, options[1], args)?;
+fn run_speed(problem: &Problem, args: &Args, options: [&Options; 2]) -> Result<SpeedResult> {
+    let eta = problem.params.speed_ratio;
+    let analytic = run_method(problem, options[0], args)?;
+    let reference = run_method(problem, options[1], args)?;
     let window = args.match_periods as f64 * problem.params.forcing_period();
     let matching = Matching::new(&analytic.events, &reference.events, window);
     Ok(SpeedResult {
@@ -153,53 +149,69 @@ fn ms(d: Duration) -> String {
 }
 
 fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) {
-    let (a, r) = (options[0].method.name(), options[1].method.name());
     println!(
-        "Fig. 2: {} vs {}; {} forcing periods per run",
+        "Fig. 2: A = {}, N = {}; {} forcing periods per run",
         describe(options[0]),
         describe(options[1]),
         args.plot_to.max(args.plot_from + args.section)
     );
     println!(
-        "switch times compared on matched switches over forcing periods 0-{}; response from the Poincaré section over periods {}-{} and the largest Lyapunov exponent (Benettin, {} periods from period {}, per unit τ)",
+        "switch times: matched switches over forcing periods 0-{}; class: Poincaré section over periods {}-{} (points = distinct points) and largest Lyapunov exponent λ per unit τ (Benettin, {} periods from period {}); times: propagation wall time (speeds run in parallel)",
         args.match_periods,
         args.plot_from,
         args.plot_from + args.section,
         args.lyapunov,
         args.plot_from
     );
-    println!(
-        "{:>5} | {:>15} | {:>9} | {:>9} | {:<16} {:>8} {:>8} | {:<16} {:>8} {:>8} | {:>10} {:>10}",
+    let row = |cells: [&str; 12]| {
+        println!(
+            "{:>5} | {:>11} | {:>9} | {:>9} | {:<22} {:>6} {:>8} | {:<22} {:>6} {:>8} | {:>10} {:>10}",
+            cells[0],
+            cells[1],
+            cells[2],
+            cells[3],
+            cells[4],
+            cells[5],
+            cells[6],
+            cells[7],
+            cells[8],
+            cells[9],
+            cells[10],
+            cells[11]
+        );
+    };
+    row([
         "η",
-        format!("switches {a}/{r}"),
+        "switches",
         "matched",
         "max |Δτ|",
-        format!("class {a}"),
+        "class A",
         "points",
-        "λ",
-        format!("class {r}"),
+        "λ A",
+        "class N",
         "points",
-        "λ",
-        format!("time {a}"),
-        format!("time {r}"),
-    );
+        "λ N",
+        "time A",
+        "time N",
+    ]);
     for s in results {
         let m = &s.matching;
-        println!(
-            "{:>5} | {:>15} | {:>9} | {:>9} | {:<16} {:>8} {:>8.4} | {:<16} {:>8} {:>8.4} | {:>10} {:>10}",
-            s.eta,
-            format!("{}/{}", s.analytic.events.len(), s.reference.events.len()),
-            format!("{}/{}", m.matched(), m.pairs.len()),
-            m.max_dt().map_or_else(|| "-".into(), |d| format!("{d:.2e}")),
-            s.analytic.response.to_string(),
-            s.analytic.distinct,
-            s.analytic.lyapunov,
-            s.reference.response.to_string(),
-            s.reference.distinct,
-            s.reference.lyapunov,
-            ms(s.analytic.elapsed),
-            ms(s.reference.elapsed),
-        );
+        let (a, n) = (&s.analytic, &s.reference);
+        row([
+            &s.eta.to_string(),
+            &format!("{}/{}", a.events.len(), n.events.len()),
+            &format!("{}/{}", m.matched(), m.pairs.len()),
+            &m.max_dt()
+                .map_or_else(|| "-".into(), |d| format!("{d:.2e}")),
+            &a.response.to_string(),
+            &a.distinct.to_string(),
+            &format!("{:.4}", a.lyapunov),
+            &n.response.to_string(),
+            &n.distinct.to_string(),
+            &format!("{:.4}", n.lyapunov),
+            &ms(a.elapsed),
+            &ms(n.elapsed),
+        ]);
     }
 }
 
@@ -211,11 +223,6 @@ pub fn run(args: &Args) -> Result<()> {
             args.plot_to, args.plot_from
         )));
     }
-    for (name, value) in [("--section", args.section), ("--lyapunov", args.lyapunov)] {
-        if value == 0 {
-            return Err(CliError::input(format!("{name} 0 is invalid: it must be >= 1")));
-        }
-    }
     let base = args.problem.build()?;
     let analytic = args.scheme.options(Method::Analytic);
     let reference = Options {
@@ -223,10 +230,23 @@ pub fn run(args: &Args) -> Result<()> {
         ..Options::with_method(args.reference)
     };
     let options = [&analytic, &reference];
-    let results: Vec<SpeedResult> = args
-        .speeds
+    let problems =
+        args.speeds
+            .iter()
+            .map(|&eta| {
+                let mut problem = base;
+                Field::SpeedRatio.set(&mut problem, eta);
+                problem.validate().map(|()| problem).map_err(|e| {
+                    CliError::input(format!("invalid parameters at --speeds {eta}: {e}"))
+                })
+            })
+            .collect::<Result<Vec<Problem>>>()?;
+    for options in options {
+        trajectory::start(&base, options)?;
+    }
+    let results: Vec<SpeedResult> = problems
         .par_iter()
-        .map(|&eta| run_speed(&base, eta, args, options))
+        .map(|problem| run_speed(problem, args, options))
         .collect::<Result<_>>()?;
     print_table(&results, args, options);
 
@@ -246,8 +266,20 @@ pub fn run(args: &Args) -> Result<()> {
                 ),
                 offset: s.offset,
                 orbits: vec![
-                    orbit(&s.analytic.orbit, &s.analytic.events, window.clone(), ANALYTIC, false),
-                    orbit(&s.reference.orbit, &s.reference.events, window, REFERENCE, true),
+                    orbit(
+                        &s.analytic.orbit,
+                        &s.analytic.events,
+                        window.clone(),
+                        ANALYTIC,
+                        false,
+                    ),
+                    orbit(
+                        &s.reference.orbit,
+                        &s.reference.events,
+                        window,
+                        REFERENCE,
+                        true,
+                    ),
                 ],
             }
         })

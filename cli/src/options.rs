@@ -7,7 +7,9 @@ use rotor_rub::{ContactScheme, Method, Options, Params};
 pub fn parse_positive(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: it must be a finite number > 0")),
+        Ok(x) => Err(format!(
+            "{x} is out of range: it must be a finite number > 0"
+        )),
         Err(_) => Err(format!("'{text}' is not a number")),
     }
 }
@@ -18,6 +20,17 @@ pub fn parse_finite(text: &str) -> Result<f64, String> {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(x) => Err(format!("{x} is not a finite number")),
         Err(_) => Err(format!("'{text}' is not a number")),
+    }
+}
+
+/// An integer >= `min`, as a clap value parser.
+pub fn at_least(min: u64) -> impl Fn(&str) -> Result<u64, String> + Clone + Send + Sync + 'static {
+    move |text: &str| match text.trim().parse::<u64>() {
+        Ok(n) if n >= min => Ok(n),
+        Ok(n) => Err(format!(
+            "{n} is out of range: it must be an integer >= {min}"
+        )),
+        Err(_) => Err(format!("'{text}' is not an integer >= {min}")),
     }
 }
 
@@ -43,9 +56,8 @@ pub fn parse_reference(name: &str) -> Result<Method, String> {
 
 /// A contact scheme by name.
 pub fn parse_scheme(name: &str) -> Result<ContactScheme, String> {
-    ContactScheme::from_name(name).ok_or_else(|| {
-        format!("unknown contact scheme '{name}': expected exprb43 or exprb2")
-    })
+    ContactScheme::from_name(name)
+        .ok_or_else(|| format!("unknown contact scheme '{name}': expected exprb43 or exprb2"))
 }
 
 /// The analytic method's settings (also the accuracy of any other method through `--tol`).
@@ -53,7 +65,7 @@ pub fn parse_scheme(name: &str) -> Result<ContactScheme, String> {
 pub struct SchemeArgs {
     /// Accuracy target (relative and absolute), a number > 0 [default: 1e-9 for analytic, 1e-10
     /// for hybrid, dop853 and rk45]
-    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
     pub tol: Option<f64>,
 
     /// Contact scheme of the analytic method: exprb43 (4th order, adaptive) or exprb2 (the paper's
@@ -63,7 +75,7 @@ pub struct SchemeArgs {
 
     /// Fixed contact sub-step h of the analytic method, in units of τ, > 0 (exprb43 uses it
     /// instead of step control)
-    #[arg(long, value_name = "H", value_parser = parse_positive)]
+    #[arg(long, value_name = "H", value_parser = parse_positive, allow_hyphen_values = true)]
     pub step: Option<f64>,
 }
 
@@ -117,11 +129,11 @@ pub fn describe(options: &Options) -> String {
 #[derive(Args, Debug, Clone)]
 pub struct TimeArgs {
     /// End time τ_end (dimensionless time τ = ω_n t), > 0
-    #[arg(long, value_name = "T", value_parser = parse_positive, conflicts_with = "periods")]
+    #[arg(long, value_name = "T", value_parser = parse_positive, allow_hyphen_values = true, conflicts_with = "periods")]
     pub t_end: Option<f64>,
 
     /// Run length in forcing periods 2π/η (may be fractional), > 0 [default: 20]
-    #[arg(long, value_name = "N", value_parser = parse_positive)]
+    #[arg(long, value_name = "N", value_parser = parse_positive, allow_hyphen_values = true)]
     pub periods: Option<f64>,
 }
 

@@ -43,9 +43,13 @@ impl AtomicFile {
             .extension()
             .map(|e| format!(".{}", e.to_string_lossy()))
             .unwrap_or_default();
-        let tmp = tempfile::Builder::new()
-            .prefix(".rotor-rub-")
-            .suffix(&suffix)
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".rotor-rub-").suffix(&suffix);
+        // Temporary files are private (0600) by default; outputs get the usual mode (0666 less
+        // the umask).
+        #[cfg(unix)]
+        builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+        let tmp = builder
             .tempfile_in(parent_dir(dest))
             .map_err(|e| io_error(dest, "create", e))?;
         Ok(Self {
@@ -57,11 +61,6 @@ impl AtomicFile {
     /// Path of the temporary file (for writers that take a path).
     pub fn temp_path(&self) -> &Path {
         self.tmp.path()
-    }
-
-    /// The destination.
-    pub fn dest(&self) -> &Path {
-        &self.dest
     }
 
     /// Move the finished file into place.
@@ -132,9 +131,4 @@ impl CsvOut {
             .map_err(|e| io_error(&dest, "write", e.error()))?;
         file.commit()
     }
-}
-
-/// The path next to `path` with another extension, e.g. `sweep.csv` → `sweep.svg`.
-pub fn sibling(path: &Path, extension: &str) -> PathBuf {
-    path.with_extension(extension)
 }

@@ -21,12 +21,12 @@ pub struct ProblemArgs {
     #[arg(long, value_name = "FILE.toml")]
     pub config: Option<PathBuf>,
 
-    /// Override one value (repeatable; overrides preset and config). Names: speed_ratio (η = Ω/ω_n,
-    /// > 0), damping_ratio (ν, >= 0), mass_ratio (η_m, > 0), eccentricity_ratio (ρ̂, unbalance
-    /// eccentricity over the clearance, > 0), phase (φ0, rad), k_xx, k_xy, k_yx, k_yy (stator
-    /// stiffness over rotor stiffness; k_xx, k_yy >= 0), offset_x, offset_y (stator offset, in
-    /// clearances), x0, y0 (initial position, in clearances), vx0, vy0 (initial velocity, in
-    /// clearances per unit τ)
+    /// Override one value (repeatable; overrides preset and config). Names: speed_ratio (η =
+    /// Ω/ω_n, must be > 0), damping_ratio (ν, must be >= 0), mass_ratio (η_m, must be > 0),
+    /// eccentricity_ratio (ρ̂, unbalance eccentricity over the clearance, must be > 0), phase
+    /// (φ0, rad), k_xx, k_xy, k_yx, k_yy (stator stiffness over rotor stiffness; k_xx and k_yy
+    /// must be >= 0), offset_x, offset_y (stator offset, in clearances), x0, y0 (initial
+    /// position, in clearances), vx0, vy0 (initial velocity, in clearances per unit τ)
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_set)]
     pub set: Vec<(Field, f64)>,
 }
@@ -34,6 +34,24 @@ pub struct ProblemArgs {
 /// The fields a user may set: every [`Field`] except the start time (runs start at τ = 0).
 pub fn settable_fields() -> impl Iterator<Item = Field> {
     Field::ALL.into_iter().filter(|&f| f != Field::StartTime)
+}
+
+/// What a field is, with its symbol and unit, for listings.
+pub fn meaning(field: Field) -> &'static str {
+    match field {
+        Field::SpeedRatio => "η = Ω/ω_n, running speed over natural frequency",
+        Field::DampingRatio => "ν, viscous damping ratio",
+        Field::MassRatio => "η_m, unbalance mass over disk mass",
+        Field::EccentricityRatio => "ρ̂, unbalance eccentricity in clearances",
+        Field::Phase => "φ0, unbalance phase at τ = 0, rad",
+        Field::KXx | Field::KXy | Field::KYx | Field::KYy => {
+            "stator support stiffness over rotor stiffness"
+        }
+        Field::OffsetX | Field::OffsetY => "stator centre offset, clearances",
+        Field::X0 | Field::Y0 => "initial position, clearances",
+        Field::Vx0 | Field::Vy0 => "initial velocity, clearances per unit τ",
+        Field::StartTime => "start time τ0",
+    }
 }
 
 /// A settable field by name, or a message listing the valid names.
@@ -115,8 +133,10 @@ fn read_config(path: &Path) -> Result<Config> {
                     "--config {shown}: preset must be a string naming a preset"
                 ))
             })?;
-            config.preset =
-                Some(parse_preset(name).map_err(|m| CliError::input(format!("--config {shown}: {m}")))?);
+            config.preset = Some(
+                parse_preset(name)
+                    .map_err(|m| CliError::input(format!("--config {shown}: {m}")))?,
+            );
             continue;
         }
         let field =
@@ -196,7 +216,11 @@ mod tests {
     fn set_parses_and_rejects() {
         assert_eq!(parse_set("k_xx=2"), Ok((Field::KXx, 2.0)));
         assert!(parse_set("k_xx").unwrap_err().contains("NAME=VALUE"));
-        assert!(parse_set("start_time=1").unwrap_err().contains("unknown parameter"));
+        assert!(
+            parse_set("start_time=1")
+                .unwrap_err()
+                .contains("unknown parameter")
+        );
         assert!(parse_set("phase=abc").unwrap_err().contains("phase"));
     }
 

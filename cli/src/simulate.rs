@@ -15,15 +15,6 @@ pub const EVENTS_HEADER: [&str; 6] = ["tau", "kind", "x", "y", "vx", "vy"];
 /// Header of the samples file.
 pub const SAMPLES_HEADER: [&str; 6] = ["tau", "x", "y", "vx", "vy", "contact"];
 
-/// A sample count of at least 2.
-fn parse_sample_count(text: &str) -> Result<usize, String> {
-    match text.trim().parse::<usize>() {
-        Ok(n) if n >= 2 => Ok(n),
-        Ok(n) => Err(format!("{n} is out of range: it must be an integer >= 2")),
-        Err(_) => Err(format!("'{text}' is not an integer >= 2")),
-    }
-}
-
 /// Simulate one parameter set from τ = 0 (the stable contract for scripts).
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -47,8 +38,8 @@ pub struct Args {
     pub samples: Option<PathBuf>,
 
     /// Number N of samples written to --samples, an integer >= 2 [default: 1001]
-    #[arg(long, value_name = "N", value_parser = parse_sample_count, requires = "samples")]
-    pub sample_count: Option<usize>,
+    #[arg(long, value_name = "N", value_parser = crate::options::at_least(2), requires = "samples")]
+    pub sample_count: Option<u64>,
 }
 
 /// Run the command.
@@ -68,7 +59,7 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|p| CsvOut::create(p, &SAMPLES_HEADER))
         .transpose()?;
     let count = if samples_out.is_some() {
-        args.sample_count.unwrap_or(1001)
+        args.sample_count.unwrap_or(1001) as usize
     } else {
         0
     };

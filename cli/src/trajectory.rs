@@ -75,16 +75,30 @@ pub fn run_collect(
     times: impl IntoIterator<Item = f64>,
 ) -> Result<(Pass, Vec<Sample>), CliError> {
     let mut samples = Vec::new();
-    let pass = run(propagator, end, times, |_| Ok(()), |s: &Sample| {
-        samples.push(*s);
-        Ok::<(), CliError>(())
-    })?;
+    let pass = run(
+        propagator,
+        end,
+        times,
+        |_| Ok(()),
+        |s: &Sample| {
+            samples.push(*s);
+            Ok::<(), CliError>(())
+        },
+    )?;
     Ok((pass, samples))
 }
 
 /// `per_period` samples per forcing period from `start` to `end` inclusive.
-pub fn dense_times(start: f64, end: f64, period: f64, per_period: usize) -> impl Iterator<Item = f64> {
-    let count = (((end - start) / period) * per_period as f64).ceil().max(1.0) as usize + 1;
+pub fn dense_times(
+    start: f64,
+    end: f64,
+    period: f64,
+    per_period: usize,
+) -> impl Iterator<Item = f64> {
+    let count = (((end - start) / period) * per_period as f64)
+        .ceil()
+        .max(1.0) as usize
+        + 1;
     uniform_times(start, end, count)
 }
 

@@ -18,6 +18,9 @@ pub const LYAPUNOV_THRESHOLD: f64 = 0.01;
 pub enum Response {
     /// The section repeats after n forcing periods.
     Periodic(usize),
+    /// The section approaches an n-periodic orbit but has not reached it within the tolerance
+    /// (a slowly attracting orbit: exponent slightly below 0).
+    Converging(usize),
     /// Many distinct points, largest Lyapunov exponent ≈ 0.
     QuasiPeriodic,
     /// Many distinct points, largest Lyapunov exponent clearly > 0.
@@ -33,6 +36,7 @@ impl fmt::Display for Response {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Response::Periodic(n) => write!(f, "period-{n}"),
+            Response::Converging(n) => write!(f, "period-{n} (converging)"),
             Response::QuasiPeriodic => f.write_str("quasi-periodic"),
             Response::Chaotic => f.write_str("chaotic"),
             Response::Unsettled => f.write_str("not settled"),
@@ -71,14 +75,35 @@ pub fn period(points: &[State]) -> Option<usize> {
     })
 }
 
+/// The smallest n ≤ [`MAX_PERIOD`] for which the n-step differences |p(k+n) − p(k)| shrink by
+/// more than a factor 4 from the first quarter of the section to the last, ending below 0.01.
+pub fn converging_period(points: &[State]) -> Option<usize> {
+    (1..=MAX_PERIOD.min(points.len() / 4)).find(|&n| {
+        let d: Vec<f64> = points
+            .iter()
+            .zip(&points[n..])
+            .map(|(a, b)| distance(a, b))
+            .collect();
+        let quarter = (d.len() / 4).max(1);
+        let head = d[..quarter].iter().copied().fold(0.0, f64::max);
+        let tail = d[d.len() - quarter..].iter().copied().fold(0.0, f64::max);
+        tail < 0.25 * head && tail < 1e-2
+    })
+}
+
 /// Classify a section, using the largest Lyapunov exponent (per unit τ) when the section does
 /// not repeat.
 pub fn classify(points: &[State], lyapunov: Option<f64>) -> Response {
     if let Some(n) = period(points) {
         return Response::Periodic(n);
     }
+    if lyapunov.is_some_and(|l| l > LYAPUNOV_THRESHOLD) {
+        return Response::Chaotic;
+    }
+    if let Some(n) = converging_period(points) {
+        return Response::Converging(n);
+    }
     match lyapunov {
-        Some(l) if l > LYAPUNOV_THRESHOLD => Response::Chaotic,
         Some(l) if l < -LYAPUNOV_THRESHOLD => Response::Unsettled,
         Some(_) => Response::QuasiPeriodic,
         None => Response::NotPeriodic,
@@ -111,5 +136,19 @@ mod tests {
         assert_eq!(classify(&pts, Some(0.001)), Response::QuasiPeriodic);
         assert_eq!(classify(&pts, Some(0.2)), Response::Chaotic);
         assert_eq!(classify(&pts, Some(-0.2)), Response::Unsettled);
+    }
+
+    #[test]
+    fn slowly_attracting_two_cycle_is_converging() {
+        let pts: Vec<State> = (0..100)
+            .map(|k| {
+                let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+                let r = 0.001 * (-0.03 * k as f64).exp();
+                let a = k as f64 * 0.7;
+                State::new(sign * 0.5 + r * a.cos(), r * a.sin(), 0.0, 0.0)
+            })
+            .collect();
+        assert_eq!(period(&pts), None);
+        assert_eq!(classify(&pts, Some(-0.005)), Response::Converging(2));
     }
 }

@@ -11,18 +11,24 @@ fn hann(n: usize) -> Vec<f64> {
 }
 
 /// Windowed DFT of a complex signal, scaled so a complex exponential of amplitude r on a bin
-/// shows |X_k| = r.
+/// shows |X_k| = r. The mean is removed before windowing (so it does not leak into the lowest
+/// bins) and put back exactly in bin 0.
 fn windowed_dft(signal: &[Complex64]) -> Vec<Complex64> {
     let n = signal.len();
+    let mean = signal.iter().sum::<Complex64>() / n as f64;
     let w = hann(n);
     let gain: f64 = w.iter().sum();
-    let mut buf: Vec<Complex64> = signal.iter().zip(&w).map(|(s, w)| s * w).collect();
+    let mut buf: Vec<Complex64> = signal.iter().zip(&w).map(|(s, w)| (s - mean) * w).collect();
     FftPlanner::new().plan_fft_forward(n).process(&mut buf);
-    buf.iter().map(|c| c / gain).collect()
+    let mut out: Vec<Complex64> = buf.iter().map(|c| c / gain).collect();
+    if let Some(dc) = out.first_mut() {
+        *dc = mean;
+    }
+    out
 }
 
 /// One-sided amplitude spectrum of a real signal: bins 0..=n/2, a sinusoid of amplitude a on a
-/// bin shows a.
+/// bin shows a; bin 0 is |mean|.
 pub fn real_amplitudes(signal: &[f64]) -> Vec<f64> {
     let n = signal.len();
     let z: Vec<Complex64> = signal.iter().map(|&x| Complex64::new(x, 0.0)).collect();
@@ -40,7 +46,11 @@ pub fn real_amplitudes(signal: &[f64]) -> Vec<f64> {
 /// backward one at −ω.
 pub fn whirl_amplitudes(x: &[f64], y: &[f64]) -> Vec<(i64, f64)> {
     let n = x.len();
-    let z: Vec<Complex64> = x.iter().zip(y).map(|(&a, &b)| Complex64::new(a, b)).collect();
+    let z: Vec<Complex64> = x
+        .iter()
+        .zip(y)
+        .map(|(&a, &b)| Complex64::new(a, b))
+        .collect();
     let spectrum = windowed_dft(&z);
     let lowest = -((n as i64 - 1) / 2);
     (lowest..=(n as i64 / 2))

@@ -45,20 +45,32 @@ impl Matching {
         while i < a.len() || j < b.len() {
             match (a.get(i), b.get(j)) {
                 (Some(&x), Some(&y)) if x.kind == y.kind && (x.time - y.time).abs() < MATCH_GAP => {
-                    pairs.push(Pair { a: Some(x), b: Some(y) });
+                    pairs.push(Pair {
+                        a: Some(x),
+                        b: Some(y),
+                    });
                     i += 1;
                     j += 1;
                 }
                 (Some(&x), Some(&y)) if x.time <= y.time => {
-                    pairs.push(Pair { a: Some(x), b: None });
+                    pairs.push(Pair {
+                        a: Some(x),
+                        b: None,
+                    });
                     i += 1;
                 }
                 (_, Some(&y)) => {
-                    pairs.push(Pair { a: None, b: Some(y) });
+                    pairs.push(Pair {
+                        a: None,
+                        b: Some(y),
+                    });
                     j += 1;
                 }
                 (Some(&x), None) => {
-                    pairs.push(Pair { a: Some(x), b: None });
+                    pairs.push(Pair {
+                        a: Some(x),
+                        b: None,
+                    });
                     i += 1;
                 }
                 (None, None) => unreachable!("loop condition"),
@@ -79,7 +91,11 @@ impl Matching {
 
     /// Largest |Δτ| over matched pairs.
     pub fn max_dt(&self) -> Option<f64> {
-        self.pairs.iter().filter_map(Pair::dt).map(f64::abs).reduce(f64::max)
+        self.pairs
+            .iter()
+            .filter_map(Pair::dt)
+            .map(f64::abs)
+            .reduce(f64::max)
     }
 
     /// Largest state difference at matched switches.
@@ -94,13 +110,26 @@ mod tests {
     use rotor_rub::{EventKind, State};
 
     fn ev(time: f64, kind: EventKind) -> Event {
-        Event { time, kind, state: State::default() }
+        Event {
+            time,
+            kind,
+            state: State::default(),
+        }
     }
 
     #[test]
     fn matches_close_switches_and_keeps_extra_ones() {
-        let a = [ev(1.0, EventKind::Enter), ev(2.0, EventKind::Exit), ev(5.0, EventKind::Enter)];
-        let b = [ev(1.001, EventKind::Enter), ev(1.5, EventKind::Exit), ev(1.6, EventKind::Enter), ev(2.002, EventKind::Exit)];
+        let a = [
+            ev(1.0, EventKind::Enter),
+            ev(2.0, EventKind::Exit),
+            ev(5.0, EventKind::Enter),
+        ];
+        let b = [
+            ev(1.001, EventKind::Enter),
+            ev(1.5, EventKind::Exit),
+            ev(1.6, EventKind::Enter),
+            ev(2.002, EventKind::Exit),
+        ];
         let m = Matching::new(&a, &b, 4.0);
         assert_eq!(m.matched(), 2);
         assert_eq!(m.unmatched(), 2);

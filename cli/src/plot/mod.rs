@@ -62,9 +62,8 @@ pub fn save(figure: &impl Figure, svg: &Path, png: &Path) -> Result<()> {
     let size = figure.size();
     let svg_file = AtomicFile::create(svg)?;
     let png_file = AtomicFile::create(png)?;
-    let failed = |dest: &Path, e: String| {
-        CliError::failure(format!("cannot draw {}: {e}", dest.display()))
-    };
+    let failed =
+        |dest: &Path, e: String| CliError::failure(format!("cannot draw {}: {e}", dest.display()));
     {
         let root = SVGBackend::new(svg_file.temp_path(), size).into_drawing_area();
         figure.draw(&root).map_err(|e| failed(svg, e))?;
@@ -131,17 +130,23 @@ pub fn legend<DB: DrawingBackend>(
     (mut x, y): (i32, i32),
     entries: &[(LegendMark, &str)],
 ) -> Result<(), String> {
-    let font = ("sans-serif", 16).into_font();
+    let font: TextStyle = ("sans-serif", 16).into();
     for (mark, label) in entries {
         match *mark {
             LegendMark::Line(c) => area
-                .draw(&PathElement::new(vec![(x, y), (x + 30, y)], c.stroke_width(2)))
+                .draw(&PathElement::new(
+                    vec![(x, y), (x + 30, y)],
+                    c.stroke_width(2),
+                ))
                 .map_err(err)?,
             LegendMark::Dashed(c) => {
                 for k in 0..3 {
                     let s = x + k * 11;
-                    area.draw(&PathElement::new(vec![(s, y), (s + 6, y)], c.stroke_width(2)))
-                        .map_err(err)?;
+                    area.draw(&PathElement::new(
+                        vec![(s, y), (s + 6, y)],
+                        c.stroke_width(2),
+                    ))
+                    .map_err(err)?;
                 }
             }
             LegendMark::Dot(c) => area
@@ -171,4 +176,33 @@ pub enum LegendMark {
     Dot(RGBColor),
     /// A hollow marker.
     Ring(RGBColor),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Text renders with the embedded font alone (the `ttf` feature, which would look for system
+    /// fonts, is off): drawing a label into a bitmap darkens pixels.
+    #[test]
+    fn text_renders_with_the_embedded_font() {
+        register_fonts();
+        let (w, h) = (200u32, 40u32);
+        let mut buffer = vec![255u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
+            root.draw(&Text::new(
+                "η = 1.5",
+                (5, 5),
+                ("sans-serif", 24).into_font(),
+            ))
+            .unwrap();
+            root.present().unwrap();
+        }
+        let dark = buffer
+            .chunks(3)
+            .filter(|p| p.iter().all(|&c| c < 128))
+            .count();
+        assert!(dark > 50, "only {dark} dark pixels");
+    }
 }

@@ -79,7 +79,10 @@ impl Figure for OrbitFigure {
     }
 }
 
-fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<(), String> {
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    panel: &Panel,
+) -> Result<(), String> {
     let circle = clearance_circle(panel.offset);
     let all = panel
         .orbits
@@ -110,12 +113,19 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) 
         .draw_series(LineSeries::new(circle, CLEARANCE.stroke_width(2)))
         .map_err(err)?;
     for orbit in &panel.orbits {
-        let style = orbit.color.stroke_width(1);
+        // The solid line is wider, so it shows between the dashes drawn over it.
         if orbit.dashed {
+            let style = orbit.color.stroke_width(1);
             chart
-                .draw_series(DashedLineSeries::new(orbit.points.iter().copied(), 6, 4, style))
+                .draw_series(DashedLineSeries::new(
+                    orbit.points.iter().copied(),
+                    9,
+                    6,
+                    style,
+                ))
                 .map_err(err)?;
         } else {
+            let style = orbit.color.stroke_width(2);
             chart
                 .draw_series(LineSeries::new(orbit.points.iter().copied(), style))
                 .map_err(err)?;

@@ -5,12 +5,22 @@ use plotters::prelude::*;
 
 use super::{Figure, LegendMark, err, legend};
 
-/// Spectrum lines: (label, colour, (order, amplitude) points).
+/// One spectrum line.
+pub struct Curve {
+    /// Legend label.
+    pub label: String,
+    /// Line colour.
+    pub color: RGBColor,
+    /// (order, amplitude) points.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Spectrum lines against order.
 pub struct SpectrumFigure {
     /// Title.
     pub title: String,
     /// The curves.
-    pub curves: Vec<(String, RGBColor, Vec<(f64, f64)>)>,
+    pub curves: Vec<Curve>,
     /// Shown order range.
     pub orders: std::ops::Range<f64>,
 }
@@ -29,7 +39,7 @@ impl Figure for SpectrumFigure {
         let top = self
             .curves
             .iter()
-            .flat_map(|c| c.2.iter().filter(|p| shown(p)).map(|p| p.1))
+            .flat_map(|c| c.points.iter().filter(|p| shown(p)).map(|p| p.1))
             .fold(f64::MIN_POSITIVE, f64::max);
         let floor = top * 1e-7;
         let mut chart = ChartBuilder::on(root)
@@ -44,10 +54,16 @@ impl Figure for SpectrumFigure {
             .x_desc("frequency / running speed (order)")
             .y_desc("amplitude (clearances)")
             .x_labels(17)
+            .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(err)?;
         let mut entries = Vec::new();
-        for (label, color, points) in &self.curves {
+        for Curve {
+            label,
+            color,
+            points,
+        } in &self.curves
+        {
             let line: Vec<(f64, f64)> = points
                 .iter()
                 .filter(|(o, _)| self.orders.contains(o))

@@ -1,0 +1,158 @@
+//! `rotor-rub spectrum`: amplitude spectra of x and y, or of the complex whirl x + i y, against
+//! frequency in multiples of the running speed.
+
+use std::path::PathBuf;
+
+use rotor_rub::samples;
+
+use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
+use crate::error::Result;
+use crate::options::{MethodArgs, describe, parse_positive};
+use crate::output::{CsvOut, ensure_dir};
+use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
+use crate::plot::{self, ANALYTIC};
+use crate::problem::ProblemArgs;
+use crate::trajectory;
+
+/// Amplitude spectrum from uniform samples over an integer number of forcing periods after a
+/// transient, Hann window. Frequencies are orders: multiples of the running speed η, so the ½×
+/// and ⅓× rub sub-harmonics fall on 0.5 and 0.333.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    pub problem: ProblemArgs,
+
+    #[command(flatten)]
+    pub method: MethodArgs,
+
+    /// Forcing periods skipped as transient
+    #[arg(long, value_name = "P", default_value_t = 100)]
+    pub transient: u64,
+
+    /// Forcing periods analysed (the resolution is 1/P orders; a multiple of 6 puts ½× and ⅓×
+    /// on bins), >= 1
+    #[arg(long, value_name = "P", default_value_t = 60, value_parser = crate::options::at_least(1))]
+    pub periods: u64,
+
+    /// Samples per forcing period (the highest order shown is half of it), >= 2
+    #[arg(long, value_name = "M", default_value_t = 64, value_parser = crate::options::at_least(2))]
+    pub samples_per_period: u64,
+
+    /// Spectrum of the complex whirl x + i y: positive orders are forward whirl, negative
+    /// orders backward whirl
+    #[arg(long)]
+    pub whirl: bool,
+
+    /// Highest order drawn in the plot (the CSV has every bin)
+    #[arg(long, value_name = "ORDER", default_value_t = 4.0, value_parser = parse_positive, allow_hyphen_values = true)]
+    pub max_order: f64,
+
+    /// Output CSV: header order,x,y (or order,whirl with --whirl), amplitudes in clearances; the
+    /// plot goes next to it (.svg and .png)
+    #[arg(long, value_name = "FILE.csv", default_value = "out/spectrum.csv")]
+    pub out: PathBuf,
+}
+
+/// Run the command.
+pub fn run(args: &Args) -> Result<()> {
+    let problem = args.problem.build()?;
+    let options = args.method.options();
+    let mut propagator = trajectory::start(&problem, &options)?;
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        ensure_dir(dir)?;
+    }
+    let header: &[&str] = if args.whirl {
+        &["order", "whirl"]
+    } else {
+        &["order", "x", "y"]
+    };
+    let mut out = CsvOut::create(&args.out, header)?;
+    let period = problem.params.forcing_period();
+    let n = (args.periods * args.samples_per_period) as usize;
+    let start = args.transient as f64 * period;
+    let dt = period / args.samples_per_period as f64;
+    let times = (0..n).map(|i| start + i as f64 * dt);
+    let (mut x, mut y) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for sample in samples(&mut propagator, times) {
+        let s = sample?.state;
+        x.push(s.x);
+        y.push(s.y);
+    }
+    let order = |bin: f64| bin / args.periods as f64;
+    let (curves, lines) = if args.whirl {
+        let w = whirl_amplitudes(&x, &y);
+        for &(k, a) in &w {
+            out.row((order(k as f64), a))?;
+        }
+        let amps: Vec<f64> = w.iter().map(|p| p.1).collect();
+        let lines: Vec<String> = peaks(&amps, 6)
+            .into_iter()
+            .map(|i| format!("{:+.4}× {:.4e}", order(w[i].0 as f64), w[i].1))
+            .collect();
+        let points = w.iter().map(|&(k, a)| (order(k as f64), a)).collect();
+        let curve = Curve {
+            label: "whirl x + i y".into(),
+            color: ANALYTIC,
+            points,
+        };
+        (vec![curve], lines)
+    } else {
+        let (ax, ay) = (real_amplitudes(&x), real_amplitudes(&y));
+        for (k, (a, b)) in ax.iter().zip(&ay).enumerate() {
+            out.row((order(k as f64), a, b))?;
+        }
+        let mut lines = Vec::new();
+        for (name, amps) in [("x", &ax), ("y", &ay)] {
+            let top: Vec<String> = peaks(amps, 6)
+                .into_iter()
+                .map(|i| format!("{:.4}× {:.4e}", order(i as f64), amps[i]))
+                .collect();
+            lines.push(format!("{name}: {}", top.join(", ")));
+        }
+        let curve = |label: &str, color, a: &[f64]| Curve {
+            label: label.into(),
+            color,
+            points: a
+                .iter()
+                .enumerate()
+                .map(|(k, &v)| (order(k as f64), v))
+                .collect(),
+        };
+        (
+            vec![curve("x", ANALYTIC, &ax), curve("y", SECOND, &ay)],
+            lines,
+        )
+    };
+    let lowest = if args.whirl { -args.max_order } else { 0.0 };
+    let figure = SpectrumFigure {
+        title: format!(
+            "{} spectrum, η = {}, periods {}-{}, Hann window",
+            if args.whirl { "Whirl" } else { "Amplitude" },
+            problem.params.speed_ratio,
+            args.transient,
+            args.transient + args.periods
+        ),
+        curves,
+        orders: lowest..args.max_order,
+    };
+    let [svg, png] = plot::save_beside(&figure, &args.out)?;
+    out.commit()?;
+    println!("method: {}", describe(&options));
+    println!(
+        "{n} samples over forcing periods {}-{}, resolution {} orders",
+        args.transient,
+        args.transient + args.periods,
+        1.0 / args.periods as f64
+    );
+    println!("largest peaks (order, amplitude in clearances):");
+    for line in lines {
+        println!("  {line}");
+    }
+    println!(
+        "wrote {}, {}, {}",
+        args.out.display(),
+        svg.display(),
+        png.display()
+    );
+    Ok(())
+}

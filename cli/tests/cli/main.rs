@@ -1,0 +1,8 @@
+//! Integration tests of the `rotor-rub` binary (one test binary, one module per area).
+
+mod analyses;
+mod common;
+mod errors;
+mod fig2;
+mod simulate;
+mod sweep;
