@@ -18,6 +18,8 @@ use crate::reference::{
 };
 
 type Step = AcceptedStep<6, Dop853Dense<6>>;
+/// A switch inside a step: time and 6-state.
+type Switch = (f64, [f64; 6]);
 
 #[allow(
     clippy::large_enum_variant,
@@ -27,7 +29,7 @@ enum Piece {
     Free(FreeFlight),
     Contact {
         step: Option<Step>,
-        exit: Option<(f64, [f64; 6])>,
+        exit: Option<Switch>,
     },
 }
 
@@ -46,7 +48,7 @@ impl HybridPropagator {
     /// Validate `problem` and `tol` (finite, ≥ 1e-14) and start at the problem's start time.
     pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
         problem.validate()?;
-        if !(tol.is_finite() && tol >= MIN_TOLERANCE && tol <= 1.0) {
+        if !(tol.is_finite() && (MIN_TOLERANCE..=1.0).contains(&tol)) {
             return Err(PropagationError::InvalidOption {
                 what: "tol",
                 value: tol,
@@ -96,7 +98,7 @@ impl HybridPropagator {
     }
 
     /// One DOP853 step in contact, with the exit inside it if any.
-    fn contact_step(&mut self) -> Result<(Step, Option<(f64, [f64; 6])>), PropagationError> {
+    fn contact_step(&mut self) -> Result<(Step, Option<Switch>), PropagationError> {
         let step = self.integrator.step(&self.contact, f64::INFINITY)?;
         let end = PhasorRotorSystem::rotor_state(&step.y1);
         if !end.is_finite() || math::hypot(end.x, end.y) > DIVERGENCE_RADIUS {

@@ -116,6 +116,10 @@ impl Options {
 /// Any method behind one type (no heap): build it with [`Propagator::new`].
 pub struct Propagator(Inner);
 
+#[allow(
+    clippy::large_enum_variant,
+    reason = "the runtime has no heap to box into"
+)]
 enum Inner {
     Analytic(crate::analytic::AnalyticPropagator),
     Dop853(crate::reference::Dop853Propagator),
