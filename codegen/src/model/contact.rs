@@ -208,16 +208,13 @@ fn paper_modal_constants(m: &mut Model) {
         let t = g.add(a, b);
         g.mul(decay, t)
     };
-    let mut eqs = Vec::new();
-    for (q, (p0, v0)) in [x, y].into_iter().zip([("xh0", "vxh0"), ("yh0", "vyh0")]) {
-        let dq = derivative(&mut m.graph, q, &rates);
-        let (p0, v0) = (m.var(p0), m.var(v0));
-        let zero = m.graph.constant(0.0);
-        let e = m.graph.sub(q, p0);
-        eqs.push(m.subst(e, &[("tau", zero)]));
-        let e = m.graph.sub(dq, v0);
-        eqs.push(m.subst(e, &[("tau", zero)]));
-    }
+    let zero = m.graph.constant(0.0);
+    let eqs = m.initial_conditions(
+        [x, y],
+        &rates,
+        &[("tau", zero)],
+        [("xh0", "vxh0"), ("yh0", "vyh0")],
+    );
     let sol = m.solve(&eqs, &["c1", "c2", "c3", "c4"]);
     m.add_formula(
         "paper_modal_constants",
@@ -312,15 +309,7 @@ fn homogeneous_start(m: &mut Model) {
         ("sc", zero),
         ("sd", zero),
     ];
-    let mut eqs = Vec::new();
-    for (i, (p, v)) in [("xh0", "vxh0"), ("yh0", "vyh0")].into_iter().enumerate() {
-        let dq = derivative(&mut m.graph, q[i], &rates);
-        let (p, v) = (m.var(p), m.var(v));
-        let e = m.graph.sub(q[i], p);
-        eqs.push(m.subst(e, &at0));
-        let e = m.graph.sub(dq, v);
-        eqs.push(m.subst(e, &at0));
-    }
+    let eqs = m.initial_conditions(q, &rates, &at0, [("xh0", "vxh0"), ("yh0", "vyh0")]);
     let sol = m.solve(&eqs, &["q0x", "w0x", "q0y", "w0y"]);
     m.add_formula(
         "contact_homogeneous_start",

@@ -157,16 +157,12 @@ fn free_homogeneous(m: &mut Model) {
     let mut rates = Rates::new();
     let q = free_trajectory(m, &mut rates);
     let (one, zero) = (m.graph.constant(1.0), m.graph.constant(0.0));
-    let mut eqs = Vec::new();
-    for (i, (x0, v0)) in [("x0", "vx0"), ("y0", "vy0")].into_iter().enumerate() {
-        let pos = m.var(x0);
-        let vel = m.var(v0);
-        let d = derivative(&mut m.graph, q[i], &rates);
-        let e = m.graph.sub(q[i], pos);
-        eqs.push(m.subst(e, &[("ec", one), ("es", zero)]));
-        let e = m.graph.sub(d, vel);
-        eqs.push(m.subst(e, &[("ec", one), ("es", zero)]));
-    }
+    let eqs = m.initial_conditions(
+        q,
+        &rates,
+        &[("ec", one), ("es", zero)],
+        [("x0", "vx0"), ("y0", "vy0")],
+    );
     let c = m.solve(&eqs, &["xh", "px", "yh", "py"]);
     m.add_formula(
         "free_homogeneous",

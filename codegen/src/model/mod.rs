@@ -144,6 +144,28 @@ impl Model {
         out
     }
 
+    /// Initial-condition equations of a trajectory `q` at its start: q_i(0) = `start[i].0` and
+    /// q_i'(0) = `start[i].1` (names of input symbols), where `at_start` substitutes the start
+    /// values of the time-dependent symbols. Equations come position then velocity per component.
+    pub(crate) fn initial_conditions(
+        &mut self,
+        q: Vec2,
+        rates: &Rates,
+        at_start: &[(&str, ExprId)],
+        start: [(&str, &str); 2],
+    ) -> Vec<ExprId> {
+        let mut eqs = Vec::with_capacity(4);
+        for (qi, (pos, vel)) in q.into_iter().zip(start) {
+            let dq = derivative(&mut self.graph, qi, rates);
+            let (pos, vel) = (self.var(pos), self.var(vel));
+            let e = self.graph.sub(qi, pos);
+            eqs.push(self.subst(e, at_start));
+            let e = self.graph.sub(dq, vel);
+            eqs.push(self.subst(e, at_start));
+        }
+        eqs
+    }
+
     /// Solve the equations for the named unknowns.
     pub(crate) fn solve(&mut self, equations: &[ExprId], unknowns: &[&str]) -> Vec<ExprId> {
         let syms: Vec<Symbol> = unknowns.iter().map(|u| self.graph.symbol(u)).collect();
