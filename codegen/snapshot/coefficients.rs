@@ -2,8 +2,8 @@
 // Refresh the checked-in snapshot with: UPDATE_SNAPSHOT=1 cargo test -p rotor-rub-codegen --test snapshot
 //
 // Operation counts per function, as expression trees (before CSE) and as emitted (after):
-// taylor_terms                 before:   142 add    90 mul   14 div  14 sqrt   0 trans
-//                               after:    14 add    36 mul    2 div   1 sqrt   0 trans
+// taylor_terms                 before:   142 add    66 mul   14 div  14 sqrt   0 trans
+//                               after:    12 add    21 mul    2 div   1 sqrt   0 trans
 // linearized_stiffness         before:     8 add    12 mul    0 div   0 sqrt   0 trans
 //                               after:     8 add    12 mul    0 div   0 sqrt   0 trans
 // free_particular              before:    14 add    38 mul    4 div   0 sqrt   0 trans
@@ -20,7 +20,7 @@
 //                               after:    23 add    87 mul    2 div   0 sqrt   0 trans
 // contact_particular_eval      before:     6 add    12 mul    0 div   0 sqrt   0 trans
 //                               after:     6 add    12 mul    0 div   0 sqrt   0 trans
-// contact_modes                before:     7 add    13 mul    0 div   0 sqrt   0 trans
+// contact_modes                before:     7 add    12 mul    0 div   0 sqrt   0 trans
 //                               after:     7 add     9 mul    0 div   0 sqrt   0 trans
 // mode_shape                   before:     2 add     0 mul    0 div   0 sqrt   0 trans
 //                               after:     2 add     0 mul    0 div   0 sqrt   0 trans
@@ -62,23 +62,24 @@ pub struct TaylorTerms {
 #[must_use]
 pub fn taylor_terms(x0: f64, y0: f64, ex: f64, ey: f64) -> TaylorTerms {
     let t0 = x0 - ex;
-    let t1 = y0 - ey;
-    let t2 = t0 * t0 + t1 * t1;
-    let t3 = 1.0 / m::sqrt(t2);
-    let t4 = -t3;
-    let t5 = 2.0 * x0 - 2.0 * ex;
-    let t6 = 1.0 / t2;
-    let t7 = 1.0 + t4 + 0.5 * t0 * t3 * t5 * t6;
-    let t8 = 2.0 * y0 - 2.0 * ey;
-    let t9 = 1.0 + t4 + 0.5 * t1 * t3 * t6 * t8;
-    let t10 = 1.0 + t4;
+    let t1 = t0 * t0;
+    let t2 = y0 - ey;
+    let t3 = t2 * t2;
+    let t4 = t1 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = -t5;
+    let t7 = 1.0 / t4;
+    let t8 = 1.0 + t6 + t1 * t5 * t7;
+    let t9 = t0 * t2 * t5 * t7;
+    let t10 = 1.0 + t6 + t3 * t5 * t7;
+    let t11 = 1.0 + t6;
     TaylorTerms {
-        a1: t7,
-        b1: 0.5 * t0 * t3 * t6 * t8,
-        b2: 0.5 * t1 * t3 * t5 * t6,
-        a2: t9,
-        d1: t0 * t10 - x0 * t7 - 0.5 * y0 * t0 * t3 * t6 * t8,
-        d2: t1 * t10 - 0.5 * x0 * t1 * t3 * t5 * t6 - y0 * t9,
+        a1: t8,
+        b1: t9,
+        b2: t9,
+        a2: t10,
+        d1: t0 * t11 - x0 * t8 - y0 * t0 * t2 * t5 * t7,
+        d2: t2 * t11 - x0 * t0 * t2 * t5 * t7 - y0 * t10,
     }
 }
 /// Outputs of [`linearized_stiffness`].
@@ -220,13 +221,13 @@ pub fn free_homogeneous(
     eta: f64,
     nu: f64,
 ) -> FreeHomogeneous {
-    let t0 = x0 - ct * c11 - st * c22;
-    let t1 = y0 - ct * c33 - st * c44;
+    let t0 = ct * c11 + st * c22 - x0;
+    let t1 = ct * c33 + st * c44 - y0;
     FreeHomogeneous {
-        xh: t0,
-        px: eta * st * c11 + vx0 + nu * t0 - eta * ct * c22,
-        yh: t1,
-        py: eta * st * c33 + vy0 + nu * t1 - eta * ct * c44,
+        xh: -t0,
+        px: eta * st * c11 + vx0 - nu * t0 - eta * ct * c22,
+        yh: -t1,
+        py: eta * st * c33 + vy0 - nu * t1 - eta * ct * c44,
     }
 }
 /// Outputs of [`free_eval`].
@@ -278,10 +279,10 @@ pub fn free_eval(
     let t5 = st * c44;
     let t6 = ec * yh;
     let t7 = es * py;
-    let t8 = -(nu * ec) - es * beta_sq;
+    let t8 = nu * ec + es * beta_sq;
     let t9 = ec - nu * es;
-    let t10 = eta * ct * c22 + t8 * xh + t9 * px - eta * st * c11;
-    let t11 = eta * ct * c44 + t8 * yh + t9 * py - eta * st * c33;
+    let t10 = eta * ct * c22 + t9 * px - eta * st * c11 - t8 * xh;
+    let t11 = eta * ct * c44 + t9 * py - eta * st * c33 - t8 * yh;
     let t12 = t0 + t1 + t2 + t3 - ex;
     let t13 = t4 + t5 + t6 + t7 - ey;
     FreeState {
@@ -406,13 +407,14 @@ pub struct ContactModes {
 #[inline]
 #[must_use]
 pub fn contact_modes(fa1: f64, fb1: f64, fb2: f64, fa2: f64, nu: f64) -> ContactModes {
-    let t0 = 0.5 * fa2;
+    let t0 = -fb1 * fb2;
     let t1 = 0.5 * fa1;
+    let t2 = 0.5 * fa2;
     ContactModes {
-        omega_sq_mean: t0 + t1,
-        disc: fb1 * fb2 - (t1 - 0.5 * fa2) * (t0 - 0.5 * fa1),
-        det: fa1 * fa2 - fb1 * fb2,
-        gamma_sq_mean: t0 + t1 - nu * nu,
+        omega_sq_mean: -0.5 * (-(fa1) - fa2),
+        disc: -(t0 + (t1 - 0.5 * fa2) * (t2 - 0.5 * fa1)),
+        det: fa1 * fa2 + t0,
+        gamma_sq_mean: t1 + t2 - nu * nu,
     }
 }
 /// Outputs of [`mode_shape`].
@@ -434,10 +436,11 @@ pub struct ModeShape {
 #[inline]
 #[must_use]
 pub fn mode_shape(fa1: f64, fb1: f64, fb2: f64, fa2: f64, omega_sq: f64) -> ModeShape {
+    let t0 = -omega_sq;
     ModeShape {
         row1_x: fb1,
-        row1_y: omega_sq - fa1,
-        row2_x: omega_sq - fa2,
+        row1_y: -(fa1 + t0),
+        row2_x: -(fa2 + t0),
         row2_y: fb2,
     }
 }
@@ -455,7 +458,7 @@ pub struct PaperModeRatio {
 #[must_use]
 pub fn paper_mode_ratio(fa1: f64, fb1: f64, omega_sq: f64) -> PaperModeRatio {
     PaperModeRatio {
-        s: (omega_sq - fa1) / fb1,
+        s: -(fa1 - omega_sq) / fb1,
     }
 }
 /// Outputs of [`paper_modal_constants`].
@@ -578,12 +581,12 @@ pub fn contact_homogeneous_eval(
     let t8 = cc * q0y + cd * t6 + sc * w0y + sd * t7;
     let t9 = sigma - nu * nu;
     let t10 = sd * (t1 * t5 - fb1 * fb2) - sc * t9;
-    let t11 = -(sc) - sd * t9 - sd * (fa1 + fa2 - 2.0 * sigma);
+    let t11 = sc + sd * t9 + sd * (fa1 + fa2 - 2.0 * sigma);
     HomogeneousState {
         x: decay * t4,
         y: decay * t8,
-        vx: decay * (q0x * t10 + t11 * t2 + cc * w0x + cd * t3) - nu * decay * t4,
-        vy: decay * (q0y * t10 + t11 * t6 + cc * w0y + cd * t7) - nu * decay * t8,
+        vx: decay * (q0x * t10 + cc * w0x + cd * t3 - t11 * t2) - nu * decay * t4,
+        vy: decay * (q0y * t10 + cc * w0y + cd * t7 - t11 * t6) - nu * decay * t8,
     }
 }
 /// Outputs of [`polynomial_particular`].

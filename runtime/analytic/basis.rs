@@ -119,14 +119,22 @@ impl Complex {
         }
     }
 
-    /// Principal square root.
+    /// Principal square root, without cancellation: the larger part from √((|z| + |Re z|)/2),
+    /// the other as Im z / (2·larger).
     fn sqrt(self) -> Complex {
         let r = math::hypot(self.re, self.im);
-        let re = math::sqrt(0.5 * (r + self.re));
-        let im = math::sqrt(0.5 * (r - self.re));
-        Complex {
-            re,
-            im: if self.im < 0.0 { -im } else { im },
+        if r == 0.0 {
+            return Complex { re: 0.0, im: 0.0 };
+        }
+        let big = math::sqrt(0.5 * (r + math::abs(self.re)));
+        let small = self.im / (2.0 * big);
+        if self.re >= 0.0 {
+            Complex { re: big, im: small }
+        } else {
+            Complex {
+                re: math::abs(small),
+                im: if self.im < 0.0 { -big } else { big },
+            }
         }
     }
 

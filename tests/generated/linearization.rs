@@ -22,10 +22,10 @@ proptest! {
     fn taylor_terms_match_finite_difference_jacobian(case in any_case()) {
         let (ex, ey) = case.offset;
         let t = case.taylor();
-        let gen = Matrix2::new(t.a1, t.b1, t.b2, t.a2);
+        let ours = Matrix2::new(t.a1, t.b1, t.b2, t.a2);
         let fd = jacobian(|x, y| g(x, y, ex, ey), case.x0, case.y0, H);
         let scale = 1.0 + fd.abs().max();
-        prop_assert!((gen - fd).abs().max() <= 1e-6 * scale, "J {gen} vs finite differences {fd}");
+        prop_assert!((ours - fd).abs().max() <= 1e-6 * scale, "J {ours} vs finite differences {fd}");
         let r0 = Vector2::new(case.x0, case.y0);
         let d_fd = g(case.x0, case.y0, ex, ey) - fd * r0;
         let d_scale = scale * (1.0 + r0.norm());

@@ -6,7 +6,7 @@
 //! - neutral and absorbing elements (`a + 0`, `a · 1`, `a · 0`, `a^1`, `a^0`);
 //! - flattening of nested sums and products, operands sorted so equal sums intern equally;
 //! - like-term collection `2a + 3a → 5a` and like-factor collection `a · a⁻¹ → 1`, `a·a → a²`;
-//! - a constant times a sum is distributed (cheap, and lets terms cancel);
+//! - a constant times a sum stays factored (`2a + 3a → 5a` for a sum `a` too, and `a/a → 1`);
 //! - `(a^m)^n → a^(mn)`, `(a·b)^n → aⁿ·bⁿ`, `sqrt(a)^(2k) → a^k`.
 
 use std::collections::BTreeMap;
@@ -15,31 +15,46 @@ use super::{ExprId, Func, Graph, Node};
 
 impl Graph {
     /// The simplified sum of `terms`.
+    ///
+    /// Terms are first grouped by their non-constant part, sums taken as units, so
+    /// `2a + 3a → 5a` and `a − a → 0` for any `a`. If more than one group remains, sums are
+    /// expanded into their terms (scaled by their coefficient) and collected again, so terms
+    /// inside them can meet: `a + (a + b) → 2a + b`.
     pub fn sum(&mut self, terms: &[ExprId]) -> ExprId {
-        let mut flat = Vec::with_capacity(terms.len());
-        for &t in terms {
-            match self.node(t) {
-                Node::Add(ts) => flat.extend(ts.iter().copied()),
-                _ => flat.push(t),
-            }
+        let (constant, groups) = self.collect_terms(terms);
+        if constant == 0.0 && groups.len() == 1 {
+            let (rest, c) = groups[0];
+            return if c == 1.0 {
+                rest
+            } else {
+                self.scaled_term(c, rest)
+            };
         }
-        let mut constant = 0.0;
-        let mut groups: BTreeMap<ExprId, f64> = BTreeMap::new();
-        for t in flat {
-            let (c, rest) = self.split_coefficient(t);
-            match rest {
-                None => constant += c,
-                Some(r) => *groups.entry(r).or_insert(0.0) += c,
+        if groups
+            .iter()
+            .any(|&(rest, _)| matches!(self.node(rest), Node::Add(_)))
+        {
+            let mut flat = Vec::new();
+            if constant != 0.0 {
+                flat.push(self.constant(constant));
             }
+            for (rest, c) in groups {
+                match self.node(rest).clone() {
+                    Node::Add(ts) => flat.extend(ts.into_iter().map(|u| self.scale(c, u))),
+                    _ => flat.push(if c == 1.0 {
+                        rest
+                    } else {
+                        self.scaled_term(c, rest)
+                    }),
+                }
+            }
+            return self.sum(&flat);
         }
         let mut out = Vec::new();
         if constant != 0.0 {
             out.push(self.constant(constant));
         }
         for (rest, c) in groups {
-            if c == 0.0 {
-                continue;
-            }
             out.push(if c == 1.0 {
                 rest
             } else {
@@ -54,6 +69,23 @@ impl Graph {
                 self.intern(Node::Add(out))
             }
         }
+    }
+
+    /// The constant part of `terms` and their other parts with summed coefficients (zero
+    /// coefficients dropped), in id order.
+    fn collect_terms(&mut self, terms: &[ExprId]) -> (f64, Vec<(ExprId, f64)>) {
+        let mut constant = 0.0;
+        let mut groups: BTreeMap<ExprId, f64> = BTreeMap::new();
+        for &t in terms {
+            match self.split_coefficient(t) {
+                (c, None) => constant += c,
+                (c, Some(r)) => *groups.entry(r).or_insert(0.0) += c,
+            }
+        }
+        (
+            constant,
+            groups.into_iter().filter(|&(_, c)| c != 0.0).collect(),
+        )
     }
 
     /// `c · rest` as a product node without re-distributing over sums.
@@ -122,11 +154,16 @@ impl Graph {
         if out.is_empty() {
             return self.constant(constant);
         }
+        // A power can fold into a product or a constant (sqrt(a·b)² → a·b, (3a)² → 9a²):
+        // collect again so products stay flat and like factors meet.
+        if out
+            .iter()
+            .any(|&f| matches!(self.node(f), Node::Mul(_) | Node::Const(_)))
+        {
+            out.push(self.constant(constant));
+            return self.product(&out);
+        }
         if constant != 1.0 {
-            if let (1, Node::Add(ts)) = (out.len(), self.node(out[0]).clone()) {
-                let scaled: Vec<_> = ts.iter().map(|&t| self.scale(constant, t)).collect();
-                return self.sum(&scaled);
-            }
             out.push(self.constant(constant));
         }
         if out.len() == 1 {
