@@ -87,7 +87,7 @@ fn fmt_opt(x: Option<f64>) -> String {
 pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
     let end = args.time.end_time(&problem.params);
-    let analytic = args.scheme.options(Method::Analytic);
+    let analytic = args.scheme.options(Method::Analytic)?;
     let reference = Options {
         tol: args.reference_tol,
         ..Options::with_method(args.reference)

@@ -224,7 +224,7 @@ pub fn run(args: &Args) -> Result<()> {
         )));
     }
     let base = args.problem.build()?;
-    let analytic = args.scheme.options(Method::Analytic);
+    let analytic = args.scheme.options(Method::Analytic)?;
     let reference = Options {
         tol: args.reference_tol,
         ..Options::with_method(args.reference)

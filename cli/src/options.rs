@@ -1,5 +1,6 @@
 //! Shared command-line options: method selection, accuracy settings, run length, number parsers.
 
+use crate::error::CliError;
 use clap::Args;
 use rotor_rub::{ContactScheme, Method, Options, Params};
 
@@ -69,9 +70,9 @@ pub struct SchemeArgs {
     pub tol: Option<f64>,
 
     /// Contact scheme of the analytic method: exprb43 (4th order, adaptive) or exprb2 (the paper's
-    /// step re-linearized at every sub-step, 2nd order, fixed sub-step)
-    #[arg(long, value_name = "SCHEME", default_value = "exprb43", value_parser = parse_scheme)]
-    pub contact_scheme: ContactScheme,
+    /// step re-linearized at every sub-step, 2nd order, fixed sub-step) [default: exprb43]
+    #[arg(long, value_name = "SCHEME", value_parser = parse_scheme)]
+    pub contact_scheme: Option<ContactScheme>,
 
     /// Fixed contact sub-step h of the analytic method, in units of τ, > 0 (exprb43 uses it
     /// instead of step control)
@@ -80,14 +81,28 @@ pub struct SchemeArgs {
 }
 
 impl SchemeArgs {
-    /// Library options for `method` with these settings.
-    pub fn options(&self, method: Method) -> Options {
-        Options {
+    /// Library options for `method` with these settings. `--contact-scheme` and `--step` belong
+    /// to the analytic method: given with another method they are an input error, not ignored.
+    pub fn options(&self, method: Method) -> Result<Options, CliError> {
+        if method != Method::Analytic {
+            let flag = match (self.contact_scheme, self.step) {
+                (Some(_), _) => Some("--contact-scheme"),
+                (None, Some(_)) => Some("--step"),
+                (None, None) => None,
+            };
+            if let Some(flag) = flag {
+                return Err(CliError::input(format!(
+                    "{flag} applies only to --method analytic, not to --method {}",
+                    method.name()
+                )));
+            }
+        }
+        Ok(Options {
             method,
             tol: self.tol,
-            contact_scheme: self.contact_scheme,
+            contact_scheme: self.contact_scheme.unwrap_or(ContactScheme::Exprb43),
             step: self.step,
-        }
+        })
     }
 }
 
@@ -104,8 +119,8 @@ pub struct MethodArgs {
 }
 
 impl MethodArgs {
-    /// The library options.
-    pub fn options(&self) -> Options {
+    /// The library options (an input error for analytic-only flags with another method).
+    pub fn options(&self) -> Result<Options, CliError> {
         self.scheme.options(self.method)
     }
 }

@@ -45,7 +45,7 @@ pub struct Args {
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
-    let options = args.method.options();
+    let options = args.method.options()?;
     let end = args.time.end_time(&problem.params);
     let propagator = trajectory::start(&problem, &options)?;
     let mut events_out = args

@@ -56,7 +56,7 @@ pub struct Args {
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
-    let options = args.method.options();
+    let options = args.method.options()?;
     let mut propagator = trajectory::start(&problem, &options)?;
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         ensure_dir(dir)?;

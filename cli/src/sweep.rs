@@ -157,7 +157,7 @@ pub fn plot_rows(
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
     let base = args.problem.build()?;
-    let options = args.method.options();
+    let options = args.method.options()?;
     let all = values(args.from, args.to, args.steps as usize);
     let (shard, shards) = args.shard.unwrap_or((0, 1));
     let mine: Vec<(usize, f64)> = all

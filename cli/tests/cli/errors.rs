@@ -312,3 +312,21 @@ fn divergence_fails_without_partial_files() {
         "keep me\n"
     );
 }
+
+#[test]
+fn analytic_only_flags_with_another_method() {
+    fails(
+        &[
+            "simulate",
+            "--method",
+            "dop853",
+            "--contact-scheme",
+            "exprb2",
+        ],
+        &["--contact-scheme", "only to --method analytic", "dop853"],
+    );
+    fails(
+        &["simulate", "--method", "hybrid", "--step", "0.01"],
+        &["--step", "only to --method analytic", "hybrid"],
+    );
+}
