@@ -13,13 +13,9 @@ use crate::math;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime};
 use crate::reference::{
-    AcceptedStep, BASE_STEP_BUDGET, Dop853, Dop853Dense, Integrator, Interpolant, MIN_TOLERANCE,
-    PhasorRotorSystem, STEPS_PER_TIME_UNIT, Tolerance, switch_in_step,
+    BASE_STEP_BUDGET, Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, MIN_TOLERANCE,
+    PhasorRotorSystem, STEPS_PER_TIME_UNIT, SUBDIVISIONS, Tolerance, switch_in_deferred_step,
 };
-
-type Step = AcceptedStep<6, Dop853Dense<6>>;
-/// A switch inside a step: time and 6-state.
-type Switch = (f64, [f64; 6]);
 
 #[allow(
     clippy::large_enum_variant,
@@ -27,18 +23,32 @@ type Switch = (f64, [f64; 6]);
 )]
 enum Piece {
     Free(FreeFlight),
+    /// In contact; the current step (if any) is [`HybridPropagator::step`].
     Contact {
-        step: Option<Step>,
-        exit: Option<Switch>,
+        stepped: bool,
+        exit: Option<(f64, [f64; 6])>,
     },
 }
 
 /// The hybrid method (see [`crate::Method::Hybrid`]).
+///
+/// Work in contact, per accepted DOP853 step: the 12 stages of the step and f at its end (the
+/// next step's first stage). The dense output (three more evaluations) is built only for a step
+/// that holds an exit, a minimum of z, or a requested time: the exit test examines the switching
+/// function on sub-intervals no longer than those of the reference propagators
+/// (h_max / [`SUBDIVISIONS`]), which for contact steps (much shorter than h_max) is the step
+/// itself, given by its exact end states. Each contact after the first starts with the step size
+/// the previous contact ended with, instead of a fresh initial guess.
 pub struct HybridPropagator {
     params: Params,
     free: FreeConstants,
     contact: PhasorRotorSystem,
     integrator: Integrator<Dop853, 6>,
+    h_max: f64,
+    /// The step size proposed at the end of the last contact.
+    carried_step: Option<f64>,
+    step: Dop853Step<6>,
+    dense: Option<Dop853Dense<6>>,
     time: f64,
     state: State,
     piece: Piece,
@@ -73,7 +83,7 @@ impl HybridPropagator {
         let piece = match field::regime_of(&params, t0, &s0) {
             Regime::Free => Piece::Free(FreeFlight::new(&params, &free, t0, s0)),
             Regime::Contact => Piece::Contact {
-                step: None,
+                stepped: false,
                 exit: None,
             },
         };
@@ -82,6 +92,10 @@ impl HybridPropagator {
             free,
             contact,
             integrator,
+            h_max,
+            carried_step: None,
+            step: Dop853Step::default(),
+            dense: None,
             time: t0,
             state: s0,
             piece,
@@ -90,31 +104,62 @@ impl HybridPropagator {
 
     fn enter_contact(&mut self, time: f64, state: State) {
         let y = PhasorRotorSystem::initial(&self.params, time, &state);
-        self.integrator.restart(&self.contact, time, y);
+        match self.carried_step {
+            Some(h) => self.integrator.restart_with_step(&self.contact, time, y, h),
+            None => self.integrator.restart(&self.contact, time, y),
+        }
         self.piece = Piece::Contact {
-            step: None,
+            stepped: false,
             exit: None,
         };
     }
 
-    /// One DOP853 step in contact, with the exit inside it if any.
-    fn contact_step(&mut self) -> Result<(Step, Option<Switch>), PropagationError> {
-        let step = self.integrator.step(&self.contact, f64::INFINITY)?;
-        let end = PhasorRotorSystem::rotor_state(&step.y1);
+    /// One DOP853 step in contact into `self.step`, with the exit inside it if any.
+    fn contact_step(&mut self) -> Result<Option<(f64, [f64; 6])>, PropagationError> {
+        self.dense = None;
+        self.integrator
+            .step_deferred(&self.contact, f64::INFINITY, &mut self.step)?;
+        let end = PhasorRotorSystem::rotor_state(&self.step.y1);
         if !end.is_finite() || math::hypot(end.x, end.y) > DIVERGENCE_RADIUS {
             return Err(PropagationError::Diverged {
-                time: step.t1,
+                time: self.step.t1,
                 state: end,
             });
         }
-        let exit = switch_in_step(
+        // Sub-intervals no longer than the reference propagators' shortest (h_max / 8).
+        let ratio = (self.step.t1 - self.step.t0) / self.h_max * SUBDIVISIONS as f64;
+        let subdivisions = if ratio <= 1.0 {
+            1
+        } else {
+            (libm::ceil(ratio) as usize).min(SUBDIVISIONS)
+        };
+        Ok(switch_in_deferred_step(
             &mut self.integrator,
             &self.contact,
-            &step,
+            &self.step,
             &self.params,
             Regime::Contact,
-        );
-        Ok((step, exit))
+            subdivisions,
+            &mut self.dense,
+        ))
+    }
+
+    /// The state at `t` inside the current contact step (from its dense output).
+    fn contact_state(&mut self, t: f64) -> State {
+        let y = if t == self.step.t1 {
+            self.step.y1
+        } else {
+            let dense = match self.dense {
+                Some(d) => d,
+                None => {
+                    let d = self.step.dense(&self.contact);
+                    self.dense = Some(d);
+                    d
+                }
+            };
+            dense.eval(t)
+        };
+        PhasorRotorSystem::rotor_state(&y)
     }
 }
 
@@ -165,9 +210,10 @@ impl Propagate for HybridPropagator {
                         }));
                     }
                 },
-                Piece::Contact { step, exit } => {
+                Piece::Contact { stepped, exit } => {
                     if let Some((t, y)) = exit.filter(|(t, _)| *t <= target) {
                         let state = PhasorRotorSystem::rotor_state(&y);
+                        self.carried_step = Some(self.integrator.proposed_step());
                         self.piece =
                             Piece::Free(FreeFlight::new(&self.params, &self.free, t, state));
                         self.time = t;
@@ -178,14 +224,9 @@ impl Propagate for HybridPropagator {
                             state,
                         }));
                     }
-                    if let Some(s) = step.as_ref().filter(|s| target <= s.t1) {
-                        let y = if target == s.t1 {
-                            s.y1
-                        } else {
-                            s.dense.eval(target)
-                        };
+                    if *stepped && target <= self.step.t1 {
+                        self.state = self.contact_state(target);
                         self.time = target;
-                        self.state = PhasorRotorSystem::rotor_state(&y);
                         return Ok(None);
                     }
                     if steps >= budget {
@@ -194,9 +235,9 @@ impl Propagate for HybridPropagator {
                         });
                     }
                     steps += 1.0;
-                    let (new_step, new_exit) = self.contact_step()?;
+                    let new_exit = self.contact_step()?;
                     self.piece = Piece::Contact {
-                        step: Some(new_step),
+                        stepped: true,
                         exit: new_exit,
                     };
                 }

@@ -16,6 +16,7 @@ pub mod method;
 pub mod params;
 pub mod propagate;
 pub mod reference;
+pub mod stepper;
 #[cfg(feature = "proptest")]
 pub mod strategies;
 
@@ -25,6 +26,7 @@ pub use propagate::{
     Event, EventKind, Propagate, PropagationError, Regime, Sample, advance_to, events, poincare,
     poincare_times, samples,
 };
+pub use stepper::{EventList, StepReport, Stepper, StepperConfig, StepperError};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -28,3 +28,22 @@ pub extern "C" fn rotor_rub_probe(periods: f64) -> i64 {
         }
     }
 }
+
+/// Steps the paper preset through the fixed-step stepper for `steps` steps of 1e-3; returns the
+/// number of switches, or −1 on error.
+#[unsafe(no_mangle)]
+pub extern "C" fn rotor_rub_probe_stepper(steps: u32) -> i64 {
+    let problem = Preset::Paper.problem();
+    let Ok(mut stepper) = rotor_rub::Stepper::new(&problem, rotor_rub::StepperConfig::default())
+    else {
+        return -1;
+    };
+    let mut switches = 0i64;
+    for _ in 0..steps {
+        match stepper.step(1e-3) {
+            Ok(report) => switches += report.events.total() as i64,
+            Err(_) => return -1,
+        }
+    }
+    switches
+}

@@ -87,10 +87,13 @@ pub fn free_basis_bound(nu: f64, beta_sq: f64, lo: f64, hi: f64) -> (f64, f64) {
     } else {
         (nu, hi)
     };
-    let d = math::exp(-rate * lo);
+    // One exponential: e^{−κ lo} = (e^{−κ lo/2})², rounded up by a few ulps so that the bound
+    // stays a bound.
+    let half = math::exp(-0.5 * rate * lo);
+    let d = half * half * (1.0 + 4.0 * f64::EPSILON);
     let mut es = d * es_scale;
     if rate > 0.0 {
-        let alt = 2.0 / (rate * core::f64::consts::E) * math::exp(-0.5 * rate * lo);
+        let alt = 2.0 / (rate * core::f64::consts::E) * half;
         es = es.min(alt);
     }
     (d, es)

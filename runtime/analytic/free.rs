@@ -16,6 +16,31 @@ pub struct FreeSegment {
     phase0: (f64, f64),
     particular: FreeParticular,
     homogeneous: FreeHomogeneous,
+    /// Constants of [`Segment::bounds`]: |X|, |P| of the homogeneous part, the particular
+    /// amplitude and |ε|.
+    reach: Reach,
+}
+
+/// The amplitudes [`FreeSegment::bounds`] combines, computed once per segment.
+#[derive(Clone, Copy, Debug)]
+struct Reach {
+    pos: f64,
+    vel: f64,
+    amp: f64,
+    off: f64,
+}
+
+/// The largest |(c11 cos θ + c22 sin θ, c33 cos θ + c44 sin θ)| over θ: the largest singular
+/// value of [[c11, c22], [c33, c44]] (σ² = (S + √(S² − 4 det²))/2, S the sum of squares), with a
+/// relative margin for rounding. The particular velocity and acceleration are η and η² times the
+/// same matrix applied to a unit vector.
+pub(crate) fn harmonic_amplitude(c11: f64, c22: f64, c33: f64, c44: f64) -> f64 {
+    let sum = c11 * c11 + c22 * c22 + c33 * c33 + c44 * c44;
+    let det = c11 * c44 - c22 * c33;
+    let disc = (sum * sum - 4.0 * det * det).max(0.0);
+    let sigma = math::sqrt(0.5 * (sum + math::sqrt(disc)));
+    // Never above the Frobenius norm (the bound used before), never below it by rounding.
+    (sigma * (1.0 + 1e-12)).min(math::sqrt(sum))
 }
 
 /// Per-parameter-set constants of free flight (computed once per propagation).
@@ -60,6 +85,12 @@ impl FreeSegment {
             params.speed_ratio,
             params.damping_ratio,
         );
+        let reach = Reach {
+            pos: math::hypot(homogeneous.xh, homogeneous.yh),
+            vel: math::hypot(homogeneous.px, homogeneous.py),
+            amp: harmonic_amplitude(p.c11, p.c22, p.c33, p.c44),
+            off: math::hypot(params.offset_x, params.offset_y),
+        };
         FreeSegment {
             nu: params.damping_ratio,
             eta: params.speed_ratio,
@@ -68,6 +99,7 @@ impl FreeSegment {
             phase0: (ct, st),
             particular: p,
             homogeneous,
+            reach,
         }
     }
 
@@ -119,15 +151,11 @@ impl Segment for FreeSegment {
 
     fn bounds(&self, lo: f64, hi: f64) -> Bounds {
         let (ec, es) = free_basis_bound(self.nu, self.beta_sq, lo, hi);
-        let (h, p) = (&self.homogeneous, &self.particular);
-        let pos = math::hypot(h.xh, h.yh);
-        let vel = math::hypot(h.px, h.py);
+        let Reach { pos, vel, amp, off } = self.reach;
         let (nu, b2) = (self.nu, math::abs(self.beta_sq));
         // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
         let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
         let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
-        let amp = math::sqrt(p.c11 * p.c11 + p.c22 * p.c22 + p.c33 * p.c33 + p.c44 * p.c44);
-        let off = math::hypot(self.offset.0, self.offset.1);
         Bounds {
             radius: pos * ec + vel * es + amp + off,
             speed: pos * dec + vel * des + self.eta * amp,

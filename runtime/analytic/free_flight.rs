@@ -4,8 +4,11 @@
 
 use super::free::{FreeConstants, FreeSegment};
 use super::segment::{Point, Segment, point_of};
-use super::switch::{Direction, first_crossing};
+use super::switch::{Direction, first_crossing_to};
 use crate::params::{Params, State};
+
+/// Search chunks between two checks of whether the flight has settled.
+const SETTLE_CHECK_CHUNKS: u32 = 8;
 
 /// A free-flight phase from time `t0`.
 #[derive(Clone, Copy, Debug)]
@@ -54,20 +57,32 @@ impl FreeFlight {
     }
 
     /// Advance to `target` (not before the last target) or to the next contact entry.
+    ///
+    /// The search goes chunk by chunk; before the first chunk and every eighth one the orbit's
+    /// reach from there on is bounded, so a flight that settles inside the clearance stops
+    /// searching within a few chunks, however far the target lies (one closed-form evaluation at
+    /// the target then).
     pub fn advance(&mut self, target: f64) -> FreeAdvance {
         let s_target = target - self.t0;
-        if !self.settled && self.segment.reach_after(self.searched) < 1.0 {
-            // The orbit's reach stays inside the clearance from here on: no search needed.
-            self.settled = true;
-        }
-        if !self.settled {
-            let found = first_crossing(
+        let mut chunks = 0u32;
+        while !self.settled && self.searched < s_target {
+            // The reach is checked at the first chunk of every call and every eighth after.
+            if chunks.is_multiple_of(SETTLE_CHECK_CHUNKS)
+                && self.segment.reach_after(self.searched) < 1.0
+            {
+                // The orbit's reach stays inside the clearance from here on: no search needed.
+                self.settled = true;
+                break;
+            }
+            let b = (self.searched + self.chunk).min(s_target);
+            let pb = self.segment.point(b);
+            let found = first_crossing_to(
                 &self.segment,
                 self.searched,
                 self.last,
-                s_target,
+                b,
+                pb,
                 Direction::Up,
-                self.chunk,
             );
             if let Some((s, p)) = found {
                 return FreeAdvance::Contact {
@@ -75,10 +90,14 @@ impl FreeFlight {
                     state: p.state,
                 };
             }
+            self.searched = b;
+            self.last = pb;
+            chunks += 1;
         }
-        let p = self.segment.point(s_target);
-        self.searched = s_target;
-        self.last = p;
-        FreeAdvance::Reached(p.state)
+        if self.searched != s_target || self.settled {
+            self.last = self.segment.point(s_target);
+            self.searched = s_target;
+        }
+        FreeAdvance::Reached(self.last.state)
     }
 }

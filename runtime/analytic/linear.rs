@@ -3,6 +3,7 @@
 //! from a state, in local time, for every case of `model.md` §6 (matrix-function homogeneous part).
 
 use super::basis::{MatrixFunction, matrix_function};
+use super::free::harmonic_amplitude;
 use super::segment::{Bounds, Point, Segment, point_of};
 use crate::coefficients::{self as coef, ContactModes, ContactParticular, LinearizedContact};
 use crate::math;
@@ -22,6 +23,10 @@ pub struct Linearization {
     /// Frobenius norms of A = Kl − ν²I and of Kl (for bounds).
     norm_a: f64,
     norm_kl: f64,
+    /// Bounds of the harmonic particular part: its largest amplitude (singular value of the
+    /// cos/sin coefficient matrix) and the distance of its centre from the stator's.
+    harmonic_amplitude: f64,
+    harmonic_shift: f64,
 }
 
 /// Why a linearization cannot be used.
@@ -89,6 +94,8 @@ impl Linearization {
             offset: (p.offset_x, p.offset_y),
             norm_a,
             norm_kl,
+            harmonic_amplitude: harmonic_amplitude(c.c11, c.c22, c.c33, c.c44),
+            harmonic_shift: math::hypot(c.c55 - p.offset_x, c.c66 - p.offset_y),
         })
     }
 
@@ -121,19 +128,45 @@ impl Linearization {
     /// coefficients grow like (‖Kl‖h²)⁻ᵏ while the response is O(h²)), so the zero-state response
     /// is summed as its Taylor series instead (see [`Response`]).
     pub fn segment(&self, state: State, forcing: [f64; 8], horizon: f64) -> LinearSegment {
+        let mut out = LinearSegment {
+            lin: *self,
+            response: Response::None,
+            q0: [0.0; 2],
+            w0: [0.0; 2],
+        };
+        self.segment_into(state, forcing, horizon, &mut out);
+        out
+    }
+
+    /// [`Self::segment`] written into `out` (no copy of the large segment).
+    pub fn segment_into(
+        &self,
+        state: State,
+        forcing: [f64; 8],
+        horizon: f64,
+        out: &mut LinearSegment,
+    ) {
         let k = &self.kl;
-        let response = if forcing.iter().all(|&a| a == 0.0) {
-            Response::None
+        out.lin = *self;
+        if forcing.iter().all(|&a| a == 0.0) {
+            out.response = Response::None;
         } else if self.norm_kl * horizon * horizon <= 1.0 {
-            Response::Series(series_response(k, self.nu, &forcing))
+            let len = series_len(self.norm_kl, self.nu, horizon);
+            if !matches!(out.response, Response::Series(_)) {
+                out.response = Response::Series([[0.0; 2]; SERIES_TERMS]);
+            }
+            if let Response::Series(c) = &mut out.response {
+                series_response_into(k, self.nu, &forcing, len, c);
+            }
         } else {
             let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = forcing;
             let b = coef::polynomial_particular(
                 k.fa1, k.fb1, k.fb2, k.fa2, self.nu, a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y,
             );
-            Response::Polynomial([b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y])
-        };
-        let poly = match &response {
+            out.response =
+                Response::Polynomial([b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y]);
+        }
+        let poly = match &out.response {
             Response::Polynomial(b) => *b,
             _ => [0.0; 8],
         };
@@ -145,12 +178,31 @@ impl Linearization {
             state.vy - p[3] - poly[3],
             self.nu,
         );
-        LinearSegment {
-            lin: *self,
-            response,
-            q0: [start.q0x, start.q0y],
-            w0: [start.w0x, start.w0y],
+        out.q0 = [start.q0x, start.q0y];
+        out.w0 = [start.w0x, start.w0y];
+    }
+
+    /// The state at `s` of the segment from the same start with the extra cubic `forcing` over
+    /// `horizon`, given `unforced`, the state at `s` of the segment without extra forcing — when
+    /// that segment's response is a Taylor series or absent, so that both share their
+    /// homogeneous and harmonic parts (`None` otherwise: build the segment). The same sums in
+    /// the same order as [`LinearSegment::state_with`], so the same bits.
+    pub fn forced_state(
+        &self,
+        unforced: &State,
+        forcing: &[f64; 8],
+        horizon: f64,
+        s: f64,
+    ) -> Option<State> {
+        if forcing.iter().all(|&a| a == 0.0) {
+            return Some(*unforced);
         }
+        if self.norm_kl * horizon * horizon <= 1.0 {
+            let len = series_len(self.norm_kl, self.nu, horizon);
+            let q = series_value(&self.kl, self.nu, forcing, len, s);
+            return Some(add_response(unforced, &q));
+        }
+        None
     }
 
     /// The matrix-function scalars and decay at local time `s` (shared by every segment of this
@@ -184,30 +236,120 @@ pub enum Response {
     Series([[f64; 2]; SERIES_TERMS]),
 }
 
-fn series_response(k: &LinearizedContact, nu: f64, a: &[f64; 8]) -> [[f64; 2]; SERIES_TERMS] {
-    let mut c = [[0.0; 2]; SERIES_TERMS];
-    for m in 0..SERIES_TERMS - 2 {
+/// 1/((m + 2)(m + 1)) for m = 0 … SERIES_TERMS − 3 (the recurrence's divisors).
+const SERIES_DIVISORS: [f64; SERIES_TERMS - 2] = {
+    let mut r = [0.0; SERIES_TERMS - 2];
+    let mut m = 0;
+    while m < SERIES_TERMS - 2 {
+        r[m] = 1.0 / (((m + 2) * (m + 1)) as f64);
+        m += 1;
+    }
+    r
+};
+
+/// How many Taylor coefficients the series response needs on s ∈ [0, horizon].
+///
+/// Beyond the forcing (m ≥ 4) the recurrence gives ‖c_m‖ ≤ B μ^m / m! with μ = ν + √(ν² + ‖Kl‖)
+/// (μ² = 2νμ + ‖Kl‖ turns the bound into an equality), so the terms from n on add at most
+/// (μh)^(n−5)·5!/n!·e^(μh) relative to the degree-5 term. The count is the smallest n ≥ 6 with
+/// (μh)^(n−5)·5!/n! ≤ 1e-19, at most [`SERIES_TERMS`] (where ‖Kl‖h² ≤ 1 keeps the bound below
+/// 1e-16, the fixed length's design).
+fn series_len(norm_kl: f64, nu: f64, horizon: f64) -> usize {
+    let mu_h = (nu + math::sqrt(nu * nu + norm_kl)) * horizon;
+    // term = (μh)^(n−5)·5!/n!, from n = 6.
+    let mut term = mu_h / 6.0;
+    let mut n = 6;
+    // (NaN runs to the full length.)
+    while n < SERIES_TERMS && (term > 1e-19 || term.is_nan()) {
+        n += 1;
+        term *= mu_h / n as f64;
+    }
+    n
+}
+
+/// The first `len` (6 … [`SERIES_TERMS`]) coefficients of the series response into `c`, the
+/// others zero.
+fn series_response_into(
+    k: &LinearizedContact,
+    nu: f64,
+    a: &[f64; 8],
+    len: usize,
+    c: &mut [[f64; 2]; SERIES_TERMS],
+) {
+    let len = len.clamp(6, SERIES_TERMS);
+    c[0] = [0.0; 2];
+    c[1] = [0.0; 2];
+    for m in 0..len - 2 {
         let (f0, f1) = if m < 4 {
             (a[2 * m], a[2 * m + 1])
         } else {
             (0.0, 0.0)
         };
-        let d = ((m + 2) * (m + 1)) as f64;
+        let r = SERIES_DIVISORS[m];
         let damp = 2.0 * nu * (m + 1) as f64;
         let [cx, cy] = c[m];
         let [nx, ny] = c[m + 1];
         c[m + 2] = [
-            (f0 - damp * nx - k.fa1 * cx - k.fb1 * cy) / d,
-            (f1 - damp * ny - k.fb2 * cx - k.fa2 * cy) / d,
+            (f0 - damp * nx - k.fa1 * cx - k.fb1 * cy) * r,
+            (f1 - damp * ny - k.fb2 * cx - k.fa2 * cy) * r,
         ];
     }
-    c
+    for t in &mut c[len..] {
+        *t = [0.0; 2];
+    }
+}
+
+/// The series response's position and velocity at `s` in one pass, without storing its
+/// coefficients: the recurrence of [`series_response_into`] summed forwards (the same value as
+/// [`series_eval`] of those coefficients up to rounding).
+fn series_value(k: &LinearizedContact, nu: f64, a: &[f64; 8], len: usize, s: f64) -> [f64; 4] {
+    let len = len.clamp(6, SERIES_TERMS);
+    // (c_m, c_{m+1}) with c0 = c1 = 0; the terms m = 0, 1 contribute nothing.
+    let (mut cm, mut cn) = ([0.0, 0.0], [0.0, 0.0]);
+    let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
+    // s^(m+1) and (m+2)·s^(m+1) for the term c_{m+2} s^(m+2).
+    let mut pow1 = s;
+    for m in 0..len - 2 {
+        let (f0, f1) = if m < 4 {
+            (a[2 * m], a[2 * m + 1])
+        } else {
+            (0.0, 0.0)
+        };
+        let r = SERIES_DIVISORS[m];
+        let damp = 2.0 * nu * (m + 1) as f64;
+        let next = [
+            (f0 - damp * cn[0] - k.fa1 * cm[0] - k.fb1 * cm[1]) * r,
+            (f1 - damp * cn[1] - k.fb2 * cm[0] - k.fa2 * cm[1]) * r,
+        ];
+        let pow2 = pow1 * s;
+        let d = (m + 2) as f64 * pow1;
+        x += next[0] * pow2;
+        y += next[1] * pow2;
+        vx += next[0] * d;
+        vy += next[1] * d;
+        (cm, cn, pow1) = (cn, next, pow2);
+    }
+    [x, y, vx, vy]
+}
+
+/// The number of coefficients up to the last non-zero one.
+#[inline]
+fn series_used(c: &[[f64; 2]; SERIES_TERMS]) -> usize {
+    c.iter()
+        .rposition(|t| t[0] != 0.0 || t[1] != 0.0)
+        .map_or(0, |i| i + 1)
 }
 
 /// Position and velocity of a Taylor polynomial at s (Horner).
 fn series_eval(c: &[[f64; 2]; SERIES_TERMS], s: f64) -> [f64; 4] {
+    series_eval_len(c, series_used(c), s)
+}
+
+/// [`series_eval`] of the first `len` coefficients.
+#[inline]
+fn series_eval_len(c: &[[f64; 2]; SERIES_TERMS], len: usize, s: f64) -> [f64; 4] {
     let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
-    for m in (0..SERIES_TERMS).rev() {
+    for m in (0..len.min(SERIES_TERMS)).rev() {
         x = x * s + c[m][0];
         y = y * s + c[m][1];
         if m > 0 {
@@ -216,6 +358,17 @@ fn series_eval(c: &[[f64; 2]; SERIES_TERMS], s: f64) -> [f64; 4] {
         }
     }
     [x, y, vx, vy]
+}
+
+/// `unforced + q` componentwise (the last sum of [`LinearSegment::state_with`]).
+#[inline]
+fn add_response(unforced: &State, q: &[f64; 4]) -> State {
+    State::new(
+        unforced.x + q[0],
+        unforced.y + q[1],
+        unforced.vx + q[2],
+        unforced.vy + q[3],
+    )
 }
 
 /// A linearized contact segment: [`Linearization`] plus initial state and cubic forcing.
@@ -267,10 +420,83 @@ impl LinearSegment {
         )
     }
 
+    /// The state at `s` given `unforced`, the state at `s` of the segment without extra forcing
+    /// from the same start (see [`Linearization::forced_state`]), when this segment's response
+    /// shares its homogeneous part (a series or none); `None` for a polynomial response.
+    pub fn state_from_unforced(&self, s: f64, unforced: &State) -> Option<State> {
+        match &self.response {
+            Response::None => Some(*unforced),
+            Response::Series(c) => Some(add_response(unforced, &series_eval(c, s))),
+            Response::Polynomial(_) => None,
+        }
+    }
+
+    /// A segment with every coefficient zero (a slot to be filled by
+    /// [`Linearization::segment_into`]).
+    pub(crate) fn zeroed() -> LinearSegment {
+        let kl = LinearizedContact {
+            fa1: 0.0,
+            fb1: 0.0,
+            fb2: 0.0,
+            fa2: 0.0,
+            fd1: 0.0,
+            fd2: 0.0,
+        };
+        let modes = ContactModes {
+            omega_sq_mean: 0.0,
+            disc: 0.0,
+            det: 0.0,
+            gamma_sq_mean: 0.0,
+        };
+        let particular = ContactParticular {
+            c11: 0.0,
+            c22: 0.0,
+            c33: 0.0,
+            c44: 0.0,
+            c55: 0.0,
+            c66: 0.0,
+        };
+        LinearSegment {
+            lin: Linearization {
+                kl,
+                modes,
+                particular,
+                nu: 0.0,
+                eta: 0.0,
+                phase0: (1.0, 0.0),
+                offset: (0.0, 0.0),
+                norm_a: 0.0,
+                norm_kl: 0.0,
+                harmonic_amplitude: 0.0,
+                harmonic_shift: 0.0,
+            },
+            response: Response::None,
+            q0: [0.0; 2],
+            w0: [0.0; 2],
+        }
+    }
+
     /// The linearization this segment belongs to.
     pub fn linearization(&self) -> &Linearization {
         &self.lin
     }
+}
+
+/// Σ‖c_m‖ s^m and the same bound for the first two derivatives at s = `hi`, from the norms
+/// ‖c_m‖ in order of m.
+#[inline]
+fn polynomial_bounds(norms: impl Iterator<Item = f64>, hi: f64) -> (f64, f64, f64) {
+    let (mut pr, mut pv, mut pa) = (0.0, 0.0, 0.0);
+    // p2 = hi^(m−2), p1 = hi^(m−1), p0 = hi^m.
+    let (mut p2, mut p1, mut p0) = (0.0, 0.0, 1.0);
+    for (m, norm) in norms.enumerate() {
+        let mf = m as f64;
+        pr += norm * p0;
+        pv += mf * norm * p1;
+        pa += mf * (mf - 1.0) * norm * p2;
+        (p2, p1, p0) = (if m == 0 { 1.0 } else { p1 }, p0, p0 * hi);
+    }
+    (pr, pv, pa)
 }
 
 impl Segment for LinearSegment {
@@ -284,37 +510,23 @@ impl Segment for LinearSegment {
         // ‖cos(√A s)‖ ≤ cosh(√‖A‖ s), ‖sin(√A s)/√A‖ ≤ s·cosh(√‖A‖ s) (power series).
         let ch = math::cosh(math::sqrt(l.norm_a) * hi);
         let decay = math::exp(-l.nu * lo);
-        let q0 = math::hypot(self.q0[0], self.q0[1]);
-        let w0 = math::hypot(self.w0[0], self.w0[1]);
+        // |q0|, |w0| (no overflow: states are bounded by the divergence radius).
+        let q0 = math::sqrt(self.q0[0] * self.q0[0] + self.q0[1] * self.q0[1]);
+        let w0 = math::sqrt(self.w0[0] * self.w0[0] + self.w0[1] * self.w0[1]);
         let rh = decay * ch * (q0 + hi * w0);
         let vh = l.nu * rh + decay * ch * (l.norm_a * hi * q0 + w0);
         let ah = 2.0 * l.nu * vh + l.norm_kl * rh;
-        let c = &l.particular;
-        let amp = math::sqrt(c.c11 * c.c11 + c.c22 * c.c22 + c.c33 * c.c33 + c.c44 * c.c44);
-        let shift = math::hypot(c.c55 - l.offset.0, c.c66 - l.offset.1);
+        let (amp, shift) = (l.harmonic_amplitude, l.harmonic_shift);
         // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi (1-norms bound the
         // Euclidean ones).
-        let (mut pr, mut pv, mut pa) = (0.0, 0.0, 0.0);
-        let mut add = |coefficients: &mut dyn Iterator<Item = f64>| {
-            // p2 = hi^(m−2), p1 = hi^(m−1), p0 = hi^m.
-            let (mut p2, mut p1, mut p0) = (0.0, 0.0, 1.0);
-            for (m, norm) in coefficients.enumerate() {
-                let mf = m as f64;
-                pr += norm * p0;
-                pv += mf * norm * p1;
-                pa += mf * (mf - 1.0) * norm * p2;
-                (p2, p1, p0) = (if m == 0 { 1.0 } else { p1 }, p0, p0 * hi);
+        let norm = |c: &[f64]| math::abs(c[0]) + math::abs(c[1]);
+        let (pr, pv, pa) = match &self.response {
+            Response::None => (0.0, 0.0, 0.0),
+            Response::Polynomial(b) => polynomial_bounds(b.chunks_exact(2).map(norm), hi),
+            Response::Series(c) => {
+                polynomial_bounds(c[..series_used(c)].iter().map(|c| norm(c)), hi)
             }
         };
-        match &self.response {
-            Response::None => {}
-            Response::Polynomial(b) => {
-                add(&mut b.chunks_exact(2).map(|c| math::abs(c[0]) + math::abs(c[1])));
-            }
-            Response::Series(c) => {
-                add(&mut c.iter().map(|c| math::abs(c[0]) + math::abs(c[1])));
-            }
-        }
         Bounds {
             radius: rh + amp + shift + pr,
             speed: vh + l.eta * amp + pv,

@@ -39,17 +39,39 @@ fn remainder(params: &Params, lin: &Linearization, s: &State) -> (f64, f64) {
     )
 }
 
+impl SubStep {
+    /// A sub-step with every coefficient zero: a slot for [`exprb2_into`] and [`exprb43_into`].
+    pub fn zeroed() -> SubStep {
+        SubStep {
+            segment: LinearSegment::zeroed(),
+            h: 0.0,
+            end: State::default(),
+            error: 0.0,
+        }
+    }
+}
+
 /// exprb2: the linearized closed form from `state` at time `t` over `h`.
 pub fn exprb2(params: &Params, t: f64, state: State, h: f64) -> Result<SubStep, Singular> {
+    let mut out = SubStep::zeroed();
+    exprb2_into(params, t, state, h, &mut out)?;
+    Ok(out)
+}
+
+/// [`exprb2`] written into `out` (no copy of the large segment); `out` is unspecified on error.
+pub fn exprb2_into(
+    params: &Params,
+    t: f64,
+    state: State,
+    h: f64,
+    out: &mut SubStep,
+) -> Result<(), Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
-    let segment = lin.segment(state, [0.0; 8], h);
-    let end = segment.state_with(h, &lin.scalars(h));
-    Ok(SubStep {
-        segment,
-        h,
-        end,
-        error: 0.0,
-    })
+    lin.segment_into(state, [0.0; 8], h, &mut out.segment);
+    out.end = out.segment.state_with(h, &lin.scalars(h));
+    out.h = h;
+    out.error = 0.0;
+    Ok(())
 }
 
 /// exprb43 from `state` at time `t` over `h`, with the embedded error in units of `tol`
@@ -61,23 +83,49 @@ pub fn exprb43(
     h: f64,
     tol: f64,
 ) -> Result<SubStep, Singular> {
+    let mut out = SubStep::zeroed();
+    exprb43_into(params, t, state, h, tol, &mut out)?;
+    Ok(out)
+}
+
+/// [`exprb43`] written into `out` (no copy of the large segment); `out` is unspecified on
+/// error.
+pub fn exprb43_into(
+    params: &Params,
+    t: f64,
+    state: State,
+    h: f64,
+    tol: f64,
+    out: &mut SubStep,
+) -> Result<(), Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
-    let free = lin.segment(state, [0.0; 8], h);
+    // The unforced segment, built in the output slot and evaluated before the slot receives
+    // the scheme's own segment.
+    lin.segment_into(state, [0.0; 8], h, &mut out.segment);
+    let free = &out.segment;
     let u2 = free.state_with(0.5 * h, &lin.scalars(0.5 * h));
     let (n2x, n2y) = remainder(params, &lin, &u2);
     let at_h = lin.scalars(h);
-    let u3 = lin
-        .segment(state, [n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], h)
-        .state_with(h, &at_h);
+    // The unforced segment at h: the stages share its homogeneous and harmonic parts whenever
+    // their response to the extra forcing is a series (short steps), so only that response is
+    // evaluated for them (bit for bit what evaluating each stage's own segment gives).
+    let unforced = free.state_with(h, &at_h);
+    let stage_state = |forcing: [f64; 8]| {
+        lin.forced_state(&unforced, &forcing, h, h)
+            .unwrap_or_else(|| lin.segment(state, forcing, h).state_with(h, &at_h))
+    };
+    let u3 = stage_state([n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
     let (n3x, n3y) = remainder(params, &lin, &u3);
     let (h2, h3) = (h * h, h * h * h);
     let a2 = ((8.0 * n2x - n3x) / h2, (8.0 * n2y - n3y) / h2);
     let a3 = ((-8.0 * n2x + 2.0 * n3x) / h3, (-8.0 * n2y + 2.0 * n3y) / h3);
-    let segment = lin.segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1], h);
-    let end = segment.state_with(h, &at_h);
-    let embedded = lin
-        .segment(state, [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0], h)
-        .state_with(h, &at_h);
+    let embedded = stage_state([0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0]);
+    let forcing = [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1];
+    lin.segment_into(state, forcing, h, &mut out.segment);
+    let segment = &out.segment;
+    let end = segment
+        .state_from_unforced(h, &unforced)
+        .unwrap_or_else(|| segment.state_with(h, &at_h));
     let (e, y0, y1) = (embedded.to_array(), state.to_array(), end.to_array());
     let mut error: f64 = 0.0;
     for i in 0..4 {
@@ -87,10 +135,8 @@ pub fn exprb43(
     if !error.is_finite() {
         error = f64::INFINITY;
     }
-    Ok(SubStep {
-        segment,
-        h,
-        end,
-        error,
-    })
+    out.h = h;
+    out.end = end;
+    out.error = error;
+    Ok(())
 }

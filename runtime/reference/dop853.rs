@@ -72,27 +72,27 @@ impl<const N: usize> Scheme<N> for Dop853 {
     ) -> Attempt<N, Self::Stages> {
         let mut k = [[0.0; N]; 12];
         k[0] = *f0;
-        let rows: [&[f64]; 11] = [
-            &tab::A2,
-            &tab::A3,
-            &tab::A4,
-            &tab::A5,
-            &tab::A6,
-            &tab::A7,
-            &tab::A8,
-            &tab::A9,
-            &tab::A10,
-            &tab::A11,
-            &tab::A12,
-        ];
-        for (i, (row, c)) in rows.iter().zip(tab::C.iter().skip(1)).enumerate() {
-            let yi = stage_input(y, h, row, &k);
-            // c12 = 1: evaluate at exactly t + h, as DOP853 does.
-            let ti = if i == 10 { t + h } else { t + c * h };
-            if let Some(slot) = k.get_mut(i + 1) {
-                *slot = sys.rhs(ti, &yi);
-            }
+        // One line per stage so that every row is a constant of known length (see
+        // `stage_input`).
+        macro_rules! stage {
+            ($i:literal, $row:expr) => {
+                let yi = stage_input(y, h, &$row, &k);
+                k[$i] = sys.rhs(t + tab::C[$i] * h, &yi);
+            };
         }
+        stage!(1, tab::A2);
+        stage!(2, tab::A3);
+        stage!(3, tab::A4);
+        stage!(4, tab::A5);
+        stage!(5, tab::A6);
+        stage!(6, tab::A7);
+        stage!(7, tab::A8);
+        stage!(8, tab::A9);
+        stage!(9, tab::A10);
+        stage!(10, tab::A11);
+        // c12 = 1: evaluate at exactly t + h, as DOP853 does.
+        let yi = stage_input(y, h, &tab::A12, &k);
+        k[11] = sys.rhs(t + h, &yi);
         let incr = weighted(&tab::B, &k);
         let y1 = lin(&[(1.0, y), (h, &incr)]);
         let e5 = weighted(&tab::ER, &k);
@@ -118,33 +118,120 @@ impl<const N: usize> Scheme<N> for Dop853 {
         attempt: &Attempt<N, Self::Stages>,
     ) -> ([f64; N], Self::Dense) {
         let y1 = &attempt.y1;
-        let mut k = [[0.0; N]; 16];
+        let mut k = [[0.0; N]; 13];
         for (slot, stage) in k.iter_mut().zip(attempt.stages.iter()) {
             *slot = *stage;
         }
         k[12] = sys.rhs(t + h, y1);
-        let extra: [&[f64]; 3] = [&tab::A14, &tab::A15, &tab::A16];
-        for (i, (row, c)) in extra.iter().zip(tab::C.iter().skip(13)).enumerate() {
-            let yi = stage_input(y, h, row, &k);
-            if let Some(slot) = k.get_mut(13 + i) {
-                *slot = sys.rhs(t + c * h, &yi);
-            }
+        (k[12], dense_output(sys, t, y, h, y1, &k))
+    }
+}
+
+/// Hairer's `CONTD8`: the dense output of an accepted step from its stages k1..k13
+/// (k13 = f(t + h, y1)), with three more evaluations for stages 14–16.
+fn dense_output<S: OdeSystem<N> + ?Sized, const N: usize>(
+    sys: &S,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    y1: &[f64; N],
+    stages: &[[f64; N]; 13],
+) -> Dop853Dense<N> {
+    let mut k = [[0.0; N]; 16];
+    k[..13].copy_from_slice(stages);
+    let yi = stage_input(y, h, &tab::A14, &k);
+    k[13] = sys.rhs(t + tab::C[13] * h, &yi);
+    let yi = stage_input(y, h, &tab::A15, &k);
+    k[14] = sys.rhs(t + tab::C[14] * h, &yi);
+    let yi = stage_input(y, h, &tab::A16, &k);
+    k[15] = sys.rhs(t + tab::C[15] * h, &yi);
+    let [k1, .., k13, _, _, _] = &k;
+    let ydiff = lin(&[(1.0, y1), (-1.0, y)]);
+    let bspl = lin(&[(h, k1), (-1.0, &ydiff)]);
+    let r3 = lin(&[(1.0, &ydiff), (-h, k13), (-1.0, &bspl)]);
+    let [d4, d5, d6, d7] = &tab::D;
+    let r = [
+        *y,
+        ydiff,
+        bspl,
+        r3,
+        lin(&[(h, &weighted(d4, &k))]),
+        lin(&[(h, &weighted(d5, &k))]),
+        lin(&[(h, &weighted(d6, &k))]),
+        lin(&[(h, &weighted(d7, &k))]),
+    ];
+    Dop853Dense { t0: t, h, r }
+}
+
+/// An accepted DOP853 step whose dense output is built only on demand
+/// ([`crate::reference::Integrator::step_deferred`]): its ends and its stages k1..k13
+/// (k1 = f(t0, y0), k13 = f(t1, y1)).
+#[derive(Clone, Copy, Debug)]
+pub struct Dop853Step<const N: usize> {
+    /// Start time.
+    pub t0: f64,
+    /// State at `t0`.
+    pub y0: [f64; N],
+    /// End time.
+    pub t1: f64,
+    /// State at `t1`.
+    pub y1: [f64; N],
+    h: f64,
+    k: [[f64; N]; 13],
+}
+
+impl<const N: usize> Default for Dop853Step<N> {
+    fn default() -> Self {
+        Dop853Step {
+            t0: 0.0,
+            y0: [0.0; N],
+            t1: 0.0,
+            y1: [0.0; N],
+            h: 0.0,
+            k: [[0.0; N]; 13],
         }
-        let [k1, .., k13, _, _, _] = &k;
-        let ydiff = lin(&[(1.0, y1), (-1.0, y)]);
-        let bspl = lin(&[(h, k1), (-1.0, &ydiff)]);
-        let r3 = lin(&[(1.0, &ydiff), (-h, k13), (-1.0, &bspl)]);
-        let [d4, d5, d6, d7] = &tab::D;
-        let r = [
-            *y,
-            ydiff,
-            bspl,
-            r3,
-            lin(&[(h, &weighted(d4, &k))]),
-            lin(&[(h, &weighted(d5, &k))]),
-            lin(&[(h, &weighted(d6, &k))]),
-            lin(&[(h, &weighted(d7, &k))]),
-        ];
-        (*k13, Dop853Dense { t0: t, h, r })
+    }
+}
+
+impl<const N: usize> Dop853Step<N> {
+    /// Fill from an accepted attempt of size `h` from `(t0, y0)` ending at `t1`: evaluates
+    /// f(t0 + h, y1), the next step's first stage.
+    pub(crate) fn set<S: OdeSystem<N> + ?Sized>(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        y0: &[f64; N],
+        h: f64,
+        t1: f64,
+        attempt: &Attempt<N, [[f64; N]; 12]>,
+    ) {
+        self.t0 = t0;
+        self.y0 = *y0;
+        self.t1 = t1;
+        self.y1 = attempt.y1;
+        self.h = h;
+        self.k[..12].copy_from_slice(&attempt.stages);
+        self.k[12] = sys.rhs(t0 + h, &attempt.y1);
+    }
+
+    /// The step size (`t1 − t0` up to rounding; the dense output runs over `[t0, t0 + h]`).
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+
+    /// f(t0, y0).
+    pub fn f0(&self) -> [f64; N] {
+        self.k[0]
+    }
+
+    /// f(t1, y1).
+    pub fn f1(&self) -> [f64; N] {
+        self.k[12]
+    }
+
+    /// The dense output on `[t0, t1]` (three evaluations of `sys`, which must be the field the
+    /// step was taken on); the same polynomial as [`Scheme::accept`] builds.
+    pub fn dense<S: OdeSystem<N> + ?Sized>(&self, sys: &S) -> Dop853Dense<N> {
+        dense_output(sys, self.t0, &self.y0, self.h, &self.y1, &self.k)
     }
 }

@@ -3,7 +3,9 @@
 //! Shampine's 4th-order dense output.
 
 use super::ode::{OdeSystem, lin};
-use super::scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance, stage_input, weighted};
+use super::scheme::{
+    Attempt, Controller, Interpolant, Scheme, Tolerance, stage_input_slice, weighted_slice,
+};
 use super::tableau_dopri5 as tab;
 
 /// The Dormand–Prince 5(4) pair (marker type; see [`Scheme`]).
@@ -71,14 +73,14 @@ impl<const N: usize> Scheme<N> for Dopri5 {
         k[0] = *f0;
         let rows: [&[f64]; 5] = [&tab::A2, &tab::A3, &tab::A4, &tab::A5, &tab::A6];
         for (i, (row, c)) in rows.iter().zip(tab::C.iter().skip(1)).enumerate() {
-            let yi = stage_input(y, h, row, &k);
+            let yi = stage_input_slice(y, h, row, &k);
             if let Some(slot) = k.get_mut(i + 1) {
                 *slot = sys.rhs(t + c * h, &yi);
             }
         }
-        let y1 = stage_input(y, h, &tab::B, &k);
+        let y1 = stage_input_slice(y, h, &tab::B, &k);
         k[6] = sys.rhs(t + h, &y1);
-        let e = weighted(&tab::E, &k);
+        let e = weighted_slice(&tab::E, &k);
         let mut sum = 0.0;
         for ((ei, a), b) in e.iter().zip(y.iter()).zip(y1.iter()) {
             let r = h * ei / tol.scale(*a, *b);
@@ -101,7 +103,7 @@ impl<const N: usize> Scheme<N> for Dopri5 {
         let ydiff = lin(&[(1.0, &attempt.y1), (-1.0, y)]);
         let bspl = lin(&[(h, k1), (-1.0, &ydiff)]);
         let r3 = lin(&[(1.0, &ydiff), (-h, k7), (-1.0, &bspl)]);
-        let r4 = lin(&[(h, &weighted(&tab::D, k))]);
+        let r4 = lin(&[(h, &weighted_slice(&tab::D, k))]);
         let r = [*y, ydiff, bspl, r3, r4];
         (*k7, Dopri5Dense { t0: t, h, r })
     }

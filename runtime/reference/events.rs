@@ -103,6 +103,25 @@ where
     D: Interpolant<N>,
     G: Fn(&[f64; N]) -> (f64, f64),
 {
+    first_crossing_subdivided(SUBDIVISIONS, dense, y0, y1, g)
+}
+
+/// As [`first_crossing`] with the step split into `subdivisions` (≥ 1) sub-intervals. With one,
+/// only the exact end states are examined unless they show a crossing or a minimum, so a lazy
+/// interpolant is evaluated only then.
+#[inline(always)]
+pub fn first_crossing_subdivided<const N: usize, D, G>(
+    subdivisions: usize,
+    dense: &D,
+    y0: &[f64; N],
+    y1: &[f64; N],
+    g: G,
+) -> Option<f64>
+where
+    D: Interpolant<N>,
+    G: Fn(&[f64; N]) -> (f64, f64),
+{
+    let subdivisions = subdivisions.max(1);
     let t0 = dense.start();
     let t1 = dense.end();
     let value = |t: f64| g(&dense.eval(t)).0;
@@ -110,9 +129,9 @@ where
     // The start is inside by definition.
     let mut sa = s0.max(0.0);
     let mut ta = t0;
-    let n = SUBDIVISIONS as f64;
-    for k in 1..=SUBDIVISIONS {
-        let (tb, yb) = if k == SUBDIVISIONS {
+    let n = subdivisions as f64;
+    for k in 1..=subdivisions {
+        let (tb, yb) = if k == subdivisions {
             (t1, *y1)
         } else {
             let tb = t0 + (t1 - t0) * (k as f64 / n);
@@ -170,6 +189,62 @@ where
             break;
         }
         let y_new = redo(t_new);
+        let (s_new, ds_new) = g(&y_new);
+        if s_new.is_nan() || math_abs(s_new) >= math_abs(s) {
+            break;
+        }
+        (best_t, best_y, s, ds) = (t_new, y_new, s_new, ds_new);
+    }
+    (best_t, best_y)
+}
+
+/// Largest Newton shift of [`polish_switch_linear`], relative to the step, taken along the
+/// derivative instead of by a new explicit step: the linear extrapolation errs by
+/// ½·shift²·|y''| (≤ 1e-12·h²·|y''|), far below the error of the step itself.
+const LINEAR_SHIFT: f64 = 1e-6;
+
+/// As [`polish_switch`], but a Newton shift no longer than [`LINEAR_SHIFT`]·(t_end − t_start)
+/// moves the state along the field, `y ← y − shift·f(t, y)` (one evaluation of `rhs`), instead
+/// of recomputing the step (`redo`, a whole explicit step). The shifts that the dense output's
+/// error calls for are of that size, so the result is that of [`polish_switch`] to second order
+/// in the shift, at the cost of one right-hand side per Newton step.
+pub fn polish_switch_linear<const N: usize, R, F, G>(
+    t_start: f64,
+    t_end: f64,
+    max_shift: f64,
+    (t, y): (f64, [f64; N]),
+    mut redo: R,
+    mut rhs: F,
+    g: G,
+) -> (f64, [f64; N])
+where
+    R: FnMut(f64) -> [f64; N],
+    F: FnMut(f64, &[f64; N]) -> [f64; N],
+    G: Fn(&[f64; N]) -> (f64, f64),
+{
+    let linear_limit = LINEAR_SHIFT * (t_end - t_start);
+    let (mut best_t, mut best_y) = (t, y);
+    let (mut s, mut ds) = g(&y);
+    for _ in 0..POLISH_ITERATIONS {
+        if s == 0.0 || ds == 0.0 || !s.is_finite() || !ds.is_finite() {
+            break;
+        }
+        let shift = s / ds;
+        let t_new = best_t - shift;
+        let ok = math_abs(shift) <= max_shift && t_new > t_start && t_new <= t_end;
+        if !ok || t_new == best_t {
+            break;
+        }
+        let y_new = if math_abs(shift) <= linear_limit {
+            let f = rhs(best_t, &best_y);
+            let mut y_new = best_y;
+            for (a, d) in y_new.iter_mut().zip(f.iter()) {
+                *a -= shift * d;
+            }
+            y_new
+        } else {
+            redo(t_new)
+        };
         let (s_new, ds_new) = g(&y_new);
         if s_new.is_nan() || math_abs(s_new) >= math_abs(s) {
             break;

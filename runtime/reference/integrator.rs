@@ -4,8 +4,9 @@
 
 use core::marker::PhantomData;
 
+use super::dop853::{Dop853, Dop853Step};
 use super::ode::{OdeSystem, all_finite};
-use super::scheme::{Controller, Scheme, Tolerance};
+use super::scheme::{Attempt, Controller, Scheme, Tolerance};
 use crate::math;
 use crate::propagate::PropagationError;
 
@@ -102,6 +103,29 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         self.h = self.initial_step(sys);
     }
 
+    /// As [`Self::restart`], but with `h` (> 0, clamped to the largest step) as the first step
+    /// size instead of Hairer's initial guess (one evaluation fewer): for a restart on a field
+    /// whose step size is already known, as at the next contact of a periodic rub.
+    pub fn restart_with_step<F: OdeSystem<N> + ?Sized>(
+        &mut self,
+        sys: &F,
+        t: f64,
+        y: [f64; N],
+        h: f64,
+    ) {
+        if !(h > 0.0 && h.is_finite()) {
+            self.restart(sys, t, y);
+            return;
+        }
+        self.t = t;
+        self.y = y;
+        self.f = sys.rhs(t, &y);
+        self.stats.evaluations = self.stats.evaluations.saturating_add(1);
+        self.err_old = 1e-4;
+        self.rejected_last = false;
+        self.h = h.min(self.h_max);
+    }
+
     /// Replace the step-size controller (the default is the scheme's
     /// [`Scheme::CONTROLLER`]; for example set `beta = 0.04` and `alpha = 1/8 − 0.2·beta` for
     /// DOP853 with PI stabilisation, as its `BETA` option does).
@@ -189,6 +213,33 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         sys: &F,
         t_limit: f64,
     ) -> Result<AcceptedStep<N, S::Dense>, PropagationError> {
+        let (h, t1, trial) = self.accepted_trial(sys, t_limit)?;
+        let (f1, dense) = S::accept(sys, self.t, &self.y, &self.f, h, &trial);
+        self.stats.evaluations = self.stats.evaluations.saturating_add(S::ACCEPT_EVALUATIONS);
+        let step = AcceptedStep {
+            t0: self.t,
+            y0: self.y,
+            f0: self.f,
+            t1,
+            y1: trial.y1,
+            dense,
+        };
+        self.t = t1;
+        self.y = trial.y1;
+        self.f = f1;
+        Ok(step)
+    }
+
+    /// The trial loop of [`Self::step`]: retries until a trial is accepted and updates the
+    /// controller (the next proposed step), but leaves the current time, state and derivative
+    /// for the caller to move to the step end. Returns the step size, the step end time and the
+    /// accepted trial.
+    #[inline(always)]
+    fn accepted_trial<F: OdeSystem<N> + ?Sized>(
+        &mut self,
+        sys: &F,
+        t_limit: f64,
+    ) -> Result<(f64, f64, Attempt<N, S::Stages>), PropagationError> {
         if t_limit.is_nan() || t_limit <= self.t {
             return Err(PropagationError::InvalidTarget {
                 target: t_limit,
@@ -214,10 +265,21 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             } else {
                 trial.err
             };
-            let fac11 = math::pow(err, ctl.alpha);
+            // err^alpha; DOP853's alpha = 1/8 by three square roots (a power costs ten times
+            // more).
+            let fac11 = if ctl.alpha == 0.125 {
+                math::sqrt(math::sqrt(math::sqrt(err)))
+            } else {
+                math::pow(err, ctl.alpha)
+            };
             if err <= 1.0 {
-                // Lund stabilisation: fac = err^alpha / err_old^beta.
-                let fac = fac11 / math::pow(self.err_old, ctl.beta);
+                // Lund stabilisation: fac = err^alpha / err_old^beta (no stabilisation when
+                // beta = 0, DOP853's default).
+                let fac = if ctl.beta == 0.0 {
+                    fac11
+                } else {
+                    fac11 / math::pow(self.err_old, ctl.beta)
+                };
                 let fac = (fac / ctl.safety).min(fac_hi).max(fac_lo);
                 let mut h_new = h / fac;
                 if self.rejected_last {
@@ -225,27 +287,14 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                 }
                 self.err_old = err.max(1e-4);
                 self.rejected_last = false;
-                let (f1, dense) = S::accept(sys, self.t, &self.y, &self.f, h, &trial);
-                self.stats.evaluations =
-                    self.stats.evaluations.saturating_add(S::ACCEPT_EVALUATIONS);
                 self.stats.accepted = self.stats.accepted.saturating_add(1);
-                let step = AcceptedStep {
-                    t0: self.t,
-                    y0: self.y,
-                    f0: self.f,
-                    t1: if h == t_limit - self.t {
-                        t_limit
-                    } else {
-                        self.t + h
-                    },
-                    y1: trial.y1,
-                    dense,
+                let t1 = if h == t_limit - self.t {
+                    t_limit
+                } else {
+                    self.t + h
                 };
-                self.t = step.t1;
-                self.y = trial.y1;
-                self.f = f1;
                 self.h = h_new.min(self.h_max);
-                return Ok(step);
+                return Ok((h, t1, trial));
             }
             self.stats.rejected = self.stats.rejected.saturating_add(1);
             self.rejected_last = true;
@@ -265,7 +314,43 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         step: &AcceptedStep<N, S::Dense>,
         t: f64,
     ) -> [f64; N] {
+        self.redo_from(sys, step.t0, &step.y0, &step.f0, t)
+    }
+
+    /// The state at `t` by one explicit step of exactly `t − t0` from `(t0, y0)` with
+    /// `f0 = f(t0, y0)` (see [`Self::redo`]).
+    pub fn redo_from<F: OdeSystem<N> + ?Sized>(
+        &mut self,
+        sys: &F,
+        t0: f64,
+        y0: &[f64; N],
+        f0: &[f64; N],
+        t: f64,
+    ) -> [f64; N] {
         self.stats.evaluations = self.stats.evaluations.saturating_add(S::STAGE_EVALUATIONS);
-        S::attempt(sys, step.t0, &step.y0, &step.f0, t - step.t0, &self.tol).y1
+        S::attempt(sys, t0, y0, f0, t - t0, &self.tol).y1
+    }
+}
+
+impl<const N: usize> Integrator<Dop853, N> {
+    /// As [`Self::step`], but the dense output is not built: the accepted step keeps its stages
+    /// and builds the dense output on demand ([`Dop853Step::dense`], three more evaluations).
+    /// The step sequence and the states are those of [`Self::step`].
+    ///
+    /// # Errors
+    /// As [`Self::step`].
+    pub fn step_deferred<F: OdeSystem<N> + ?Sized>(
+        &mut self,
+        sys: &F,
+        t_limit: f64,
+        out: &mut Dop853Step<N>,
+    ) -> Result<(), PropagationError> {
+        let (h, t1, trial) = self.accepted_trial(sys, t_limit)?;
+        out.set(sys, self.t, &self.y, h, t1, &trial);
+        self.stats.evaluations = self.stats.evaluations.saturating_add(1);
+        self.t = t1;
+        self.y = trial.y1;
+        self.f = out.f1();
+        Ok(())
     }
 }

@@ -43,9 +43,12 @@ mod system;
 mod tableau_dop853;
 mod tableau_dopri5;
 
-pub use dop853::{Dop853, Dop853Dense};
+pub use dop853::{Dop853, Dop853Dense, Dop853Step};
 pub use dopri5::{Dopri5, Dopri5Dense};
-pub use events::{SUBDIVISIONS, first_crossing, polish_switch, refine_crossing};
+pub use events::{
+    SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch, polish_switch_linear,
+    refine_crossing,
+};
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;
 pub use propagator::{
@@ -53,7 +56,7 @@ pub use propagator::{
     STEPS_PER_TIME_UNIT,
 };
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
-pub use switch::switch_in_step;
+pub use switch::{switch_in_deferred_step, switch_in_step};
 pub use system::{PhasorRotorSystem, RotorSystem, inside_measure};
 
 /// Default `tol` (relative and absolute) of the reference integrators.

@@ -8,7 +8,8 @@
 //!   first switch inside it is searched by [`first_crossing`]. A found switch is refined on the
 //!   dense output to the resolution of `f64`, and the state there is recomputed by one explicit
 //!   step of exactly the needed size from the step's start; a few Newton corrections on that
-//!   step solution ([`polish_switch`]) then put the switch state on z = 1 to rounding level.
+//!   step solution ([`super::polish_switch_linear`]) then put the switch state on z = 1 to
+//!   rounding level.
 //!   The integration restarts at the switch on the other regime's field, the switch time
 //!   counting as inside the new regime.
 //! - A requested time inside the current step is served from its dense output, so sampling never

@@ -110,8 +110,41 @@ pub trait Scheme<const N: usize> {
 }
 
 /// `y + h·Σ_j row_j·k_j` (the input of a stage), pairing `row` with the first stages of `k`.
+///
+/// The row is a fixed-size array so that, inlined with a constant tableau row, the loop unrolls
+/// and the zero coefficients drop out at compile time (same sums, same order, same bits).
+#[inline(always)]
+pub(crate) fn stage_input<const N: usize, const M: usize>(
+    y: &[f64; N],
+    h: f64,
+    row: &[f64; M],
+    k: &[[f64; N]],
+) -> [f64; N] {
+    let mut acc = [0.0; N];
+    for (c, kj) in row.iter().zip(k.iter()) {
+        if *c != 0.0 {
+            for (a, v) in acc.iter_mut().zip(kj.iter()) {
+                *a += c * v;
+            }
+        }
+    }
+    let mut out = *y;
+    for (o, a) in out.iter_mut().zip(acc.iter()) {
+        *o += h * a;
+    }
+    out
+}
+
+/// `Σ_j row_j·k_j`.
+#[inline(always)]
+pub(crate) fn weighted<const N: usize, const M: usize>(row: &[f64; M], k: &[[f64; N]]) -> [f64; N] {
+    stage_input(&[0.0; N], 1.0, row, k)
+}
+
+/// [`stage_input`] for a row of run-time length (DOPRI5's loop over its stages measured
+/// slightly faster this way than unrolled).
 #[inline]
-pub(crate) fn stage_input<const N: usize>(
+pub(crate) fn stage_input_slice<const N: usize>(
     y: &[f64; N],
     h: f64,
     row: &[f64],
@@ -132,8 +165,8 @@ pub(crate) fn stage_input<const N: usize>(
     out
 }
 
-/// `Σ_j row_j·k_j`.
+/// [`weighted`] for a row of run-time length.
 #[inline]
-pub(crate) fn weighted<const N: usize>(row: &[f64], k: &[[f64; N]]) -> [f64; N] {
-    stage_input(&[0.0; N], 1.0, row, k)
+pub(crate) fn weighted_slice<const N: usize>(row: &[f64], k: &[[f64; N]]) -> [f64; N] {
+    stage_input_slice(&[0.0; N], 1.0, row, k)
 }

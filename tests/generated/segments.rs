@@ -10,8 +10,8 @@
 //!   scale F + |Fd| + |a(s)| (the brief's bound) times cancellation·growth — the finite-difference
 //!   rounding is ≈ 1e-13·rate²·|q|, and |q| grows by `growth` for growing modes and starts from
 //!   the particular solutions' size; measured ≤ 7e-12 of that bound over 8000 random cases.
-//!   In the named cases cancellation·growth is 1–5 without the cubic (the brief's 1e-9 of F + |Fd|
-//!   + |a| up to that factor; measured ≤ 9e-12 of F + |Fd| + |a| itself), larger with it (up to
+//!   In the named cases cancellation·growth is 1–5 without the cubic (the brief's 1e-9 of
+//!   F + |Fd| + |a| up to that factor; measured ≤ 9e-12 of F + |Fd| + |a| itself), larger with it (up to
 //!   5e4 at z0 = 0.9, ν = 1, where Kl has ω² = 0.15 and the cubic's polynomial particular
 //!   solution is huge). Relative to the largest term of the equation the residual must be
 //!   ≤ 1e-10·cancellation (measured ≤ 3e-12);

@@ -1,0 +1,255 @@
+//! The building blocks, per call, on states taken from the contact-heavy case (`paper` preset,
+//! η = 2.5):
+//!
+//! * `coefficients/*`: the generated coefficient sets — free flight (per parameter set and per
+//!   segment) and contact (linearization, modes, particular constants, all of a
+//!   [`Linearization`]);
+//! * `evaluate/*`: a closed-form segment at one time (state and h = z² − 1 with h');
+//! * `switch/*`: one switch located (bracket and refinement) — entry on a free segment, exit on
+//!   an exprb43 sub-step, exit on a DOP853 step's dense output (and with the polish onto the step
+//!   solution, as the reference propagator does).
+
+mod common;
+
+use std::hint::black_box;
+
+use common::Case;
+use rotor_rub::analytic::free::{FreeConstants, FreeSegment};
+use rotor_rub::analytic::linear::Linearization;
+use rotor_rub::analytic::schemes::exprb43;
+use rotor_rub::analytic::segment::{Segment, point_of};
+use rotor_rub::analytic::switch::{Direction, first_crossing};
+use rotor_rub::coefficients as coef;
+use rotor_rub::reference::{
+    Dop853, Integrator, RotorSystem, Tolerance, first_crossing as dense_crossing, inside_measure,
+    switch_in_step,
+};
+use rotor_rub::{Event, EventKind, Regime, State, events};
+
+fn switches(case: Case) -> Vec<Event> {
+    let problem = case.problem();
+    let mut p = rotor_rub::Propagator::new(&problem, &common::Setting::Hybrid(1e-12).options())
+        .expect("valid");
+    let end = 10.0 * problem.params.forcing_period();
+    events(&mut p, end)
+        .collect::<Result<_, _>>()
+        .expect("propagates")
+}
+
+fn main() {
+    let mut c = common::criterion();
+    let case = Case::Heavy;
+    let problem = case.problem();
+    let params = problem.params;
+    let evs = switches(case);
+    let exit = *evs
+        .iter()
+        .find(|e| e.kind == EventKind::Exit)
+        .expect("an exit");
+    let next_entry = *evs
+        .iter()
+        .find(|e| e.kind == EventKind::Enter && e.time > exit.time)
+        .expect("an entry after the exit");
+    let entry = next_entry;
+    let constants = FreeConstants::new(&params);
+
+    {
+        // Every input passes through `black_box` each iteration, so nothing is hoisted.
+        let mut g = c.benchmark_group("coefficients");
+        g.bench_function("free: per parameter set (FreeConstants::new)", |b| {
+            b.iter(|| FreeConstants::new(&black_box(params)))
+        });
+        let s = exit.state;
+        let p = constants.particular;
+        g.bench_function("free: per segment (free_homogeneous)", |b| {
+            b.iter(|| {
+                let (s, p, eta, nu) = black_box((s, p, params.speed_ratio, params.damping_ratio));
+                coef::free_homogeneous(
+                    s.x, s.y, s.vx, s.vy, p.c11, p.c22, p.c33, p.c44, 0.6, 0.8, eta, nu,
+                )
+            })
+        });
+        g.bench_function(
+            "free: FreeSegment::new (phase, constants, bounds data)",
+            |b| {
+                b.iter(|| {
+                    let (p, c, t, s) = black_box((params, constants, exit.time, s));
+                    FreeSegment::new(&p, &c, t, s)
+                })
+            },
+        );
+        let q = entry.state;
+        g.bench_function(
+            "contact: linearization (taylor_terms + linearized_stiffness)",
+            |b| {
+                b.iter(|| {
+                    let (q, p) = black_box((q, params));
+                    let t = coef::taylor_terms(q.x, q.y, p.offset_x, p.offset_y);
+                    coef::linearized_stiffness(
+                        p.k_xx, p.k_xy, p.k_yx, p.k_yy, t.a1, t.b1, t.b2, t.a2, t.d1, t.d2,
+                    )
+                })
+            },
+        );
+        let t = coef::taylor_terms(q.x, q.y, params.offset_x, params.offset_y);
+        let kl = coef::linearized_stiffness(
+            params.k_xx,
+            params.k_xy,
+            params.k_yx,
+            params.k_yy,
+            t.a1,
+            t.b1,
+            t.b2,
+            t.a2,
+            t.d1,
+            t.d2,
+        );
+        let nu = params.damping_ratio;
+        g.bench_function("contact: modes (contact_modes)", |b| {
+            b.iter(|| {
+                let (kl, nu) = black_box((kl, nu));
+                coef::contact_modes(kl.fa1, kl.fb1, kl.fb2, kl.fa2, nu)
+            })
+        });
+        g.bench_function("contact: particular constants (contact_particular)", |b| {
+            b.iter(|| {
+                let (kl, nu, p) = black_box((kl, nu, params));
+                coef::contact_particular(
+                    kl.fa1,
+                    kl.fb1,
+                    kl.fb2,
+                    kl.fa2,
+                    kl.fd1,
+                    kl.fd2,
+                    nu,
+                    p.speed_ratio,
+                    p.forcing_amplitude(),
+                )
+            })
+        });
+        g.bench_function("contact: all (Linearization::new)", |b| {
+            b.iter(|| {
+                let (p, t, q) = black_box((params, entry.time, q));
+                Linearization::new(&p, t, q.x, q.y)
+            })
+        });
+        g.finish();
+    }
+
+    // One exprb43 sub-step from the contact entry: its linearization and continuous extension.
+    let h = 0.02;
+    let lin = Linearization::new(&params, entry.time, entry.state.x, entry.state.y)
+        .expect("regular contact");
+    let sub = exprb43(&params, entry.time, entry.state, h, 1e-10).expect("regular contact");
+    let free_seg = FreeSegment::new(&params, &constants, exit.time, exit.state);
+    {
+        let mut g = c.benchmark_group("evaluate");
+        g.bench_function("free segment: state, h, h' at one time", |b| {
+            b.iter(|| free_seg.point(black_box(0.37)))
+        });
+        g.bench_function("free segment: bounds on an interval", |b| {
+            b.iter(|| free_seg.bounds(black_box(0.3), 0.5))
+        });
+        let plain = lin.segment(entry.state, [0.0; 8], h);
+        g.bench_function("contact segment (no extra forcing): state, h, h'", |b| {
+            b.iter(|| plain.point(black_box(0.013)))
+        });
+        g.bench_function(
+            "contact segment (exprb43 cubic forcing): state, h, h'",
+            |b| b.iter(|| sub.segment.point(black_box(0.013))),
+        );
+        g.bench_function("exprb43 sub-step (linearize, 4 segments, error)", |b| {
+            b.iter(|| exprb43(&params, black_box(entry.time), entry.state, h, 1e-10))
+        });
+        g.finish();
+    }
+
+    {
+        let mut g = c.benchmark_group("switch");
+        let start = point_of(exit.state, params.offset_x, params.offset_y);
+        let horizon = 1.5 * (next_entry.time - exit.time);
+        let chunk = 0.5 / params.speed_ratio.max(1.0 + params.damping_ratio);
+        let found = first_crossing(&free_seg, 0.0, start, horizon, Direction::Up, chunk)
+            .expect("the next entry");
+        assert!((exit.time + found.0 - next_entry.time).abs() < 1e-8);
+        g.bench_function("entry on a free segment (exit to next entry)", |b| {
+            b.iter(|| {
+                first_crossing(
+                    &free_seg,
+                    0.0,
+                    start,
+                    black_box(horizon),
+                    Direction::Up,
+                    chunk,
+                )
+            })
+        });
+
+        // exprb43 sub-steps from the entry until one holds the exit.
+        let (mut t, mut s) = (entry.time, entry.state);
+        let exit_step = loop {
+            let step = exprb43(&params, t, s, h, 1e-10).expect("regular contact");
+            let start = point_of(s, params.offset_x, params.offset_y);
+            if first_crossing(&step.segment, 0.0, start, step.h, Direction::Down, step.h).is_some()
+            {
+                break (s, step);
+            }
+            (t, s) = (t + h, step.end);
+        };
+        let (s0, step) = exit_step;
+        let start = point_of(s0, params.offset_x, params.offset_y);
+        g.bench_function("exit on an exprb43 sub-step", |b| {
+            b.iter(|| {
+                first_crossing(
+                    &step.segment,
+                    0.0,
+                    start,
+                    black_box(step.h),
+                    Direction::Down,
+                    step.h,
+                )
+            })
+        });
+
+        // DOP853 steps on the contact field from the entry until one holds the exit.
+        let sys = RotorSystem {
+            params,
+            regime: Regime::Contact,
+        };
+        let mut integ = Integrator::<Dop853, 4>::new(
+            &sys,
+            entry.time,
+            entry.state.to_array(),
+            Tolerance::uniform(1e-10),
+            0.25 * params.forcing_period(),
+        );
+        let g_in = |y: &[f64; 4]| inside_measure(&params, Regime::Contact, y);
+        let dstep = loop {
+            let st = integ.step(&sys, f64::INFINITY).expect("steps");
+            if dense_crossing(&st.dense, &st.y0, &st.y1, g_in).is_some() {
+                break st;
+            }
+        };
+        g.bench_function(
+            "exit on a DOP853 step (dense output, 8 sub-intervals)",
+            |b| b.iter(|| dense_crossing(&dstep.dense, &dstep.y0, &dstep.y1, g_in)),
+        );
+        g.bench_function(
+            "exit on a DOP853 step, polished onto the step solution",
+            |b| {
+                b.iter(|| {
+                    switch_in_step(
+                        &mut integ,
+                        &sys,
+                        black_box(&dstep),
+                        &params,
+                        Regime::Contact,
+                    )
+                })
+            },
+        );
+        g.finish();
+        let _: State = exit.state;
+    }
+    c.final_summary();
+}

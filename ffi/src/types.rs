@@ -1,0 +1,281 @@
+//! The C-visible types and constants (`#[repr(C)]`, mirrored in `include/rotor_rub.h`), and
+//! their conversions to and from the Rust API.
+
+use rotor_rub::stepper::{EVENT_CAPACITY, StepReport, StepperConfig};
+use rotor_rub::{ContactScheme, EventKind, Params, Regime, State};
+
+/// Success.
+pub const ROTOR_RUB_OK: i32 = 0;
+/// A required pointer argument was null.
+pub const ROTOR_RUB_ERR_NULL: i32 = 1;
+/// The stepper memory is not aligned to `rotor_rub_stepper_align()`.
+pub const ROTOR_RUB_ERR_MISALIGNED: i32 = 2;
+/// The stepper memory was not initialised by a successful `rotor_rub_stepper_init`.
+pub const ROTOR_RUB_ERR_NOT_INITIALIZED: i32 = 3;
+/// A parameter or initial-state value is invalid (not finite, out of range, wrong sign).
+pub const ROTOR_RUB_ERR_INVALID_PARAMS: i32 = 4;
+/// A configuration value is invalid (scheme, sub-step counts).
+pub const ROTOR_RUB_ERR_INVALID_CONFIG: i32 = 5;
+/// The step length is not finite, not in (0, 1], or too small to advance the time.
+pub const ROTOR_RUB_ERR_INVALID_STEP: i32 = 6;
+/// The motion diverged (flutter): the stepper is left at the start of the failed step.
+pub const ROTOR_RUB_ERR_DIVERGED: i32 = 7;
+/// The linearized contact system is singular or resonant.
+pub const ROTOR_RUB_ERR_SINGULAR_CONTACT: i32 = 8;
+/// An enumeration argument (preset, scheme) has no such value.
+pub const ROTOR_RUB_ERR_INVALID_ARGUMENT: i32 = 9;
+/// An internal error was caught at the boundary (a bug: please report it).
+pub const ROTOR_RUB_ERR_INTERNAL: i32 = 10;
+
+/// Contact scheme: exprb2 (second order, cheaper).
+pub const ROTOR_RUB_SCHEME_EXPRB2: i32 = 0;
+/// Contact scheme: exprb43 (fourth order, the default).
+pub const ROTOR_RUB_SCHEME_EXPRB43: i32 = 1;
+
+/// Regime: free flight (no contact).
+pub const ROTOR_RUB_REGIME_FREE: i32 = 0;
+/// Regime: contact with the stator.
+pub const ROTOR_RUB_REGIME_CONTACT: i32 = 1;
+
+/// Event kind: contact starts.
+pub const ROTOR_RUB_EVENT_ENTER: i32 = 1;
+/// Event kind: contact ends.
+pub const ROTOR_RUB_EVENT_EXIT: i32 = 2;
+
+/// Preset: the Fig. 2 caption's stiffnesses with offset (0.3, -0.2) (the project's "paper").
+pub const ROTOR_RUB_PRESET_PAPER: i32 = 0;
+/// Preset: the paper text's stiffnesses with zero offset ("paper-text").
+pub const ROTOR_RUB_PRESET_PAPER_TEXT: i32 = 1;
+
+/// Switches one step result holds; more are counted in `dropped_events`.
+pub const ROTOR_RUB_EVENT_CAPACITY: usize = 4;
+/// Size of `RotorRubStepper` in 64-bit words.
+pub const ROTOR_RUB_STEPPER_WORDS: usize = 128;
+
+const _: () = assert!(ROTOR_RUB_EVENT_CAPACITY == EVENT_CAPACITY);
+
+/// Model parameters (dimensionless, as in the paper; see the Rust `Params` for each rule).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotorRubParams {
+    /// η: running speed over natural frequency, > 0.
+    pub speed_ratio: f64,
+    /// ν: damping ratio, >= 0.
+    pub damping_ratio: f64,
+    /// η_m: unbalance mass ratio, > 0.
+    pub mass_ratio: f64,
+    /// ρ̂: unbalance eccentricity over clearance, > 0.
+    pub eccentricity_ratio: f64,
+    /// φ0: unbalance phase at τ = 0 (radians).
+    pub phase: f64,
+    /// K̂xx, >= 0.
+    pub k_xx: f64,
+    /// K̂xy (any sign).
+    pub k_xy: f64,
+    /// K̂yx (any sign).
+    pub k_yx: f64,
+    /// K̂yy, >= 0.
+    pub k_yy: f64,
+    /// ε̂x: stator offset, x.
+    pub offset_x: f64,
+    /// ε̂y: stator offset, y.
+    pub offset_y: f64,
+}
+
+/// A state (x, y, x', y').
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RotorRubState {
+    /// x.
+    pub x: f64,
+    /// y.
+    pub y: f64,
+    /// x'.
+    pub vx: f64,
+    /// y'.
+    pub vy: f64,
+}
+
+/// How the stepper takes its steps (`rotor_rub_config_default` fills the defaults).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotorRubConfig {
+    /// Step length the free-flight transition is precomputed for (default 1e-3).
+    pub dt: f64,
+    /// `ROTOR_RUB_SCHEME_EXPRB43` (default) or `ROTOR_RUB_SCHEME_EXPRB2`.
+    pub scheme: i32,
+    /// Contact sub-steps per step, >= 1 (default 1).
+    pub contact_substeps: u32,
+    /// Cap on contact sub-steps in one step call, >= contact_substeps (default 8).
+    pub max_substeps: u32,
+}
+
+/// A contact switch.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RotorRubEvent {
+    /// Switch time τ.
+    pub time: f64,
+    /// `ROTOR_RUB_EVENT_ENTER` or `ROTOR_RUB_EVENT_EXIT`.
+    pub kind: i32,
+    /// The state at the switch (on z = 1).
+    pub state: RotorRubState,
+}
+
+/// The result of one step.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RotorRubStepResult {
+    /// Time at the step end.
+    pub time: f64,
+    /// State at the step end.
+    pub state: RotorRubState,
+    /// `ROTOR_RUB_REGIME_FREE` or `ROTOR_RUB_REGIME_CONTACT` at the step end.
+    pub regime: i32,
+    /// Switches stored in `events` (<= ROTOR_RUB_EVENT_CAPACITY).
+    pub event_count: u32,
+    /// Switches inside the step that did not fit in `events` (0 unless it overflowed).
+    pub dropped_events: u32,
+    /// Contact sub-steps taken.
+    pub substeps: u32,
+    /// 1 when the per-step sub-step cap was hit (less accurate step), else 0.
+    pub capped: u32,
+    /// 1 when a switch search hit its evaluation or refinement cap, else 0.
+    pub search_capped: u32,
+    /// Largest exprb43 error estimate of the step's contact sub-steps (0 if none).
+    pub error_estimate: f64,
+    /// The first `event_count` switches inside the step, in time order.
+    pub events: [RotorRubEvent; ROTOR_RUB_EVENT_CAPACITY],
+}
+
+/// Caller-owned storage for one stepper: place it anywhere (stack, static, pool), initialise it
+/// with `rotor_rub_stepper_init`. No call allocates; nothing needs freeing.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RotorRubStepper {
+    /// Opaque.
+    pub _opaque: [u64; ROTOR_RUB_STEPPER_WORDS],
+}
+
+impl From<RotorRubParams> for Params {
+    fn from(p: RotorRubParams) -> Self {
+        Params {
+            speed_ratio: p.speed_ratio,
+            damping_ratio: p.damping_ratio,
+            mass_ratio: p.mass_ratio,
+            eccentricity_ratio: p.eccentricity_ratio,
+            phase: p.phase,
+            k_xx: p.k_xx,
+            k_xy: p.k_xy,
+            k_yx: p.k_yx,
+            k_yy: p.k_yy,
+            offset_x: p.offset_x,
+            offset_y: p.offset_y,
+        }
+    }
+}
+
+impl From<Params> for RotorRubParams {
+    fn from(p: Params) -> Self {
+        RotorRubParams {
+            speed_ratio: p.speed_ratio,
+            damping_ratio: p.damping_ratio,
+            mass_ratio: p.mass_ratio,
+            eccentricity_ratio: p.eccentricity_ratio,
+            phase: p.phase,
+            k_xx: p.k_xx,
+            k_xy: p.k_xy,
+            k_yx: p.k_yx,
+            k_yy: p.k_yy,
+            offset_x: p.offset_x,
+            offset_y: p.offset_y,
+        }
+    }
+}
+
+impl From<RotorRubState> for State {
+    fn from(s: RotorRubState) -> Self {
+        State::new(s.x, s.y, s.vx, s.vy)
+    }
+}
+
+impl From<State> for RotorRubState {
+    fn from(s: State) -> Self {
+        RotorRubState {
+            x: s.x,
+            y: s.y,
+            vx: s.vx,
+            vy: s.vy,
+        }
+    }
+}
+
+impl From<StepperConfig> for RotorRubConfig {
+    fn from(c: StepperConfig) -> Self {
+        RotorRubConfig {
+            dt: c.dt,
+            scheme: match c.scheme {
+                ContactScheme::Exprb2 => ROTOR_RUB_SCHEME_EXPRB2,
+                ContactScheme::Exprb43 => ROTOR_RUB_SCHEME_EXPRB43,
+            },
+            contact_substeps: c.contact_substeps,
+            max_substeps: c.max_substeps,
+        }
+    }
+}
+
+impl TryFrom<RotorRubConfig> for StepperConfig {
+    type Error = i32;
+
+    /// Fails with `ROTOR_RUB_ERR_INVALID_CONFIG` for an unknown scheme.
+    fn try_from(c: RotorRubConfig) -> Result<Self, i32> {
+        let scheme = match c.scheme {
+            ROTOR_RUB_SCHEME_EXPRB2 => ContactScheme::Exprb2,
+            ROTOR_RUB_SCHEME_EXPRB43 => ContactScheme::Exprb43,
+            _ => return Err(ROTOR_RUB_ERR_INVALID_CONFIG),
+        };
+        Ok(StepperConfig {
+            dt: c.dt,
+            scheme,
+            contact_substeps: c.contact_substeps,
+            max_substeps: c.max_substeps,
+        })
+    }
+}
+
+/// The C code of a regime.
+pub fn regime_code(regime: Regime) -> i32 {
+    match regime {
+        Regime::Free => ROTOR_RUB_REGIME_FREE,
+        Regime::Contact => ROTOR_RUB_REGIME_CONTACT,
+    }
+}
+
+impl From<&StepReport> for RotorRubStepResult {
+    fn from(r: &StepReport) -> Self {
+        let mut out = RotorRubStepResult {
+            time: r.time,
+            state: r.state.into(),
+            regime: regime_code(r.regime),
+            event_count: 0,
+            dropped_events: r.events.dropped(),
+            substeps: r.substeps,
+            capped: u32::from(r.capped),
+            search_capped: u32::from(r.search_capped),
+            error_estimate: r.error_estimate,
+            events: [RotorRubEvent::default(); ROTOR_RUB_EVENT_CAPACITY],
+        };
+        for (slot, e) in out.events.iter_mut().zip(r.events.iter()) {
+            *slot = RotorRubEvent {
+                time: e.time,
+                kind: match e.kind {
+                    EventKind::Enter => ROTOR_RUB_EVENT_ENTER,
+                    EventKind::Exit => ROTOR_RUB_EVENT_EXIT,
+                },
+                state: e.state.into(),
+            };
+            out.event_count += 1;
+        }
+        out
+    }
+}

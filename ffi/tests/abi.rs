@@ -1,0 +1,261 @@
+//! The C ABI from Rust: null pointers, uninitialised or misaligned memory, invalid values and
+//! configurations give their error codes; every code has a message; no call allocates.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::ffi::CStr;
+
+use rotor_rub_ffi::*;
+
+struct Counting;
+
+thread_local! {
+    /// Allocations made by this thread (other tests run on other threads).
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
+// SAFETY: forwards to the system allocator.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
+        // SAFETY: same contract.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn blank() -> RotorRubStepper {
+    RotorRubStepper {
+        _opaque: [0; ROTOR_RUB_STEPPER_WORDS],
+    }
+}
+
+fn paper() -> (RotorRubParams, RotorRubState, f64) {
+    let mut params = RotorRubParams::from(rotor_rub::Preset::PaperText.problem().params);
+    let mut initial = RotorRubState::default();
+    let mut t0 = f64::NAN;
+    // SAFETY: valid pointers.
+    let rc =
+        unsafe { rotor_rub_preset(ROTOR_RUB_PRESET_PAPER, &mut params, &mut initial, &mut t0) };
+    assert_eq!(rc, ROTOR_RUB_OK);
+    (params, initial, t0)
+}
+
+#[test]
+fn a_whole_session_allocates_nothing_and_matches_rust() {
+    let (params, initial, t0) = paper();
+    let mut config = RotorRubConfig {
+        dt: 0.0,
+        scheme: -1,
+        contact_substeps: 0,
+        max_substeps: 0,
+    };
+    let mut stepper = blank();
+    let mut result = RotorRubStepResult::default();
+    let probe = allocations();
+    drop(std::hint::black_box(vec![0u8; 8]));
+    assert!(allocations() > probe, "the counting allocator counts");
+    let before = allocations();
+    // SAFETY: every pointer is valid.
+    unsafe {
+        assert_eq!(rotor_rub_config_default(&mut config), ROTOR_RUB_OK);
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, &config),
+            ROTOR_RUB_OK
+        );
+        let mut events = 0;
+        for _ in 0..20_000 {
+            assert_eq!(
+                rotor_rub_stepper_step(&mut stepper, config.dt, &mut result),
+                ROTOR_RUB_OK
+            );
+            events += result.event_count;
+        }
+        assert!(events > 10, "the paper preset rubs: {events} switches");
+        let mut faster = params;
+        faster.speed_ratio = 2.0;
+        assert_eq!(
+            rotor_rub_stepper_set_params(&mut stepper, &faster),
+            ROTOR_RUB_OK
+        );
+        assert_eq!(
+            rotor_rub_stepper_step(&mut stepper, 2e-3, &mut result),
+            ROTOR_RUB_OK
+        );
+        let (mut time, mut state, mut regime) = (0.0, RotorRubState::default(), -1);
+        assert_eq!(
+            rotor_rub_stepper_state(&stepper, &mut time, &mut state, &mut regime),
+            ROTOR_RUB_OK
+        );
+        assert_eq!(
+            (time, state, regime),
+            (result.time, result.state, result.regime)
+        );
+        let mut read = RotorRubParams::from(rotor_rub::Preset::PaperText.problem().params);
+        assert_eq!(rotor_rub_stepper_params(&stepper, &mut read), ROTOR_RUB_OK);
+        assert_eq!(read, faster);
+    }
+    assert_eq!(allocations(), before, "a C ABI call allocated");
+
+    // The same steps through the Rust API.
+    let problem = rotor_rub::Problem {
+        params: params.into(),
+        initial: initial.into(),
+        start_time: t0,
+    };
+    let mut rust = rotor_rub::Stepper::new(&problem, rotor_rub::StepperConfig::default()).unwrap();
+    for _ in 0..20_000 {
+        rust.step(1e-3).unwrap();
+    }
+    let mut faster = problem.params;
+    faster.speed_ratio = 2.0;
+    rust.set_params(&faster).unwrap();
+    let r = rust.step(2e-3).unwrap();
+    assert_eq!(RotorRubStepResult::from(&r), result);
+}
+
+#[test]
+fn misuse_gives_error_codes() {
+    let (params, initial, t0) = paper();
+    let null_stepper = std::ptr::null_mut::<RotorRubStepper>();
+    let mut stepper = blank();
+    let mut result = RotorRubStepResult::default();
+    let mut message = [0 as std::ffi::c_char; 96];
+    // SAFETY: pointers are valid or null, as each call allows.
+    unsafe {
+        assert_eq!(
+            rotor_rub_stepper_step(null_stepper, 1e-3, &mut result),
+            ROTOR_RUB_ERR_NULL
+        );
+        assert_eq!(
+            rotor_rub_stepper_step(&mut stepper, 1e-3, &mut result),
+            ROTOR_RUB_ERR_NOT_INITIALIZED
+        );
+        assert_eq!(
+            rotor_rub_stepper_init(
+                &mut stepper,
+                std::ptr::null(),
+                &initial,
+                t0,
+                std::ptr::null()
+            ),
+            ROTOR_RUB_ERR_NULL
+        );
+        assert_eq!(
+            rotor_rub_preset(
+                7,
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut()
+            ),
+            ROTOR_RUB_ERR_INVALID_ARGUMENT
+        );
+        assert_eq!(
+            rotor_rub_config_default(std::ptr::null_mut()),
+            ROTOR_RUB_ERR_NULL
+        );
+        // Misaligned memory.
+        let mut words = [0u64; ROTOR_RUB_STEPPER_WORDS + 1];
+        let odd = words
+            .as_mut_ptr()
+            .cast::<u8>()
+            .add(4)
+            .cast::<RotorRubStepper>();
+        assert_eq!(
+            rotor_rub_stepper_init(odd, &params, &initial, t0, std::ptr::null()),
+            ROTOR_RUB_ERR_MISALIGNED
+        );
+        // Invalid parameters, with the message.
+        let mut bad = params;
+        bad.speed_ratio = -1.0;
+        let rc =
+            rotor_rub_problem_validate(&bad, &initial, t0, message.as_mut_ptr(), message.len());
+        assert_eq!(rc, ROTOR_RUB_ERR_INVALID_PARAMS);
+        let text = CStr::from_ptr(message.as_ptr()).to_str().unwrap();
+        assert!(text.starts_with("speed_ratio = -1 is invalid"), "{text}");
+        let rc = rotor_rub_problem_validate(&bad, &initial, t0, message.as_mut_ptr(), 8);
+        assert_eq!(rc, ROTOR_RUB_ERR_INVALID_PARAMS);
+        assert_eq!(CStr::from_ptr(message.as_ptr()).to_bytes(), b"speed_r");
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &bad, &initial, t0, std::ptr::null()),
+            ROTOR_RUB_ERR_INVALID_PARAMS
+        );
+        assert_eq!(
+            rotor_rub_stepper_step(&mut stepper, 1e-3, &mut result),
+            ROTOR_RUB_ERR_NOT_INITIALIZED,
+            "a failed init leaves the memory uninitialised"
+        );
+        let mut config = RotorRubConfig {
+            dt: 1e-3,
+            scheme: 5,
+            contact_substeps: 1,
+            max_substeps: 8,
+        };
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, &config),
+            ROTOR_RUB_ERR_INVALID_CONFIG
+        );
+        config.scheme = ROTOR_RUB_SCHEME_EXPRB2;
+        config.max_substeps = 0;
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, &config),
+            ROTOR_RUB_ERR_INVALID_CONFIG
+        );
+        config.max_substeps = 8;
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, &config),
+            ROTOR_RUB_OK
+        );
+        for dt in [0.0, -1.0, f64::NAN, f64::INFINITY, 1.5] {
+            assert_eq!(
+                rotor_rub_stepper_step(&mut stepper, dt, &mut result),
+                ROTOR_RUB_ERR_INVALID_STEP
+            );
+        }
+        assert_eq!(
+            rotor_rub_stepper_step(&mut stepper, 1e-3, std::ptr::null_mut()),
+            ROTOR_RUB_OK
+        );
+        assert_eq!(
+            rotor_rub_stepper_set_params(&mut stepper, &bad),
+            ROTOR_RUB_ERR_INVALID_PARAMS
+        );
+        assert_eq!(
+            rotor_rub_stepper_set_params(&mut stepper, std::ptr::null()),
+            ROTOR_RUB_ERR_NULL
+        );
+        assert_eq!(
+            rotor_rub_stepper_state(
+                &stepper,
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut()
+            ),
+            ROTOR_RUB_OK
+        );
+    }
+}
+
+#[test]
+fn every_code_has_a_message_and_the_memory_fits() {
+    for code in -1..=12 {
+        let text = unsafe { CStr::from_ptr(rotor_rub_error_message(code)) };
+        assert!(!text.to_bytes().is_empty());
+    }
+    let unknown = unsafe { CStr::from_ptr(rotor_rub_error_message(99)) };
+    assert_eq!(unknown.to_str().unwrap(), "unknown error code");
+    assert!(rotor_rub_stepper_size() <= size_of::<RotorRubStepper>());
+    assert!(rotor_rub_stepper_align() <= align_of::<RotorRubStepper>());
+    let version = unsafe { CStr::from_ptr(rotor_rub_version()) };
+    assert_eq!(version.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+}

@@ -1,0 +1,177 @@
+//! The exact path of a step: free pieces on the closed-form `FreeSegment`, contact sub-steps of
+//! exprb43/exprb2, switches located by the capped search of [`super::search`].
+
+use super::report::StepReport;
+use super::search::{Search, TOUCH, curvature, locate, no_crossing};
+use super::{Stepper, StepperError, check_bounded};
+use crate::analytic::free::FreeSegment;
+use crate::analytic::schemes::{SubStep, exprb2, exprb43};
+use crate::analytic::segment::{Point, Segment, point_of};
+use crate::analytic::switch::Direction;
+use crate::field;
+use crate::method::ContactScheme;
+use crate::params::State;
+use crate::propagate::{Event, EventKind, Regime};
+
+/// Relative slack when rounding the remaining span to a whole number of nominal sub-steps.
+const SUBSTEP_SLACK: f64 = 1e-9;
+
+impl Stepper {
+    /// The step from the current state over `dt`, piece by piece; fills the report's events,
+    /// sub-step count, cap flag and error estimate. Returns the end state and regime.
+    pub(super) fn exact_step(
+        &self,
+        dt: f64,
+        report: &mut StepReport,
+    ) -> Result<(State, Regime), StepperError> {
+        let t0 = self.time;
+        let nominal = dt / f64::from(self.config.contact_substeps);
+        let mut budget = self.config.max_substeps;
+        let (mut s, mut state, mut regime) = (0.0, self.state, self.regime);
+        loop {
+            let rem = dt - s;
+            if rem <= 0.0 || rem.is_nan() {
+                return Ok((state, regime));
+            }
+            let t = t0 + s;
+            match regime {
+                Regime::Free => match self.free_piece(t, state, rem, report) {
+                    Err(end) => return Ok((end, regime)),
+                    Ok((se, p)) => {
+                        report.events.push(Event {
+                            time: t + se,
+                            kind: EventKind::Enter,
+                            state: p.state,
+                        });
+                        check_bounded(t + se, p.state)?;
+                        (s, state, regime) = (s + se, p.state, Regime::Contact);
+                    }
+                },
+                Regime::Contact if budget == 0 => {
+                    // Cap exhausted: one last sub-step to the end, no exit search.
+                    report.capped = true;
+                    let sub = self.substep(t, state, rem, report)?;
+                    let end_regime = field::regime_of(&self.params, t0 + dt, &sub.end);
+                    return Ok((sub.end, end_regime));
+                }
+                Regime::Contact => {
+                    // Whole nominal sub-steps over the rest, equal lengths, no slivers.
+                    let k = whole_substeps(rem / nominal);
+                    let h = if budget == 1 && k > 1 {
+                        report.capped = true;
+                        rem
+                    } else {
+                        rem / f64::from(k)
+                    };
+                    budget -= 1;
+                    let sub = self.substep(t, state, h, report)?;
+                    match self.exit_in(&sub, state, report) {
+                        Some((sx, p)) => {
+                            report.events.push(Event {
+                                time: t + sx,
+                                kind: EventKind::Exit,
+                                state: p.state,
+                            });
+                            (s, state, regime) = (s + sx, p.state, Regime::Free);
+                        }
+                        None if h == rem => return Ok((sub.end, regime)),
+                        None => (s, state) = (s + h, sub.end),
+                    }
+                }
+            }
+        }
+    }
+
+    /// The first contact entry of free flight from `state` at `t` within (0, `rem`] as
+    /// `Ok((s, point))`, or `Err(end state)` when there is none.
+    fn free_piece(
+        &self,
+        t: f64,
+        state: State,
+        rem: f64,
+        report: &mut StepReport,
+    ) -> Result<(f64, Point), State> {
+        let p = &self.params;
+        let seg = FreeSegment::new(p, &self.free, t, state);
+        let start = point_of(state, p.offset_x, p.offset_y);
+        let end = seg.point(rem);
+        if end.h < 0.0 {
+            let m2 = curvature(&seg, 0.0, &start, rem);
+            if no_crossing(start.h.min(0.0), start.dh, end.h, end.dh, m2, rem, TOUCH) {
+                return Err(end.state);
+            }
+        }
+        // h holds frequencies up to 2·max(η, 1): chunks as in `FreeFlight`.
+        let chunk = 0.5 / p.speed_ratio.max(1.0 + p.damping_ratio);
+        let found = locate(&seg, 0.0, start, rem, Direction::Up, chunk);
+        resolve(found, report).ok_or(end.state)
+    }
+
+    /// One contact sub-step of the configured scheme from `state` at `t` over `h`.
+    fn substep(
+        &self,
+        t: f64,
+        state: State,
+        h: f64,
+        report: &mut StepReport,
+    ) -> Result<SubStep, StepperError> {
+        let sub = match self.config.scheme {
+            ContactScheme::Exprb2 => exprb2(&self.params, t, state, h),
+            ContactScheme::Exprb43 => exprb43(&self.params, t, state, h, 1.0),
+        }
+        .map_err(|_| StepperError::SingularContact { time: t })?;
+        check_bounded(t + h, sub.end)?;
+        report.substeps += 1;
+        report.error_estimate = report.error_estimate.max(sub.error);
+        Ok(sub)
+    }
+
+    /// The contact exit on the sub-step's continuous extension, if any.
+    fn exit_in(
+        &self,
+        sub: &SubStep,
+        state: State,
+        report: &mut StepReport,
+    ) -> Option<(f64, Point)> {
+        let (ex, ey) = (self.params.offset_x, self.params.offset_y);
+        let start = point_of(state, ex, ey);
+        let end = point_of(sub.end, ex, ey);
+        if end.h > 0.0 {
+            let m2 = curvature(&sub.segment, 0.0, &start, sub.h);
+            // g = −h: contact ends when g crosses 0 upwards.
+            let g0 = (-start.h).min(0.0);
+            if no_crossing(g0, -start.dh, -end.h, -end.dh, m2, sub.h, TOUCH) {
+                return None;
+            }
+        }
+        let found = locate(&sub.segment, 0.0, start, sub.h, Direction::Down, sub.h);
+        resolve(found, report)
+    }
+}
+
+/// The switch of a search, if any; a capped search is flagged in the report.
+fn resolve(found: Search, report: &mut StepReport) -> Option<(f64, Point)> {
+    match found {
+        Search::None => None,
+        Search::Unresolved => {
+            report.search_capped = true;
+            None
+        }
+        Search::Found { s, point, certain } => {
+            report.search_capped |= !certain;
+            Some((s, point))
+        }
+    }
+}
+
+/// ⌈q − slack⌉, at least 1 (q ≤ `MAX_SUBSTEPS` here; the cast saturates, never panics).
+fn whole_substeps(q: f64) -> u32 {
+    let q = q - SUBSTEP_SLACK;
+    let k = q as u32;
+    let k = if f64::from(k) < q {
+        k.saturating_add(1)
+    } else {
+        k
+    };
+    k.max(1)
+}
