@@ -11,7 +11,9 @@ use crate::analytic::free_flight::{FreeAdvance, FreeFlight};
 use crate::field;
 use crate::math;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime};
+use crate::propagate::{
+    DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime, check_target,
+};
 use crate::reference::{
     BASE_STEP_BUDGET, Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, MIN_TOLERANCE,
     PhasorRotorSystem, STEPS_PER_TIME_UNIT, SUBDIVISIONS, Tolerance, switch_in_deferred_step,
@@ -180,13 +182,7 @@ impl Propagate for HybridPropagator {
     }
 
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        if !(target.is_finite() && target >= self.time) {
-            return Err(PropagationError::InvalidTarget {
-                target,
-                current: self.time,
-            });
-        }
-        if target == self.time {
+        if !check_target(target, self.time)? {
             return Ok(None);
         }
         let budget = BASE_STEP_BUDGET + STEPS_PER_TIME_UNIT * (target - self.time);

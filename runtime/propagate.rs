@@ -152,6 +152,15 @@ pub trait Propagate {
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError>;
 }
 
+/// The check every [`Propagate::advance`] starts with: an error for a target that is not finite
+/// or before `current`; `Ok(false)` when the target is the current time (nothing to do).
+pub fn check_target(target: f64, current: f64) -> Result<bool, PropagationError> {
+    if !(target.is_finite() && target >= current) {
+        return Err(PropagationError::InvalidTarget { target, current });
+    }
+    Ok(target > current)
+}
+
 /// Iterator over the switches up to `end` (see [`events`]).
 pub struct Events<'a, P: ?Sized> {
     propagator: &'a mut P,

@@ -10,7 +10,9 @@ use crate::field;
 use crate::math;
 use crate::method::ContactScheme;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime};
+use crate::propagate::{
+    DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime, check_target,
+};
 
 /// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `model.md` §8).
 pub const DEFAULT_EXPRB2_STEP: f64 = 1e-3;
@@ -200,13 +202,7 @@ impl Propagate for AnalyticPropagator {
     }
 
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        if !(target.is_finite() && target >= self.time) {
-            return Err(PropagationError::InvalidTarget {
-                target,
-                current: self.time,
-            });
-        }
-        if target == self.time {
+        if !check_target(target, self.time)? {
             return Ok(None);
         }
         loop {

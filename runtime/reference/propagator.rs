@@ -34,7 +34,9 @@ use super::switch::switch_in_step;
 use super::system::RotorSystem;
 use crate::field;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime};
+use crate::propagate::{
+    DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime, check_target,
+};
 
 /// Smallest accepted tolerance (below it the error control asks for less than the rounding
 /// error of a step).
@@ -191,13 +193,7 @@ impl<S: Scheme<4>> Propagate for ReferencePropagator<S> {
     }
 
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        if !(target.is_finite() && target >= self.time) {
-            return Err(PropagationError::InvalidTarget {
-                target,
-                current: self.time,
-            });
-        }
-        if target == self.time {
+        if !check_target(target, self.time)? {
             return Ok(None);
         }
         let budget = BASE_STEP_BUDGET + STEPS_PER_TIME_UNIT * (target - self.time);
