@@ -9,10 +9,9 @@
 use crate::analytic::free::FreeConstants;
 use crate::analytic::free_flight::{FreeAdvance, FreeFlight};
 use crate::field;
-use crate::math;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{
-    DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime, check_target,
+    Event, EventKind, Propagate, PropagationError, Regime, check_target, within_bounds,
 };
 use crate::reference::{
     BASE_STEP_BUDGET, Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, MIN_TOLERANCE,
@@ -122,7 +121,7 @@ impl HybridPropagator {
         self.integrator
             .step_deferred(&self.contact, f64::INFINITY, &mut self.step)?;
         let end = PhasorRotorSystem::rotor_state(&self.step.y1);
-        if !end.is_finite() || math::hypot(end.x, end.y) > DIVERGENCE_RADIUS {
+        if !within_bounds(&end) {
             return Err(PropagationError::Diverged {
                 time: self.step.t1,
                 state: end,

@@ -133,8 +133,16 @@ impl From<ParamError> for PropagationError {
     }
 }
 
-/// Radius (in clearances) beyond which a trajectory is declared [`PropagationError::Diverged`].
+/// Displacement from the rest position (in clearances) beyond which a trajectory is declared
+/// [`PropagationError::Diverged`].
 pub const DIVERGENCE_RADIUS: f64 = 1.0e4;
+
+/// Whether `state` is finite and within [`DIVERGENCE_RADIUS`] of the rest position: the one
+/// divergence test every method applies.
+#[inline]
+pub fn within_bounds(state: &State) -> bool {
+    state.is_finite() && crate::math::hypot(state.x, state.y) <= DIVERGENCE_RADIUS
+}
 
 /// A propagation method: analytic, hybrid or a reference integrator.
 pub trait Propagate {

@@ -11,7 +11,7 @@ use crate::math;
 use crate::method::ContactScheme;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{
-    DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime, check_target,
+    Event, EventKind, Propagate, PropagationError, Regime, check_target, within_bounds,
 };
 
 /// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `model.md` §8).
@@ -87,12 +87,13 @@ impl AnalyticPropagator {
             math::sqrt(k.k_xx * k.k_xx + k.k_xy * k.k_xy + k.k_yx * k.k_yx + k.k_yy * k.k_yy);
         let omega = params.speed_ratio.max(1.0 + params.damping_ratio);
         let omega_contact = math::sqrt(1.0 + k_norm).max(omega);
+        let free = FreeConstants::new(&params);
         let mut me = AnalyticPropagator {
             params,
             scheme,
             tol,
             fixed_step,
-            free: FreeConstants::new(&params),
+            free,
             h_max: 1.0 / omega_contact,
             h_next: 0.1 / omega_contact,
             time_carry: 0.0,
@@ -102,7 +103,7 @@ impl AnalyticPropagator {
             state: problem.initial,
             piece: Piece::Free(FreeFlight::new(
                 &params,
-                &FreeConstants::new(&params),
+                &free,
                 problem.start_time,
                 problem.initial,
             )),
@@ -116,8 +117,7 @@ impl AnalyticPropagator {
     }
 
     fn check_bounded(&self, t: f64, state: State) -> Result<(), PropagationError> {
-        let r = math::hypot(state.x, state.y);
-        if !(state.is_finite() && r <= DIVERGENCE_RADIUS) {
+        if !within_bounds(&state) {
             return Err(PropagationError::Diverged { time: t, state });
         }
         Ok(())

@@ -9,6 +9,7 @@
 //! (`model.md` §6 case 15).
 
 use super::scheme::Interpolant;
+use crate::math;
 
 /// Interior sample points per step at which the switching function and its derivative are
 /// checked (the step is split into this many equal sub-intervals).
@@ -35,7 +36,7 @@ pub fn refine_crossing<F: FnMut(f64) -> f64>(
     // Secant weights (Illinois halves the weight of an end that is kept twice).
     let (mut fa, mut fb) = (f_inside.max(0.0), f_outside);
     let mut side = 0i8;
-    let mut width_before = [math_abs(b - a); 2];
+    let mut width_before = [math::abs(b - a); 2];
     let mut force_bisect = false;
     for _ in 0..MAX_REFINE_ITERATIONS {
         let mid = a + 0.5 * (b - a);
@@ -73,16 +74,11 @@ pub fn refine_crossing<F: FnMut(f64) -> f64>(
             }
             side = 1;
         }
-        let width = math_abs(b - a);
+        let width = math::abs(b - a);
         force_bisect = width > 0.5 * width_before[0];
         width_before = [width_before[1], width];
     }
     b
-}
-
-#[inline]
-fn math_abs(x: f64) -> f64 {
-    crate::math::abs(x)
 }
 
 /// The first time in `(t0, t1]` of the step described by `dense` (with exact end states `y0` at
@@ -159,56 +155,22 @@ where
 /// Newton iterations of [`polish_switch`].
 const POLISH_ITERATIONS: u32 = 3;
 
-/// Polish a switch located on the dense output against the step solution itself: starting from
-/// `(t, y)` with `y = redo(t)` (the state by one explicit step from the step start), apply Newton
-/// steps `t ← t − s/s'` on the switching function of `redo(t)`, keeping a step only when it stays
-/// in `(t_start, t_end]`, moves `t` by at most `max_shift`, and reduces |s|. Returns the best
-/// `(t, y)`; its |s| is then at the rounding level of the step, not at the dense output's error.
-pub fn polish_switch<const N: usize, R, G>(
-    t_start: f64,
-    t_end: f64,
-    max_shift: f64,
-    (t, y): (f64, [f64; N]),
-    mut redo: R,
-    g: G,
-) -> (f64, [f64; N])
-where
-    R: FnMut(f64) -> [f64; N],
-    G: Fn(&[f64; N]) -> (f64, f64),
-{
-    let (mut best_t, mut best_y) = (t, y);
-    let (mut s, mut ds) = g(&y);
-    for _ in 0..POLISH_ITERATIONS {
-        if s == 0.0 || ds == 0.0 || !s.is_finite() || !ds.is_finite() {
-            break;
-        }
-        let shift = s / ds;
-        let t_new = best_t - shift;
-        let ok = math_abs(shift) <= max_shift && t_new > t_start && t_new <= t_end;
-        if !ok || t_new == best_t {
-            break;
-        }
-        let y_new = redo(t_new);
-        let (s_new, ds_new) = g(&y_new);
-        if s_new.is_nan() || math_abs(s_new) >= math_abs(s) {
-            break;
-        }
-        (best_t, best_y, s, ds) = (t_new, y_new, s_new, ds_new);
-    }
-    (best_t, best_y)
-}
-
-/// Largest Newton shift of [`polish_switch_linear`], relative to the step, taken along the
+/// Largest Newton shift of [`polish_switch`], relative to the step, taken along the
 /// derivative instead of by a new explicit step: the linear extrapolation errs by
 /// ½·shift²·|y''| (≤ 1e-12·h²·|y''|), far below the error of the step itself.
 const LINEAR_SHIFT: f64 = 1e-6;
 
-/// As [`polish_switch`], but a Newton shift no longer than [`LINEAR_SHIFT`]·(t_end − t_start)
-/// moves the state along the field, `y ← y − shift·f(t, y)` (one evaluation of `rhs`), instead
-/// of recomputing the step (`redo`, a whole explicit step). The shifts that the dense output's
-/// error calls for are of that size, so the result is that of [`polish_switch`] to second order
-/// in the shift, at the cost of one right-hand side per Newton step.
-pub fn polish_switch_linear<const N: usize, R, F, G>(
+/// Polish a switch located on the dense output against the step solution itself: starting from
+/// `(t, y)` with `y = redo(t)` (the state by one explicit step from the step start), apply Newton
+/// steps `t ← t − s/s'` on the switching function, keeping a step only when it stays in
+/// `(t_start, t_end]`, moves `t` by at most `max_shift`, and reduces |s|. Returns the best
+/// `(t, y)`; its |s| is then at the rounding level of the step, not at the dense output's error.
+///
+/// A shift no longer than [`LINEAR_SHIFT`]·(t_end − t_start) moves the state along the field,
+/// `y ← y − shift·f(t, y)` (one evaluation of `rhs`), instead of recomputing the step (`redo`, a
+/// whole explicit step): the shifts the dense output's error calls for are of that size, and the
+/// linear move errs only to second order in the shift.
+pub fn polish_switch<const N: usize, R, F, G>(
     t_start: f64,
     t_end: f64,
     max_shift: f64,
@@ -231,11 +193,11 @@ where
         }
         let shift = s / ds;
         let t_new = best_t - shift;
-        let ok = math_abs(shift) <= max_shift && t_new > t_start && t_new <= t_end;
+        let ok = math::abs(shift) <= max_shift && t_new > t_start && t_new <= t_end;
         if !ok || t_new == best_t {
             break;
         }
-        let y_new = if math_abs(shift) <= linear_limit {
+        let y_new = if math::abs(shift) <= linear_limit {
             let f = rhs(best_t, &best_y);
             let mut y_new = best_y;
             for (a, d) in y_new.iter_mut().zip(f.iter()) {
@@ -246,7 +208,7 @@ where
             redo(t_new)
         };
         let (s_new, ds_new) = g(&y_new);
-        if s_new.is_nan() || math_abs(s_new) >= math_abs(s) {
+        if s_new.is_nan() || math::abs(s_new) >= math::abs(s) {
             break;
         }
         (best_t, best_y, s, ds) = (t_new, y_new, s_new, ds_new);

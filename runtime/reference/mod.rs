@@ -46,8 +46,7 @@ mod tableau_dopri5;
 pub use dop853::{Dop853, Dop853Dense, Dop853Step};
 pub use dopri5::{Dopri5, Dopri5Dense};
 pub use events::{
-    SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch, polish_switch_linear,
-    refine_crossing,
+    SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch, refine_crossing,
 };
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;

@@ -8,14 +8,14 @@
 //!   first switch inside it is searched by [`first_crossing`]. A found switch is refined on the
 //!   dense output to the resolution of `f64`, and the state there is recomputed by one explicit
 //!   step of exactly the needed size from the step's start; a few Newton corrections on that
-//!   step solution ([`super::polish_switch_linear`]) then put the switch state on z = 1 to
+//!   step solution ([`super::polish_switch`]) then put the switch state on z = 1 to
 //!   rounding level.
 //!   The integration restarts at the switch on the other regime's field, the switch time
 //!   counting as inside the new regime.
 //! - A requested time inside the current step is served from its dense output, so sampling never
 //!   changes the step sequence or the trajectory.
-//! - Errors: [`PropagationError::Diverged`] when a step ends beyond [`DIVERGENCE_RADIUS`] (z, in
-//!   clearances); [`PropagationError::StepSizeUnderflow`] when the step size collapses or one
+//! - Errors: [`PropagationError::Diverged`] when a step ends beyond
+//!   [`crate::propagate::DIVERGENCE_RADIUS`] of the rest position (`within_bounds`); [`PropagationError::StepSizeUnderflow`] when the step size collapses or one
 //!   `advance` call exceeds its step budget ([`BASE_STEP_BUDGET`]). After a divergence or an
 //!   underflow the propagator stays at its last good time and returns the same error again.
 //!
@@ -35,7 +35,7 @@ use super::system::RotorSystem;
 use crate::field;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{
-    DIVERGENCE_RADIUS, Event, EventKind, Propagate, PropagationError, Regime, check_target,
+    Event, EventKind, Propagate, PropagationError, Regime, check_target, within_bounds,
 };
 
 /// Smallest accepted tolerance (below it the error control asks for less than the rounding
@@ -145,7 +145,7 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         let sys = self.system();
         let step = self.integrator.step(&sys, f64::INFINITY)?;
         let end = State::from_array(step.y1);
-        if !end.is_finite() || field::radius(&self.params, end.x, end.y) > DIVERGENCE_RADIUS {
+        if !within_bounds(&end) {
             return Err(PropagationError::Diverged {
                 time: step.t1,
                 state: end,

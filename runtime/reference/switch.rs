@@ -1,12 +1,12 @@
 //! The switch inside one accepted step, shared by the numerical reference and the hybrid
 //! method: located on the dense output, recomputed by an explicit step of exactly the needed
 //! size, and polished onto z = 1 of the step solution (Newton steps along the field,
-//! [`polish_switch_linear`]).
+//! [`polish_switch`]).
 
 use core::cell::OnceCell;
 
 use super::dop853::{Dop853, Dop853Dense, Dop853Step};
-use super::events::{first_crossing, first_crossing_subdivided, polish_switch_linear};
+use super::events::{first_crossing, first_crossing_subdivided, polish_switch};
 use super::integrator::{AcceptedStep, Integrator};
 use super::ode::OdeSystem;
 use super::scheme::{Interpolant, Scheme};
@@ -28,24 +28,30 @@ where
 {
     let inside = |y: &[f64; N]| inside_measure(params, regime, y);
     let t = first_crossing(&step.dense, &step.y0, &step.y1, inside)?;
-    let t = t.max(step.t0).min(step.t1);
-    let y = if t == step.t1 {
-        step.y1
-    } else {
-        integrator.redo(sys, step, t)
-    };
-    // The dense output and the step solution differ by about the tolerance: put the switch on
-    // z = 1 of the step solution (the trajectory the integration continues).
-    let max_shift = 1e-3 * (step.t1 - step.t0);
-    Some(polish_switch_linear(
-        step.t0,
-        step.t1,
-        max_shift,
-        (t, y),
+    Some(on_step_solution(
+        t,
+        (step.t0, step.t1, step.y1),
         |t| integrator.redo(sys, step, t),
         |t, y| sys.rhs(t, y),
         inside,
     ))
+}
+
+/// The switch found at `t` on the dense output of the step `(t0, t1, y1)`, put on the step
+/// solution: the state by an explicit step of exactly the needed size (`redo`), polished onto
+/// z = 1 of the step solution — the trajectory the integration continues (dense output and step
+/// differ by about the tolerance).
+fn on_step_solution<const N: usize>(
+    t: f64,
+    (t0, t1, y1): (f64, f64, [f64; N]),
+    mut redo: impl FnMut(f64) -> [f64; N],
+    rhs: impl FnMut(f64, &[f64; N]) -> [f64; N],
+    inside: impl Fn(&[f64; N]) -> (f64, f64),
+) -> (f64, [f64; N]) {
+    let t = t.max(t0).min(t1);
+    let y = if t == t1 { y1 } else { redo(t) };
+    let max_shift = 1e-3 * (t1 - t0);
+    polish_switch(t0, t1, max_shift, (t, y), redo, rhs, inside)
 }
 
 /// The dense output of a [`Dop853Step`], built on first use.
@@ -96,19 +102,10 @@ where
         *dense = Some(d);
     }
     let t = found?;
-    let t = t.max(step.t0).min(step.t1);
     let f0 = step.f0();
-    let y = if t == step.t1 {
-        step.y1
-    } else {
-        integrator.redo_from(sys, step.t0, &step.y0, &f0, t)
-    };
-    let max_shift = 1e-3 * (step.t1 - step.t0);
-    Some(polish_switch_linear(
-        step.t0,
-        step.t1,
-        max_shift,
-        (t, y),
+    Some(on_step_solution(
+        t,
+        (step.t0, step.t1, step.y1),
         |t| integrator.redo_from(sys, step.t0, &step.y0, &f0, t),
         |t, y| sys.rhs(t, y),
         inside,

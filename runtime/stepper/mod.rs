@@ -64,7 +64,7 @@ use crate::field;
 use crate::math;
 use crate::method::ContactScheme;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{DIVERGENCE_RADIUS, Regime};
+use crate::propagate::{Regime, within_bounds};
 
 /// Longest accepted step (time units). Longer spans: take several steps.
 pub const MAX_STEP: f64 = 1.0;
@@ -288,7 +288,7 @@ fn check_dt(dt: f64, time: f64) -> Result<(), StepperError> {
 }
 
 fn check_bounded(time: f64, state: State) -> Result<(), StepperError> {
-    if state.is_finite() && math::hypot(state.x, state.y) <= DIVERGENCE_RADIUS {
+    if within_bounds(&state) {
         Ok(())
     } else {
         Err(StepperError::Diverged { time, state })
