@@ -63,10 +63,9 @@ fn main() {
         let p = constants.particular;
         g.bench_function("free: per segment (free_homogeneous)", |b| {
             b.iter(|| {
-                let (s, p, eta, nu) = black_box((s, p, params.speed_ratio, params.damping_ratio));
-                coef::free_homogeneous(
-                    s.x, s.y, s.vx, s.vy, p.c11, p.c22, p.c33, p.c44, 0.6, 0.8, eta, nu,
-                )
+                let (s, p, model) = black_box((s, p, coef::ModelParams::of(&params)));
+                let phasor = coef::Phasor { ct: 0.6, st: 0.8 };
+                coef::free_homogeneous(&model, &s.into(), &phasor, &p)
             })
         });
         g.bench_function(
@@ -84,47 +83,25 @@ fn main() {
             |b| {
                 b.iter(|| {
                     let (q, p) = black_box((q, params));
-                    let t = coef::taylor_terms(q.x, q.y, p.offset_x, p.offset_y);
-                    coef::linearized_stiffness(
-                        p.k_xx, p.k_xy, p.k_yx, p.k_yy, t.a1, t.b1, t.b2, t.a2, t.d1, t.d2,
-                    )
+                    let model = coef::ModelParams::of(&p);
+                    let t = coef::taylor_terms(&model, &coef::Position { x: q.x, y: q.y });
+                    coef::linearized_stiffness(&model, &t)
                 })
             },
         );
-        let t = coef::taylor_terms(q.x, q.y, params.offset_x, params.offset_y);
-        let kl = coef::linearized_stiffness(
-            params.k_xx,
-            params.k_xy,
-            params.k_yx,
-            params.k_yy,
-            t.a1,
-            t.b1,
-            t.b2,
-            t.a2,
-            t.d1,
-            t.d2,
-        );
-        let nu = params.damping_ratio;
+        let model = coef::ModelParams::of(&params);
+        let t = coef::taylor_terms(&model, &coef::Position { x: q.x, y: q.y });
+        let kl = coef::linearized_stiffness(&model, &t);
         g.bench_function("contact: modes (contact_modes)", |b| {
             b.iter(|| {
-                let (kl, nu) = black_box((kl, nu));
-                coef::contact_modes(kl.fa1, kl.fb1, kl.fb2, kl.fa2, nu)
+                let (kl, model) = black_box((kl, model));
+                coef::contact_modes(&model, &kl)
             })
         });
         g.bench_function("contact: particular constants (contact_particular)", |b| {
             b.iter(|| {
-                let (kl, nu, p) = black_box((kl, nu, params));
-                coef::contact_particular(
-                    kl.fa1,
-                    kl.fb1,
-                    kl.fb2,
-                    kl.fa2,
-                    kl.fd1,
-                    kl.fd2,
-                    nu,
-                    p.speed_ratio,
-                    p.forcing_amplitude(),
-                )
+                let (kl, model) = black_box((kl, model));
+                coef::contact_particular(&model, &kl)
             })
         });
         g.bench_function("contact: all (Linearization::new)", |b| {

@@ -5,6 +5,11 @@
 //! checked-in copy `codegen/snapshot/coefficients.rs` shows each change in review. The paper's
 //! symbols (ν = `nu`, η = `eta`, F = `f`, ε̂ = `ex`/`ey`, K̂ = `kxx`…) are used inside; see the
 //! symbol table in `ARCHITECTURE.md`.
+//!
+//! Generated functions take and return small structs ([`ModelParams`], [`Position`],
+//! [`LinearizedContact`], …), each field declared once in `codegen/src/model/symbols.rs`.
+//! Functions only the generator's verification tests use (`tests/generated`) are
+//! `#[doc(hidden)]`: public so that integration tests reach them, outside the documented API.
 #![allow(
     missing_docs,
     clippy::all,
@@ -14,3 +19,33 @@
 )]
 
 include!(concat!(env!("OUT_DIR"), "/coefficients.rs"));
+
+impl ModelParams {
+    /// The paper's symbols of `params` (ν, η, F, K̂, ε̂).
+    #[inline]
+    pub fn of(params: &crate::params::Params) -> Self {
+        ModelParams {
+            nu: params.damping_ratio,
+            eta: params.speed_ratio,
+            f: params.forcing_amplitude(),
+            kxx: params.k_xx,
+            kxy: params.k_xy,
+            kyx: params.k_yx,
+            kyy: params.k_yy,
+            ex: params.offset_x,
+            ey: params.offset_y,
+        }
+    }
+}
+
+impl From<crate::params::State> for StartState {
+    #[inline]
+    fn from(s: crate::params::State) -> Self {
+        StartState {
+            x0: s.x,
+            y0: s.y,
+            vx0: s.vx,
+            vy0: s.vy,
+        }
+    }
+}

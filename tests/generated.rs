@@ -27,3 +27,6 @@ mod segments;
 
 #[path = "generated/errata.rs"]
 mod errata;
+
+#[path = "generated/bits.rs"]
+mod bits;

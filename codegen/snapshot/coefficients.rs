@@ -38,8 +38,64 @@
 //                               after:    10 add    17 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
-/// Outputs of [`taylor_terms`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ModelParams {
+    /// ν, damping ratio
+    pub nu: f64,
+    /// η = Ω/ω_n, speed ratio
+    pub eta: f64,
+    /// F = η_m ρ̂ η², unbalance forcing amplitude
+    pub f: f64,
+    /// K̂xx, stator stiffness
+    pub kxx: f64,
+    /// K̂xy, stator stiffness
+    pub kxy: f64,
+    /// K̂yx, stator stiffness
+    pub kyx: f64,
+    /// K̂yy, stator stiffness
+    pub kyy: f64,
+    /// ε̂x, stator centre offset
+    pub ex: f64,
+    /// ε̂y, stator centre offset
+    pub ey: f64,
+}
+/// A rotor position (x, y): the point a formula is evaluated or linearized at.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Position {
+    /// x
+    pub x: f64,
+    /// y
+    pub y: f64,
+}
+/// The state at a segment start.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StartState {
+    /// x(τ0)
+    pub x0: f64,
+    /// y(τ0)
+    pub y0: f64,
+    /// x'(τ0)
+    pub vx0: f64,
+    /// y'(τ0)
+    pub vy0: f64,
+}
+/// The forcing direction (cos θ, sin θ), θ = ητ + φ0.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Phasor {
+    /// cos θ
+    pub ct: f64,
+    /// sin θ
+    pub st: f64,
+}
+/// Local time s = τ − τ0 in a segment.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LocalTime {
+    /// s = τ − τ0
+    pub s: f64,
+}
+/// Taylor terms of the contact function g ≈ J r + D, J = [[A1, B1], [B2, A2]] (`docs/MODEL.md` §2).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TaylorTerms {
     /// A1 = ∂gx/∂x
     pub a1: f64,
@@ -54,36 +110,8 @@ pub struct TaylorTerms {
     /// D2 = gy(r0) − B2 x0 − A2 y0
     pub d2: f64,
 }
-/// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
-///
-/// Source: model.md §2.
-/// Derivation: partial derivatives of g = (1 − 1/z)(x − εx, y − εy) at (x0, y0); D = g(r0) − J r0.
-#[inline]
-#[must_use]
-pub fn taylor_terms(x0: f64, y0: f64, ex: f64, ey: f64) -> TaylorTerms {
-    let t0 = x0 - ex;
-    let t1 = t0 * t0;
-    let t2 = y0 - ey;
-    let t3 = t2 * t2;
-    let t4 = t1 + t3;
-    let t5 = 1.0 / m::sqrt(t4);
-    let t6 = -t5;
-    let t7 = 1.0 / t4;
-    let t8 = 1.0 + t6 + t1 * t5 * t7;
-    let t9 = t0 * t2 * t5 * t7;
-    let t10 = 1.0 + t6 + t3 * t5 * t7;
-    let t11 = 1.0 + t6;
-    TaylorTerms {
-        a1: t8,
-        b1: t9,
-        b2: t9,
-        a2: t10,
-        d1: t0 * t11 - x0 * t8 - y0 * t0 * t2 * t5 * t7,
-        d2: t2 * t11 - x0 * t0 * t2 * t5 * t7 - y0 * t10,
-    }
-}
-/// Outputs of [`linearized_stiffness`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] and constant Fd (`docs/MODEL.md` §3).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LinearizedContact {
     /// Fa1 = Kl[0][0] (x equation, coefficient of x)
     pub fa1: f64,
@@ -98,35 +126,132 @@ pub struct LinearizedContact {
     /// Fd2 = (K_s D)_y, the y equation's constant
     pub fd2: f64,
 }
-/// Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] = I + K_s J and constant Fd = K_s D (erratum 2: Fb2 is the y–x entry, Fa2 the diagonal).
-///
-/// Source: model.md §3, errata 2–3.
-/// Derivation: coefficients of x and y, and the constant, of q + K_s (J q + D) in the equations of motion.
-#[inline]
-#[must_use]
-pub fn linearized_stiffness(
-    kxx: f64,
-    kxy: f64,
-    kyx: f64,
-    kyy: f64,
-    a1: f64,
-    b1: f64,
-    b2: f64,
-    a2: f64,
-    d1: f64,
-    d2: f64,
-) -> LinearizedContact {
-    LinearizedContact {
-        fa1: 1.0 + kxx * a1 + kxy * b2,
-        fb1: kxx * b1 + kxy * a2,
-        fb2: kyx * a1 + kyy * b2,
-        fa2: 1.0 + kyx * b1 + kyy * a2,
-        fd1: kxx * d1 + kxy * d2,
-        fd2: kyx * d1 + kyy * d2,
-    }
+/// Eigenvalue data of Kl (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactModes {
+    /// (ω²₁ + ω²₂)/2 = (Fa1 + Fa2)/2
+    pub omega_sq_mean: f64,
+    /// Δ = ((Fa1 − Fa2)/2)² + Fb1 Fb2
+    pub disc: f64,
+    /// det Kl = Fa1 Fa2 − Fb1 Fb2
+    pub det: f64,
+    /// (γ²₁ + γ²₂)/2 = mean − ν²
+    pub gamma_sq_mean: f64,
 }
-/// Outputs of [`free_particular`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// One eigenvalue ω² of Kl (undamped squared frequency of a mode).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Eigenvalue {
+    /// ω²
+    pub omega_sq: f64,
+}
+/// The paper's mode ratios and damped frequencies (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PaperModes {
+    /// s1 = y/x of mode 1
+    pub s1: f64,
+    /// s2 = y/x of mode 2
+    pub s2: f64,
+    /// γ1, damped frequency of mode 1
+    pub gamma1: f64,
+    /// γ2, damped frequency of mode 2
+    pub gamma2: f64,
+}
+/// Particular solution of the linearized contact equations (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactParticular {
+    /// c11, cos θ coefficient of x
+    pub c11: f64,
+    /// c22, sin θ coefficient of x
+    pub c22: f64,
+    /// c33, cos θ coefficient of y
+    pub c33: f64,
+    /// c44, sin θ coefficient of y
+    pub c44: f64,
+    /// c55, constant of x: −(Kl⁻¹ Fd)_x
+    pub c55: f64,
+    /// c66, constant of y: −(Kl⁻¹ Fd)_y
+    pub c66: f64,
+}
+/// Initial state of the homogeneous part of a contact segment (state minus particular).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HomogeneousInitial {
+    /// x_h(0)
+    pub xh0: f64,
+    /// y_h(0)
+    pub yh0: f64,
+    /// x_h'(0)
+    pub vxh0: f64,
+    /// y_h'(0)
+    pub vyh0: f64,
+}
+/// Start vectors q0, w0 of q_h = e^{−νs}[C(s) q0 + S(s) w0] (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HomogeneousStart {
+    /// q0, x
+    pub q0x: f64,
+    /// q0, y
+    pub q0y: f64,
+    /// w0 = q_h'(0) + ν q0, x
+    pub w0x: f64,
+    /// w0, y
+    pub w0y: f64,
+}
+/// Scalars of the matrix functions at s: C = cc·I + cd·B, S = sc·I + sd·B (B = Kl − σI), decay = e^{−νs}.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactBasis {
+    /// e^{−νs}
+    pub decay: f64,
+    /// even part of cos(√μ s) over the eigenvalue pair
+    pub cc: f64,
+    /// odd part of cos(√μ s)
+    pub cd: f64,
+    /// even part of sin(√μ s)/√μ
+    pub sc: f64,
+    /// odd part of sin(√μ s)/√μ
+    pub sd: f64,
+}
+/// An extra cubic forcing a0 + a1 s + a2 s² + a3 s³ (`docs/MODEL.md` §8).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CubicForcing {
+    /// a0, x
+    pub a0x: f64,
+    /// a0, y
+    pub a0y: f64,
+    /// a1, x
+    pub a1x: f64,
+    /// a1, y
+    pub a1y: f64,
+    /// a2, x
+    pub a2x: f64,
+    /// a2, y
+    pub a2y: f64,
+    /// a3, x
+    pub a3x: f64,
+    /// a3, y
+    pub a3y: f64,
+}
+/// Cubic particular solution b0 + b1 s + b2 s² + b3 s³ (`docs/MODEL.md` §8).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PolynomialParticular {
+    /// b0 (constant), x
+    pub b0x: f64,
+    /// b0, y
+    pub b0y: f64,
+    /// b1 (linear), x
+    pub b1x: f64,
+    /// b1, y
+    pub b1y: f64,
+    /// b2 (quadratic), x
+    pub b2x: f64,
+    /// b2, y
+    pub b2y: f64,
+    /// b3 (cubic), x
+    pub b3x: f64,
+    /// b3, y
+    pub b3y: f64,
+}
+/// Steady-state harmonic response of free flight (`docs/MODEL.md` §4).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FreeParticular {
     /// c11, cos θ coefficient of x
     pub c11: f64,
@@ -137,13 +262,103 @@ pub struct FreeParticular {
     /// c44, sin θ coefficient of y
     pub c44: f64,
 }
+/// Squared damped frequency of free flight (`docs/MODEL.md` §4).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FreeDampedFrequency {
+    /// β² = 1 − ν²
+    pub beta_sq: f64,
+}
+/// Constants of the free homogeneous solution x_h = X·EC + P·ES (`docs/MODEL.md` §4).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FreeHomogeneous {
+    /// X = x0 − xp(τ0)
+    pub xh: f64,
+    /// P = x0' − xp'(τ0) + ν X
+    pub px: f64,
+    /// Y = y0 − yp(τ0)
+    pub yh: f64,
+    /// Q = y0' − yp'(τ0) + ν Y
+    pub py: f64,
+}
+/// The free-flight basis EC = e^{−νs} cos βs, ES = e^{−νs} sin(βs)/β at s.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FreeBasis {
+    /// EC(s)
+    pub ec: f64,
+    /// ES(s)
+    pub es: f64,
+}
+/// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
+///
+/// Source: model.md §2.
+/// Derivation: partial derivatives of g = (1 − 1/z)(x − εx, y − εy) at (x0, y0); D = g(r0) − J r0.
+#[inline]
+#[must_use]
+pub fn taylor_terms(model: &ModelParams, at: &Position) -> TaylorTerms {
+    let ex = model.ex;
+    let ey = model.ey;
+    let x = at.x;
+    let y = at.y;
+    let t0 = x - ex;
+    let t1 = t0 * t0;
+    let t2 = y - ey;
+    let t3 = t2 * t2;
+    let t4 = t1 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = -t5;
+    let t7 = 1.0 / t4;
+    let t8 = 1.0 + t6 + t1 * t5 * t7;
+    let t9 = t0 * t2 * t5 * t7;
+    let t10 = 1.0 + t6 + t3 * t5 * t7;
+    let t11 = 1.0 + t6;
+    TaylorTerms {
+        a1: t8,
+        b1: t9,
+        b2: t9,
+        a2: t10,
+        d1: t0 * t11 - x * t8 - y * t0 * t2 * t5 * t7,
+        d2: t2 * t11 - x * t0 * t2 * t5 * t7 - y * t10,
+    }
+}
+/// Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] = I + K_s J and constant Fd = K_s D (erratum 2: Fb2 is the y–x entry, Fa2 the diagonal).
+///
+/// Source: model.md §3, errata 2–3.
+/// Derivation: coefficients of x and y, and the constant, of q + K_s (J q + D) in the equations of motion.
+#[inline]
+#[must_use]
+pub fn linearized_stiffness(
+    model: &ModelParams,
+    taylor: &TaylorTerms,
+) -> LinearizedContact {
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let a1 = taylor.a1;
+    let b1 = taylor.b1;
+    let b2 = taylor.b2;
+    let a2 = taylor.a2;
+    let d1 = taylor.d1;
+    let d2 = taylor.d2;
+    LinearizedContact {
+        fa1: 1.0 + kxx * a1 + kxy * b2,
+        fb1: kxx * b1 + kxy * a2,
+        fb2: kyx * a1 + kyy * b2,
+        fa2: 1.0 + kyx * b1 + kyy * a2,
+        fd1: kxx * d1 + kxy * d2,
+        fd2: kyx * d1 + kyy * d2,
+    }
+}
 /// Steady-state harmonic response of free flight: xp = c11 cos θ + c22 sin θ, yp = c33 cos θ + c44 sin θ.
 ///
 /// Source: model.md §4, eqs. (5)–(6).
 /// Derivation: harmonic ansatz substituted into the free equations of motion; the 4×4 system for the coefficients of cos θ and sin θ solved by Cramer's rule.
 #[inline]
 #[must_use]
-pub fn free_particular(nu: f64, eta: f64, f: f64) -> FreeParticular {
+pub fn free_particular(model: &ModelParams) -> FreeParticular {
+    let nu = model.nu;
+    let eta = model.eta;
+    let f = model.f;
     let t0 = eta * eta;
     let t1 = 1.0 - t0;
     let t2 = 1.0 / (t1 * t1 + 4.0 * t0 * nu * nu);
@@ -156,6 +371,7 @@ pub fn free_particular(nu: f64, eta: f64, f: f64) -> FreeParticular {
     }
 }
 /// Outputs of [`damped_frequency_sq`].
+#[doc(hidden)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DampedFrequency {
     /// γ² = ω² − ν²
@@ -165,18 +381,16 @@ pub struct DampedFrequency {
 ///
 /// Source: model.md §4 (β), §5 (γ_i), §6 cases 4–6, 11.
 /// Derivation: ansatz e^{−ντ} cos(√b τ) substituted into the homogeneous equation x'' + 2νx' + ω²x = 0, residual at τ = 0 solved for b.
+/// Test-only: checks the derivation against the paper's form; the runtime does not use it.
+#[doc(hidden)]
 #[inline]
 #[must_use]
-pub fn damped_frequency_sq(omega_sq: f64, nu: f64) -> DampedFrequency {
+pub fn damped_frequency_sq(model: &ModelParams, mode: &Eigenvalue) -> DampedFrequency {
+    let nu = model.nu;
+    let omega_sq = mode.omega_sq;
     DampedFrequency {
         gamma_sq: omega_sq - nu * nu,
     }
-}
-/// Outputs of [`free_damped_frequency_sq`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FreeDampedFrequency {
-    /// β² = 1 − ν²
-    pub beta_sq: f64,
 }
 /// Squared damped frequency β² = 1 − ν² of free flight (negative for ν > 1, zero at critical damping).
 ///
@@ -184,22 +398,11 @@ pub struct FreeDampedFrequency {
 /// Derivation: `damped_frequency_sq` at ω² = 1.
 #[inline]
 #[must_use]
-pub fn free_damped_frequency_sq(nu: f64) -> FreeDampedFrequency {
+pub fn free_damped_frequency_sq(model: &ModelParams) -> FreeDampedFrequency {
+    let nu = model.nu;
     FreeDampedFrequency {
         beta_sq: 1.0 - nu * nu,
     }
-}
-/// Outputs of [`free_homogeneous`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FreeHomogeneous {
-    /// X = x0 − xp(τ0)
-    pub xh: f64,
-    /// P = x0' − xp'(τ0) + ν X
-    pub px: f64,
-    /// Y = y0 − yp(τ0)
-    pub yh: f64,
-    /// Q = y0' − yp'(τ0) + ν Y
-    pub py: f64,
 }
 /// Constants X, P, Y, Q of the free homogeneous solution x_h = X·EC(s) + P·ES(s) from the state (x0, y0, vx0, vy0) and forcing phase (cos θ0, sin θ0) at the segment start (P = c2·β of the paper; no division by β).
 ///
@@ -208,19 +411,23 @@ pub struct FreeHomogeneous {
 #[inline]
 #[must_use]
 pub fn free_homogeneous(
-    x0: f64,
-    y0: f64,
-    vx0: f64,
-    vy0: f64,
-    c11: f64,
-    c22: f64,
-    c33: f64,
-    c44: f64,
-    ct: f64,
-    st: f64,
-    eta: f64,
-    nu: f64,
+    model: &ModelParams,
+    start: &StartState,
+    phasor: &Phasor,
+    free: &FreeParticular,
 ) -> FreeHomogeneous {
+    let nu = model.nu;
+    let eta = model.eta;
+    let x0 = start.x0;
+    let y0 = start.y0;
+    let vx0 = start.vx0;
+    let vy0 = start.vy0;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let c11 = free.c11;
+    let c22 = free.c22;
+    let c33 = free.c33;
+    let c44 = free.c44;
     let t0 = ct * c11 + st * c22 - x0;
     let t1 = ct * c33 + st * c44 - y0;
     FreeHomogeneous {
@@ -253,24 +460,30 @@ pub struct FreeState {
 #[inline]
 #[must_use]
 pub fn free_eval(
-    xh: f64,
-    px: f64,
-    yh: f64,
-    py: f64,
-    c11: f64,
-    c22: f64,
-    c33: f64,
-    c44: f64,
-    ec: f64,
-    es: f64,
-    ct: f64,
-    st: f64,
-    nu: f64,
-    beta_sq: f64,
-    eta: f64,
-    ex: f64,
-    ey: f64,
+    model: &ModelParams,
+    phasor: &Phasor,
+    free: &FreeParticular,
+    beta: &FreeDampedFrequency,
+    homogeneous: &FreeHomogeneous,
+    basis: &FreeBasis,
 ) -> FreeState {
+    let nu = model.nu;
+    let eta = model.eta;
+    let ex = model.ex;
+    let ey = model.ey;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let c11 = free.c11;
+    let c22 = free.c22;
+    let c33 = free.c33;
+    let c44 = free.c44;
+    let beta_sq = beta.beta_sq;
+    let xh = homogeneous.xh;
+    let px = homogeneous.px;
+    let yh = homogeneous.yh;
+    let py = homogeneous.py;
+    let ec = basis.ec;
+    let es = basis.es;
     let t0 = ct * c11;
     let t1 = st * c22;
     let t2 = ec * xh;
@@ -294,22 +507,6 @@ pub fn free_eval(
         dh: 2.0 * t10 * t12 + 2.0 * t11 * t13,
     }
 }
-/// Outputs of [`contact_particular`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactParticular {
-    /// c11, cos θ coefficient of x
-    pub c11: f64,
-    /// c22, sin θ coefficient of x
-    pub c22: f64,
-    /// c33, cos θ coefficient of y
-    pub c33: f64,
-    /// c44, sin θ coefficient of y
-    pub c44: f64,
-    /// c55, constant of x: −(Kl⁻¹ Fd)_x
-    pub c55: f64,
-    /// c66, constant of y: −(Kl⁻¹ Fd)_y
-    pub c66: f64,
-}
 /// Particular solution of the linearized contact equations: xp = c11 cos θ + c22 sin θ + c55, yp = c33 cos θ + c44 sin θ + c66.
 ///
 /// Source: model.md §5 (particular part), eqs. (8)–(9).
@@ -317,16 +514,18 @@ pub struct ContactParticular {
 #[inline]
 #[must_use]
 pub fn contact_particular(
-    fa1: f64,
-    fb1: f64,
-    fb2: f64,
-    fa2: f64,
-    fd1: f64,
-    fd2: f64,
-    nu: f64,
-    eta: f64,
-    f: f64,
+    model: &ModelParams,
+    kl: &LinearizedContact,
 ) -> ContactParticular {
+    let nu = model.nu;
+    let eta = model.eta;
+    let f = model.f;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
     let t0 = eta * eta;
     let t1 = -t0;
     let t2 = t1 + fa1;
@@ -371,16 +570,19 @@ pub struct ParticularState {
 #[inline]
 #[must_use]
 pub fn contact_particular_eval(
-    c11: f64,
-    c22: f64,
-    c33: f64,
-    c44: f64,
-    c55: f64,
-    c66: f64,
-    ct: f64,
-    st: f64,
-    eta: f64,
+    model: &ModelParams,
+    phasor: &Phasor,
+    particular: &ContactParticular,
 ) -> ParticularState {
+    let eta = model.eta;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let c11 = particular.c11;
+    let c22 = particular.c22;
+    let c33 = particular.c33;
+    let c44 = particular.c44;
+    let c55 = particular.c55;
+    let c66 = particular.c66;
     ParticularState {
         x: ct * c11 + st * c22 + c55,
         y: ct * c33 + st * c44 + c66,
@@ -388,25 +590,18 @@ pub fn contact_particular_eval(
         vy: eta * ct * c44 - eta * st * c33,
     }
 }
-/// Outputs of [`contact_modes`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactModes {
-    /// (ω²₁ + ω²₂)/2 = (Fa1 + Fa2)/2
-    pub omega_sq_mean: f64,
-    /// Δ = ((Fa1 − Fa2)/2)² + Fb1 Fb2
-    pub disc: f64,
-    /// det Kl = Fa1 Fa2 − Fb1 Fb2
-    pub det: f64,
-    /// (γ²₁ + γ²₂)/2 = mean − ν²
-    pub gamma_sq_mean: f64,
-}
 /// Eigenvalues of Kl: ω²₁,₂ = mean ∓ √Δ (complex when Δ < 0), det Kl = ω²₁ ω²₂, and the mean of γ² = ω² − ν².
 ///
 /// Source: model.md §5 (modes), §6 cases 2, 7–9.
 /// Derivation: characteristic polynomial det(Kl − λI) = c2 λ² + c1 λ + c0 differentiated at λ = 0; mean = −c1/(2c2); Δ = −det(Kl − mean·I)/c2 (trace-free shift, no cancellation).
 #[inline]
 #[must_use]
-pub fn contact_modes(fa1: f64, fb1: f64, fb2: f64, fa2: f64, nu: f64) -> ContactModes {
+pub fn contact_modes(model: &ModelParams, kl: &LinearizedContact) -> ContactModes {
+    let nu = model.nu;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
     let t0 = -fb1 * fb2;
     let t1 = 0.5 * fa1;
     let t2 = 0.5 * fa2;
@@ -418,6 +613,7 @@ pub fn contact_modes(fa1: f64, fb1: f64, fb2: f64, fa2: f64, nu: f64) -> Contact
     }
 }
 /// Outputs of [`mode_shape`].
+#[doc(hidden)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModeShape {
     /// x of (Fb1, ω² − Fa1)
@@ -433,9 +629,16 @@ pub struct ModeShape {
 ///
 /// Source: model.md §5 (s_i), §6 case 1.
 /// Derivation: null vector (b, −a) of each row (a, b) of Kl − ω²I.
+/// Test-only: checks the derivation against the paper's form; the runtime does not use it.
+#[doc(hidden)]
 #[inline]
 #[must_use]
-pub fn mode_shape(fa1: f64, fb1: f64, fb2: f64, fa2: f64, omega_sq: f64) -> ModeShape {
+pub fn mode_shape(kl: &LinearizedContact, mode: &Eigenvalue) -> ModeShape {
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let omega_sq = mode.omega_sq;
     let t0 = -omega_sq;
     ModeShape {
         row1_x: fb1,
@@ -445,6 +648,7 @@ pub fn mode_shape(fa1: f64, fb1: f64, fb2: f64, fa2: f64, omega_sq: f64) -> Mode
     }
 }
 /// Outputs of [`paper_mode_ratio`].
+#[doc(hidden)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PaperModeRatio {
     /// s = (ω² − Fa1)/Fb1
@@ -454,14 +658,20 @@ pub struct PaperModeRatio {
 ///
 /// Source: model.md §5, erratum 7.
 /// Derivation: first row of (Kl − ω²I)(1, s) = 0 solved for s.
+/// Test-only: checks the derivation against the paper's form; the runtime does not use it.
+#[doc(hidden)]
 #[inline]
 #[must_use]
-pub fn paper_mode_ratio(fa1: f64, fb1: f64, omega_sq: f64) -> PaperModeRatio {
+pub fn paper_mode_ratio(kl: &LinearizedContact, mode: &Eigenvalue) -> PaperModeRatio {
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let omega_sq = mode.omega_sq;
     PaperModeRatio {
         s: -(fa1 - omega_sq) / fb1,
     }
 }
 /// Outputs of [`paper_modal_constants`].
+#[doc(hidden)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PaperModalConstants {
     /// c1, cos γ1 s coefficient
@@ -477,19 +687,24 @@ pub struct PaperModalConstants {
 ///
 /// Source: model.md §5 (homogeneous part), errata 5–7.
 /// Derivation: initial conditions of the modal ansatz e^{−ντ}[(1, s1)(c1 cos γ1τ + c2 sin γ1τ) + (1, s2)(c3 cos γ2τ + c4 sin γ2τ)] at τ = 0; positions then velocities, each a 2×2 Cramer solve.
+/// Test-only: checks the derivation against the paper's form; the runtime does not use it.
+#[doc(hidden)]
 #[inline]
 #[must_use]
 pub fn paper_modal_constants(
-    s1: f64,
-    s2: f64,
-    gamma1: f64,
-    gamma2: f64,
-    nu: f64,
-    xh0: f64,
-    yh0: f64,
-    vxh0: f64,
-    vyh0: f64,
+    model: &ModelParams,
+    paper: &PaperModes,
+    initial: &HomogeneousInitial,
 ) -> PaperModalConstants {
+    let nu = model.nu;
+    let s1 = paper.s1;
+    let s2 = paper.s2;
+    let gamma1 = paper.gamma1;
+    let gamma2 = paper.gamma2;
+    let xh0 = initial.xh0;
+    let yh0 = initial.yh0;
+    let vxh0 = initial.vxh0;
+    let vyh0 = initial.vyh0;
     let t0 = 1.0 / (s2 - s1);
     let t1 = s2 * xh0 - yh0;
     let t2 = 1.0 / (gamma1 * gamma2 * s2 - gamma1 * gamma2 * s1);
@@ -503,18 +718,6 @@ pub fn paper_modal_constants(
         c4: t2 * (gamma1 * t5 - gamma1 * s1 * t4),
     }
 }
-/// Outputs of [`contact_homogeneous_start`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HomogeneousStart {
-    /// q0, x
-    pub q0x: f64,
-    /// q0, y
-    pub q0y: f64,
-    /// w0 = q_h'(0) + ν q0, x
-    pub w0x: f64,
-    /// w0, y
-    pub w0y: f64,
-}
 /// Start vectors q0, w0 of the homogeneous contact solution q_h = e^{−νs}[C(s) q0 + S(s) w0] from its initial position and velocity.
 ///
 /// Source: model.md §5 (alternative without eigenvectors).
@@ -522,12 +725,14 @@ pub struct HomogeneousStart {
 #[inline]
 #[must_use]
 pub fn contact_homogeneous_start(
-    xh0: f64,
-    yh0: f64,
-    vxh0: f64,
-    vyh0: f64,
-    nu: f64,
+    model: &ModelParams,
+    initial: &HomogeneousInitial,
 ) -> HomogeneousStart {
+    let nu = model.nu;
+    let xh0 = initial.xh0;
+    let yh0 = initial.yh0;
+    let vxh0 = initial.vxh0;
+    let vyh0 = initial.vyh0;
     HomogeneousStart {
         q0x: xh0,
         q0y: yh0,
@@ -554,23 +759,28 @@ pub struct HomogeneousState {
 #[inline]
 #[must_use]
 pub fn contact_homogeneous_eval(
-    fa1: f64,
-    fb1: f64,
-    fb2: f64,
-    fa2: f64,
-    sigma: f64,
-    nu: f64,
-    q0x: f64,
-    q0y: f64,
-    w0x: f64,
-    w0y: f64,
-    decay: f64,
-    cc: f64,
-    cd: f64,
-    sc: f64,
-    sd: f64,
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    modes: &ContactModes,
+    homogeneous: &HomogeneousStart,
+    basis: &ContactBasis,
 ) -> HomogeneousState {
-    let t0 = -sigma;
+    let nu = model.nu;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let omega_sq_mean = modes.omega_sq_mean;
+    let q0x = homogeneous.q0x;
+    let q0y = homogeneous.q0y;
+    let w0x = homogeneous.w0x;
+    let w0y = homogeneous.w0y;
+    let decay = basis.decay;
+    let cc = basis.cc;
+    let cd = basis.cd;
+    let sc = basis.sc;
+    let sd = basis.sd;
+    let t0 = -omega_sq_mean;
     let t1 = fa1 + t0;
     let t2 = q0x * t1 + fb1 * q0y;
     let t3 = w0x * t1 + fb1 * w0y;
@@ -579,35 +789,15 @@ pub fn contact_homogeneous_eval(
     let t6 = fb2 * q0x + q0y * t5;
     let t7 = fb2 * w0x + w0y * t5;
     let t8 = cc * q0y + cd * t6 + sc * w0y + sd * t7;
-    let t9 = sigma - nu * nu;
+    let t9 = omega_sq_mean - nu * nu;
     let t10 = sd * (t1 * t5 - fb1 * fb2) - sc * t9;
-    let t11 = sc + sd * t9 + sd * (fa1 + fa2 - 2.0 * sigma);
+    let t11 = sc + sd * t9 + sd * (fa1 + fa2 - 2.0 * omega_sq_mean);
     HomogeneousState {
         x: decay * t4,
         y: decay * t8,
         vx: decay * (q0x * t10 + cc * w0x + cd * t3 - t11 * t2) - nu * decay * t4,
         vy: decay * (q0y * t10 + cc * w0y + cd * t7 - t11 * t6) - nu * decay * t8,
     }
-}
-/// Outputs of [`polynomial_particular`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PolynomialParticular {
-    /// b0 (constant), x
-    pub b0x: f64,
-    /// b0, y
-    pub b0y: f64,
-    /// b1 (linear), x
-    pub b1x: f64,
-    /// b1, y
-    pub b1y: f64,
-    /// b2 (quadratic), x
-    pub b2x: f64,
-    /// b2, y
-    pub b2y: f64,
-    /// b3 (cubic), x
-    pub b3x: f64,
-    /// b3, y
-    pub b3y: f64,
 }
 /// Cubic particular solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² + a3 s³.
 ///
@@ -616,20 +806,23 @@ pub struct PolynomialParticular {
 #[inline]
 #[must_use]
 pub fn polynomial_particular(
-    fa1: f64,
-    fb1: f64,
-    fb2: f64,
-    fa2: f64,
-    nu: f64,
-    a0x: f64,
-    a0y: f64,
-    a1x: f64,
-    a1y: f64,
-    a2x: f64,
-    a2y: f64,
-    a3x: f64,
-    a3y: f64,
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    forcing: &CubicForcing,
 ) -> PolynomialParticular {
+    let nu = model.nu;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let a0x = forcing.a0x;
+    let a0y = forcing.a0y;
+    let a1x = forcing.a1x;
+    let a1y = forcing.a1y;
+    let a2x = forcing.a2x;
+    let a2y = forcing.a2y;
+    let a3x = forcing.a3x;
+    let a3y = forcing.a3y;
     let t0 = 1.0 / (fa1 * fa2 - fb1 * fb2);
     let t1 = fa2 * a3x - fb1 * a3y;
     let t2 = a2x - 6.0 * nu * t0 * t1;
@@ -673,16 +866,18 @@ pub struct PolynomialState {
 #[inline]
 #[must_use]
 pub fn polynomial_eval(
-    b0x: f64,
-    b0y: f64,
-    b1x: f64,
-    b1y: f64,
-    b2x: f64,
-    b2y: f64,
-    b3x: f64,
-    b3y: f64,
-    s: f64,
+    time: &LocalTime,
+    poly: &PolynomialParticular,
 ) -> PolynomialState {
+    let s = time.s;
+    let b0x = poly.b0x;
+    let b0y = poly.b0y;
+    let b1x = poly.b1x;
+    let b1y = poly.b1y;
+    let b2x = poly.b2x;
+    let b2y = poly.b2y;
+    let b3x = poly.b3x;
+    let b3y = poly.b3y;
     let t0 = s * s;
     let t1 = s * s * s;
     PolynomialState {

@@ -1,12 +1,20 @@
-//! Emission: each formula becomes a pure `f64` function returning a small `Copy` struct, written
-//! with `quote` as straight-line code (CSE bindings `t0, t1, …`), precedence-aware so the output
-//! reads like hand-written arithmetic. Transcendental calls go through the runtime's math shim
-//! (`m::sqrt`, …). Operation counts are taken while emitting, so they match the code exactly.
+//! Emission: each formula becomes a pure function of small `Copy` input structs returning a small
+//! `Copy` struct, written with `quote` as straight-line code (CSE bindings `t0, t1, …`),
+//! precedence-aware so the output reads like hand-written arithmetic. Transcendental calls go
+//! through the runtime's math shim (`m::sqrt`, …). Operation counts are taken while emitting, so
+//! they match the code exactly.
+//!
+//! A formula's inputs are the structs ([`Group`]s of the declaration table) of the symbols its
+//! outputs use, in table order; a symbol declared in no group fails the build naming the symbol
+//! and the formula.
+
+use std::collections::BTreeSet;
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use crate::expr::{ExprId, Graph, Node, Symbol};
+use crate::model::symbols::Group;
 use crate::optimize::{OpCounts, Plan, plan};
 
 /// One output of a formula.
@@ -29,9 +37,9 @@ pub struct Formula {
     pub source: String,
     /// How the generator derived it.
     pub derivation: String,
-    /// Input symbols, in signature order.
-    pub inputs: Vec<Symbol>,
-    /// Output struct name.
+    /// Used only by the generator's verification tests: emitted `#[doc(hidden)]`.
+    pub test_only: bool,
+    /// Output struct name (a declared [`Group`] when other formulas take it as input).
     pub output_type: String,
     /// Outputs, in struct order.
     pub outputs: Vec<Output>,
@@ -45,6 +53,8 @@ pub struct Emitted {
     pub before: OpCounts,
     /// Counts of the emitted code (after CSE).
     pub after: OpCounts,
+    /// The declared structs the function takes or returns (to be emitted once).
+    pub groups: Vec<&'static Group>,
 }
 
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
@@ -59,6 +69,8 @@ struct Emitter<'a> {
     g: &'a Graph,
     plan: &'a Plan,
     counts: OpCounts,
+    /// Local name of each input symbol (its struct field).
+    locals: std::collections::HashMap<Symbol, &'static str>,
 }
 
 fn ident(name: &str) -> Ident {
@@ -99,7 +111,7 @@ impl Emitter<'_> {
         match self.g.node(id).clone() {
             Node::Const(bits) => Self::literal(f64::from_bits(bits)),
             Node::Input(s) => {
-                let i = ident(self.g.symbol_name(s));
+                let i = ident(self.locals.get(&s).copied().unwrap_or("undeclared"));
                 (quote!(#i), Prec::Atom)
             }
             Node::Add(ts) => self.sum(&ts),
@@ -255,31 +267,111 @@ fn doc_attrs(lines: &[String]) -> TokenStream {
     out
 }
 
-/// Emit one formula as a struct and a function.
-pub fn emit_formula(g: &Graph, f: &Formula) -> Emitted {
+/// The input symbols `outputs` depend on.
+fn free_symbols(g: &Graph, outputs: &[ExprId]) -> BTreeSet<Symbol> {
+    let mut stack = outputs.to_vec();
+    let mut seen = std::collections::HashSet::new();
+    let mut out = BTreeSet::new();
+    while let Some(e) = stack.pop() {
+        if !seen.insert(e) {
+            continue;
+        }
+        if let Node::Input(s) = g.node(e) {
+            out.insert(*s);
+        }
+        stack.extend(g.children(e));
+    }
+    out
+}
+
+/// The struct of a declared group (emitted once per file).
+pub fn emit_group(group: &Group) -> TokenStream {
+    let ty = ident(group.ty);
+    let doc = doc_attrs(&[group.doc.to_owned()]);
+    let mut decls = TokenStream::new();
+    for &(_, field, meaning) in group.fields {
+        let name = ident(field);
+        let d = format!(" {meaning}");
+        decls.extend(quote!(#[doc = #d] pub #name: f64,));
+    }
+    quote! {
+        #doc
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        pub struct #ty { #decls }
+    }
+}
+
+/// Emit one formula as a function (and its output struct unless that is a declared group).
+/// `groups` is the declaration table the formula's symbols are resolved in.
+///
+/// # Panics
+/// When an output uses a symbol that belongs to no group (undeclared, or derivation-internal),
+/// when two inputs would share a local name, or when a declared output struct's fields differ
+/// from the formula's outputs: the message names the formula and the symbol.
+pub fn emit_formula(g: &Graph, f: &Formula, groups: &'static [Group]) -> Emitted {
     let outputs: Vec<ExprId> = f.outputs.iter().map(|o| o.expr).collect();
     let plan = plan(g, &outputs);
-    for &s in &f.inputs {
-        let used = outputs.iter().any(|&o| g.depends_on(o, s));
-        assert!(
-            used,
-            "input `{}` of `{}` is unused",
-            g.symbol_name(s),
-            f.name
-        );
+    // Resolve every input symbol to (group index, field).
+    let mut used: Vec<(usize, usize, Symbol)> = Vec::new();
+    for s in free_symbols(g, &outputs) {
+        let name = g.symbol_name(s);
+        let slot = groups.iter().enumerate().find_map(|(gi, grp)| {
+            grp.fields
+                .iter()
+                .position(|fl| fl.0 == name)
+                .map(|fi| (gi, fi))
+        });
+        let Some((gi, fi)) = slot else {
+            panic!(
+                "formula `{}` uses the symbol `{name}`, which is declared in no input struct: declare it once in codegen/src/model/symbols.rs",
+                f.name
+            );
+        };
+        used.push((gi, fi, s));
+    }
+    used.sort();
+    let mut locals = std::collections::HashMap::new();
+    let mut seen_local = std::collections::HashMap::new();
+    for &(gi, fi, s) in &used {
+        let field = groups[gi].fields[fi].1;
+        if let Some(other) = seen_local.insert(field, g.symbol_name(s)) {
+            panic!(
+                "formula `{}` takes `{other}` and `{}` which share the local name `{field}`",
+                f.name,
+                g.symbol_name(s)
+            );
+        }
+        locals.insert(s, field);
     }
     let mut em = Emitter {
         g,
         plan: &plan,
         counts: OpCounts::default(),
+        locals,
     };
     let mut lets = TokenStream::new();
+    for &(gi, fi, _) in &used {
+        let arg = ident(groups[gi].arg);
+        let field = ident(groups[gi].fields[fi].1);
+        lets.extend(quote!(let #field = #arg.#field;));
+    }
     for (k, &id) in plan.bindings.iter().enumerate() {
         let (e, _) = em.inline(id);
         let t = temp(k);
         lets.extend(quote!(let #t = #e;));
     }
     let ty = ident(&f.output_type);
+    let declared = groups.iter().find(|grp| grp.ty == f.output_type);
+    if let Some(grp) = declared {
+        let names: Vec<&str> = f.outputs.iter().map(|o| o.name.as_str()).collect();
+        let fields: Vec<&str> = grp.fields.iter().map(|fl| fl.1).collect();
+        assert!(
+            names == fields,
+            "formula `{}` returns the declared struct `{}` but its outputs {names:?} differ from the struct's fields {fields:?}",
+            f.name,
+            grp.ty
+        );
+    }
     let mut fields = TokenStream::new();
     let mut decls = TokenStream::new();
     for o in &f.outputs {
@@ -289,28 +381,51 @@ pub fn emit_formula(g: &Graph, f: &Formula) -> Emitted {
         let doc = format!(" {}", o.doc);
         decls.extend(quote!(#[doc = #doc] pub #name: f64,));
     }
-    let params: Vec<TokenStream> = f
-        .inputs
+    let mut arg_groups: Vec<usize> = used.iter().map(|u| u.0).collect();
+    arg_groups.dedup();
+    let params: Vec<TokenStream> = arg_groups
         .iter()
-        .map(|&s| {
-            let i = ident(g.symbol_name(s));
-            quote!(#i: f64)
+        .map(|&gi| {
+            let a = ident(groups[gi].arg);
+            let t = ident(groups[gi].ty);
+            quote!(#a: &#t)
         })
         .collect();
+    let hidden = if f.test_only {
+        quote!(#[doc(hidden)])
+    } else {
+        TokenStream::new()
+    };
+    let struct_tokens = if declared.is_some() {
+        TokenStream::new()
+    } else {
+        let struct_doc = doc_attrs(&[format!("Outputs of [`{}`].", f.name)]);
+        quote! {
+            #struct_doc
+            #hidden
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            pub struct #ty { #decls }
+        }
+    };
     let name = ident(&f.name);
-    let struct_doc = doc_attrs(&[format!("Outputs of [`{}`].", f.name)]);
-    let fn_doc = doc_attrs(&[
+    let mut doc_lines = vec![
         f.summary.clone(),
         String::new(),
         format!("Source: {}.", f.source),
         format!("Derivation: {}", f.derivation),
-    ]);
+    ];
+    if f.test_only {
+        doc_lines.push(
+            "Test-only: checks the derivation against the paper's form; the runtime does not use it."
+                .to_owned(),
+        );
+    }
+    let fn_doc = doc_attrs(&doc_lines);
     let tokens = quote! {
-        #struct_doc
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        pub struct #ty { #decls }
+        #struct_tokens
 
         #fn_doc
+        #hidden
         #[inline]
         #[must_use]
         pub fn #name(#(#params),*) -> #ty {
@@ -318,9 +433,14 @@ pub fn emit_formula(g: &Graph, f: &Formula) -> Emitted {
             #ty { #fields }
         }
     };
+    let mut used_groups: Vec<&'static Group> = arg_groups.iter().map(|&gi| &groups[gi]).collect();
+    if let Some(grp) = declared {
+        used_groups.push(grp);
+    }
     Emitted {
         tokens,
         before: plan.before,
         after: em.counts,
+        groups: used_groups,
     }
 }

@@ -32,13 +32,23 @@ pub fn generate() -> Generated {
     let model = model::derive_all();
     let mut body = TokenStream::new();
     let mut counts = Vec::new();
+    let mut used: Vec<&'static str> = Vec::new();
     for f in &model.formulas {
-        let e = emit::emit_formula(&model.graph, f);
+        let e = emit::emit_formula(&model.graph, f, model::symbols::GROUPS);
         body.extend(e.tokens);
+        used.extend(e.groups.iter().map(|g| g.ty));
         counts.push((f.name.clone(), e.before, e.after));
+    }
+    // The declared structs, once each, in table order.
+    let mut structs = TokenStream::new();
+    for g in model::symbols::GROUPS {
+        if used.contains(&g.ty) {
+            structs.extend(emit::emit_group(g));
+        }
     }
     let file = quote! {
         use crate::math as m;
+        #structs
         #body
     };
     let formatted = format::format_file(file).expect("emitted code parses");

@@ -2,7 +2,10 @@
 
 use super::basis::{free_basis, free_basis_bound};
 use super::segment::{Bounds, Point, Segment};
-use crate::coefficients::{self as coef, FreeHomogeneous, FreeParticular};
+use crate::coefficients::{
+    self as coef, FreeBasis, FreeDampedFrequency, FreeHomogeneous, FreeParticular, ModelParams,
+    Phasor,
+};
 use crate::math;
 use crate::params::{Params, State};
 
@@ -56,12 +59,8 @@ impl FreeConstants {
     /// Derived constants for `params`.
     pub fn new(params: &Params) -> Self {
         FreeConstants {
-            beta_sq: coef::free_damped_frequency_sq(params.damping_ratio).beta_sq,
-            particular: coef::free_particular(
-                params.damping_ratio,
-                params.speed_ratio,
-                params.forcing_amplitude(),
-            ),
+            beta_sq: coef::free_damped_frequency_sq(&ModelParams::of(params)).beta_sq,
+            particular: coef::free_particular(&ModelParams::of(params)),
         }
     }
 }
@@ -71,20 +70,8 @@ impl FreeSegment {
     pub fn new(params: &Params, constants: &FreeConstants, t0: f64, state: State) -> Self {
         let (st, ct) = math::sin_cos(math::wrap_angle(params.speed_ratio * t0 + params.phase));
         let p = constants.particular;
-        let homogeneous = coef::free_homogeneous(
-            state.x,
-            state.y,
-            state.vx,
-            state.vy,
-            p.c11,
-            p.c22,
-            p.c33,
-            p.c44,
-            ct,
-            st,
-            params.speed_ratio,
-            params.damping_ratio,
-        );
+        let model = ModelParams::of(params);
+        let homogeneous = coef::free_homogeneous(&model, &state.into(), &Phasor { ct, st }, &p);
         let reach = Reach {
             pos: math::hypot(homogeneous.xh, homogeneous.yh),
             vel: math::hypot(homogeneous.px, homogeneous.py),
@@ -123,25 +110,17 @@ impl Segment for FreeSegment {
         let (ec, es) = free_basis(self.nu, self.beta_sq, s);
         let (ct, st) = self.phasor(s);
         let (h, p) = (&self.homogeneous, &self.particular);
-        let r = coef::free_eval(
-            h.xh,
-            h.px,
-            h.yh,
-            h.py,
-            p.c11,
-            p.c22,
-            p.c33,
-            p.c44,
-            ec,
-            es,
-            ct,
-            st,
-            self.nu,
-            self.beta_sq,
-            self.eta,
-            self.offset.0,
-            self.offset.1,
-        );
+        let model = ModelParams {
+            nu: self.nu,
+            eta: self.eta,
+            ex: self.offset.0,
+            ey: self.offset.1,
+            ..ModelParams::default()
+        };
+        let beta = FreeDampedFrequency {
+            beta_sq: self.beta_sq,
+        };
+        let r = coef::free_eval(&model, &Phasor { ct, st }, p, &beta, h, &FreeBasis { ec, es });
         Point {
             state: State::new(r.x, r.y, r.vx, r.vy),
             h: r.h,

@@ -5,7 +5,10 @@
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
 use super::segment::{Bounds, Point, Segment, point_of};
-use crate::coefficients::{self as coef, ContactModes, ContactParticular, LinearizedContact};
+use crate::coefficients::{
+    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
+    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular, Position,
+};
 use crate::math;
 use crate::params::{Params, State};
 
@@ -16,6 +19,7 @@ pub struct Linearization {
     pub kl: LinearizedContact,
     modes: ContactModes,
     particular: ContactParticular,
+    model: ModelParams,
     nu: f64,
     eta: f64,
     phase0: (f64, f64),
@@ -38,28 +42,17 @@ impl Linearization {
     /// (`model.md` §2–3, §5). Fails when Kl is singular or the forcing resonant (§6 cases 9–10).
     pub fn new(params: &Params, t0: f64, x0: f64, y0: f64) -> Result<Self, Singular> {
         let p = params;
-        let t = coef::taylor_terms(x0, y0, p.offset_x, p.offset_y);
-        let kl = coef::linearized_stiffness(
-            p.k_xx, p.k_xy, p.k_yx, p.k_yy, t.a1, t.b1, t.b2, t.a2, t.d1, t.d2,
-        );
+        let model = ModelParams::of(p);
+        let t = coef::taylor_terms(&model, &Position { x: x0, y: y0 });
+        let kl = coef::linearized_stiffness(&model, &t);
         let nu = p.damping_ratio;
-        let modes = coef::contact_modes(kl.fa1, kl.fb1, kl.fb2, kl.fa2, nu);
+        let modes = coef::contact_modes(&model, &kl);
         let scale =
             1.0 + math::abs(kl.fa1) + math::abs(kl.fa2) + math::abs(kl.fb1) + math::abs(kl.fb2);
         if math::abs(modes.det) <= 1e-12 * scale * scale {
             return Err(Singular);
         }
-        let particular = coef::contact_particular(
-            kl.fa1,
-            kl.fb1,
-            kl.fb2,
-            kl.fa2,
-            kl.fd1,
-            kl.fd2,
-            nu,
-            p.speed_ratio,
-            p.forcing_amplitude(),
-        );
+        let particular = coef::contact_particular(&model, &kl);
         let c = &particular;
         let all = [
             c.c11,
@@ -88,6 +81,7 @@ impl Linearization {
             kl,
             modes,
             particular,
+            model,
             nu,
             eta: p.speed_ratio,
             phase0: (ct, st),
@@ -112,10 +106,7 @@ impl Linearization {
 
     fn particular_state(&self, s: f64) -> [f64; 4] {
         let (ct, st) = self.phasor(s);
-        let c = &self.particular;
-        let p = coef::contact_particular_eval(
-            c.c11, c.c22, c.c33, c.c44, c.c55, c.c66, ct, st, self.eta,
-        );
+        let p = coef::contact_particular_eval(&self.model, &Phasor { ct, st }, &self.particular);
         [p.x, p.y, p.vx, p.vy]
     }
 
@@ -131,8 +122,7 @@ impl Linearization {
         let mut out = LinearSegment {
             lin: *self,
             response: Response::None,
-            q0: [0.0; 2],
-            w0: [0.0; 2],
+            start: HomogeneousStart::default(),
         };
         self.segment_into(state, forcing, horizon, &mut out);
         out
@@ -160,26 +150,31 @@ impl Linearization {
             }
         } else {
             let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = forcing;
-            let b = coef::polynomial_particular(
-                k.fa1, k.fb1, k.fb2, k.fa2, self.nu, a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y,
-            );
-            out.response =
-                Response::Polynomial([b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y]);
+            let a = CubicForcing {
+                a0x,
+                a0y,
+                a1x,
+                a1y,
+                a2x,
+                a2y,
+                a3x,
+                a3y,
+            };
+            out.response = Response::Polynomial(coef::polynomial_particular(&self.model, k, &a));
         }
         let poly = match &out.response {
             Response::Polynomial(b) => *b,
-            _ => [0.0; 8],
+            _ => PolynomialParticular::default(),
         };
         let p = self.particular_state(0.0);
-        let start = coef::contact_homogeneous_start(
-            state.x - p[0] - poly[0],
-            state.y - p[1] - poly[1],
-            state.vx - p[2] - poly[2],
-            state.vy - p[3] - poly[3],
-            self.nu,
-        );
-        out.q0 = [start.q0x, start.q0y];
-        out.w0 = [start.w0x, start.w0y];
+        let initial = HomogeneousInitial {
+            xh0: state.x - p[0] - poly.b0x,
+            yh0: state.y - p[1] - poly.b0y,
+            vxh0: state.vx - p[2] - poly.b1x,
+            vyh0: state.vy - p[3] - poly.b1y,
+        };
+        let start = coef::contact_homogeneous_start(&self.model, &initial);
+        out.start = start;
     }
 
     /// The state at `s` of the segment from the same start with the extra cubic `forcing` over
@@ -207,11 +202,16 @@ impl Linearization {
 
     /// The matrix-function scalars and decay at local time `s` (shared by every segment of this
     /// linearization evaluated at the same `s`).
-    pub fn scalars(&self, s: f64) -> (f64, MatrixFunction) {
-        (
-            math::exp(-self.nu * s),
-            matrix_function(self.modes.gamma_sq_mean, self.modes.disc, s),
-        )
+    pub fn scalars(&self, s: f64) -> ContactBasis {
+        let MatrixFunction { cc, cd, sc, sd } =
+            matrix_function(self.modes.gamma_sq_mean, self.modes.disc, s);
+        ContactBasis {
+            decay: math::exp(-self.nu * s),
+            cc,
+            cd,
+            sc,
+            sd,
+        }
     }
 }
 
@@ -229,7 +229,7 @@ pub enum Response {
     /// No extra forcing.
     None,
     /// The generated cubic particular solution (its homogeneous complement is in q0, w0).
-    Polynomial([f64; 8]),
+    Polynomial(PolynomialParticular),
     /// The zero-state response as a Taylor polynomial Σ c_m s^m (x and y coefficients), from
     /// the equations of motion: c0 = c1 = 0 and
     /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`model.md` §3).
@@ -376,38 +376,19 @@ fn add_response(unforced: &State, q: &[f64; 4]) -> State {
 pub struct LinearSegment {
     lin: Linearization,
     response: Response,
-    q0: [f64; 2],
-    w0: [f64; 2],
+    start: HomogeneousStart,
 }
 
 impl LinearSegment {
     /// The state at `s` given precomputed scalars (see [`Linearization::scalars`]).
-    pub fn state_with(&self, s: f64, scalars: &(f64, MatrixFunction)) -> State {
-        let (decay, f) = scalars;
+    pub fn state_with(&self, s: f64, scalars: &ContactBasis) -> State {
         let l = &self.lin;
-        let k = &l.kl;
-        let h = coef::contact_homogeneous_eval(
-            k.fa1,
-            k.fb1,
-            k.fb2,
-            k.fa2,
-            l.modes.omega_sq_mean,
-            l.nu,
-            self.q0[0],
-            self.q0[1],
-            self.w0[0],
-            self.w0[1],
-            *decay,
-            f.cc,
-            f.cd,
-            f.sc,
-            f.sd,
-        );
+        let h = coef::contact_homogeneous_eval(&l.model, &l.kl, &l.modes, &self.start, scalars);
         let p = l.particular_state(s);
         let q = match &self.response {
             Response::None => [0.0; 4],
             Response::Polynomial(b) => {
-                let q = coef::polynomial_eval(b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], s);
+                let q = coef::polynomial_eval(&LocalTime { s }, b);
                 [q.x, q.y, q.vx, q.vy]
             }
             Response::Series(c) => series_eval(c, s),
@@ -434,33 +415,12 @@ impl LinearSegment {
     /// A segment with every coefficient zero (a slot to be filled by
     /// [`Linearization::segment_into`]).
     pub(crate) fn zeroed() -> LinearSegment {
-        let kl = LinearizedContact {
-            fa1: 0.0,
-            fb1: 0.0,
-            fb2: 0.0,
-            fa2: 0.0,
-            fd1: 0.0,
-            fd2: 0.0,
-        };
-        let modes = ContactModes {
-            omega_sq_mean: 0.0,
-            disc: 0.0,
-            det: 0.0,
-            gamma_sq_mean: 0.0,
-        };
-        let particular = ContactParticular {
-            c11: 0.0,
-            c22: 0.0,
-            c33: 0.0,
-            c44: 0.0,
-            c55: 0.0,
-            c66: 0.0,
-        };
         LinearSegment {
             lin: Linearization {
-                kl,
-                modes,
-                particular,
+                kl: LinearizedContact::default(),
+                modes: ContactModes::default(),
+                particular: ContactParticular::default(),
+                model: ModelParams::default(),
                 nu: 0.0,
                 eta: 0.0,
                 phase0: (1.0, 0.0),
@@ -471,8 +431,7 @@ impl LinearSegment {
                 harmonic_shift: 0.0,
             },
             response: Response::None,
-            q0: [0.0; 2],
-            w0: [0.0; 2],
+            start: HomogeneousStart::default(),
         }
     }
 
@@ -511,8 +470,9 @@ impl Segment for LinearSegment {
         let ch = math::cosh(math::sqrt(l.norm_a) * hi);
         let decay = math::exp(-l.nu * lo);
         // |q0|, |w0| (no overflow: states are bounded by the divergence radius).
-        let q0 = math::sqrt(self.q0[0] * self.q0[0] + self.q0[1] * self.q0[1]);
-        let w0 = math::sqrt(self.w0[0] * self.w0[0] + self.w0[1] * self.w0[1]);
+        let h = &self.start;
+        let q0 = math::sqrt(h.q0x * h.q0x + h.q0y * h.q0y);
+        let w0 = math::sqrt(h.w0x * h.w0x + h.w0y * h.w0y);
         let rh = decay * ch * (q0 + hi * w0);
         let vh = l.nu * rh + decay * ch * (l.norm_a * hi * q0 + w0);
         let ah = 2.0 * l.nu * vh + l.norm_kl * rh;
@@ -522,7 +482,10 @@ impl Segment for LinearSegment {
         let norm = |c: &[f64]| math::abs(c[0]) + math::abs(c[1]);
         let (pr, pv, pa) = match &self.response {
             Response::None => (0.0, 0.0, 0.0),
-            Response::Polynomial(b) => polynomial_bounds(b.chunks_exact(2).map(norm), hi),
+            Response::Polynomial(b) => {
+                let c = [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y];
+                polynomial_bounds(c.chunks_exact(2).map(norm), hi)
+            }
             Response::Series(c) => {
                 polynomial_bounds(c[..series_used(c)].iter().map(|c| norm(c)), hi)
             }

@@ -13,7 +13,7 @@
 use super::search::local_curvature;
 use crate::analytic::basis::{free_basis, free_basis_bound};
 use crate::analytic::free::FreeConstants;
-use crate::coefficients as coef;
+use crate::coefficients::{self as coef, FreeBasis, FreeDampedFrequency, ModelParams, Phasor};
 use crate::math;
 use crate::params::{Params, State};
 
@@ -32,7 +32,8 @@ pub struct FreeTransition {
     /// (cos η·dt, sin η·dt): the forcing phasor's rotation over one step.
     rotation: (f64, f64),
     eta: f64,
-    nu: f64,
+    /// ν and η for the generated formulas.
+    model: ModelParams,
     particular: coef::FreeParticular,
     /// Bounds of |EC|, |ES| and of their first and second derivatives on [0, dt].
     basis: [f64; 6],
@@ -52,15 +53,18 @@ impl FreeTransition {
         let (ec, es) = free_basis(nu, beta_sq, dt);
         let (sd, cd) = math::sin_cos(eta * dt);
         // The generated free step from start state `w` and start phasor (ct, st), offsets zero.
+        let model = ModelParams {
+            nu,
+            eta,
+            ..ModelParams::default()
+        };
+        let (beta, basis) = (FreeDampedFrequency { beta_sq }, FreeBasis { ec, es });
         let map = |w: [f64; 4], ct: f64, st: f64| -> [f64; 4] {
-            let h = coef::free_homogeneous(
-                w[0], w[1], w[2], w[3], p.c11, p.c22, p.c33, p.c44, ct, st, eta, nu,
-            );
+            let start = State::from_array(w).into();
+            let h = coef::free_homogeneous(&model, &start, &Phasor { ct, st }, &p);
             let (ce, se) = (ct * cd - st * sd, st * cd + ct * sd);
-            let r = coef::free_eval(
-                h.xh, h.px, h.yh, h.py, p.c11, p.c22, p.c33, p.c44, ec, es, ce, se, nu, beta_sq,
-                eta, 0.0, 0.0,
-            );
+            let phasor = Phasor { ct: ce, st: se };
+            let r = coef::free_eval(&model, &phasor, &p, &beta, &h, &basis);
             [r.x, r.y, r.vx, r.vy]
         };
         let mut phi = [[0.0; 4]; 4];
@@ -88,7 +92,7 @@ impl FreeTransition {
             g,
             rotation: (cd, sd),
             eta,
-            nu,
+            model,
             particular: p,
             basis: [ecb, esb, dec, des, ddec, ddes],
             amplitude: math::sqrt(p.c11 * p.c11 + p.c22 * p.c22 + p.c33 * p.c33 + p.c44 * p.c44),
@@ -134,9 +138,8 @@ impl FreeTransition {
     #[inline]
     pub fn curvature_bound(&self, w: &State, phasor: (f64, f64), r0: f64) -> f64 {
         let p = &self.particular;
-        let h = coef::free_homogeneous(
-            w.x, w.y, w.vx, w.vy, p.c11, p.c22, p.c33, p.c44, phasor.0, phasor.1, self.eta, self.nu,
-        );
+        let (ct, st) = phasor;
+        let h = coef::free_homogeneous(&self.model, &(*w).into(), &Phasor { ct, st }, p);
         let pos = math::sqrt(h.xh * h.xh + h.yh * h.yh);
         let vel = math::sqrt(h.px * h.px + h.py * h.py);
         let [ec, es, dec, des, ddec, ddes] = self.basis;

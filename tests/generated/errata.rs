@@ -3,7 +3,6 @@
 //! reading does not.
 
 use nalgebra::{Matrix2, Vector2};
-use rotor_rub::coefficients as coef;
 
 use crate::modes::{homogeneous_residual, paper_form_valid, paper_solution};
 use crate::support::*;
@@ -159,7 +158,7 @@ fn erratum_5_gamma2_in_s2_terms() {
     let l = case.linearized();
     let (s1, s2, g1, g2) = paper_form_valid(&l, case.nu).expect("real distinct modes");
     assert!((g2 - g1).abs() > 0.5, "γ1 = {g1}, γ2 = {g2} should differ");
-    let c = coef::paper_modal_constants(s1, s2, g1, g2, case.nu, 0.1, -0.2, 0.6, 0.3);
+    let c = crate::modes::paper_constants([s1, s2, g1, g2], case.nu, [0.1, -0.2, 0.6, 0.3]);
     let kl = kl_matrix(&l);
     let rate = case.nu + g2.max(g1);
     let corrected = homogeneous_residual(

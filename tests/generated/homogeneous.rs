@@ -17,26 +17,25 @@ fn norm4(s: &State) -> f64 {
 /// time `s` (σ = mean of Kl's eigenvalues, so B = Kl − σI is the trace-free part used by
 /// `matrix_function`).
 pub fn homogeneous_at(l: &LinearizedContact, nu: f64, init: [f64; 4], s: f64) -> State {
-    let m = coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, nu);
-    let st = coef::contact_homogeneous_start(init[0], init[1], init[2], init[3], nu);
+    let model = crate::support::model(nu, 0.0, 0.0);
+    let m = coef::contact_modes(&model, l);
+    let [xh0, yh0, vxh0, vyh0] = init;
+    let initial = coef::HomogeneousInitial {
+        xh0,
+        yh0,
+        vxh0,
+        vyh0,
+    };
+    let st = coef::contact_homogeneous_start(&model, &initial);
     let f = matrix_function(m.gamma_sq_mean, m.disc, s);
-    let h = coef::contact_homogeneous_eval(
-        l.fa1,
-        l.fb1,
-        l.fb2,
-        l.fa2,
-        m.omega_sq_mean,
-        nu,
-        st.q0x,
-        st.q0y,
-        st.w0x,
-        st.w0y,
-        (-nu * s).exp(),
-        f.cc,
-        f.cd,
-        f.sc,
-        f.sd,
-    );
+    let basis = coef::ContactBasis {
+        decay: (-nu * s).exp(),
+        cc: f.cc,
+        cd: f.cd,
+        sc: f.sc,
+        sd: f.sd,
+    };
+    let h = coef::contact_homogeneous_eval(&model, l, &m, &st, &basis);
     State::new(h.x, h.y, h.vx, h.vy)
 }
 
@@ -111,45 +110,25 @@ proptest! {
 /// See [`free_homogeneous_and_eval_match_matrix_exponential`].
 pub fn check_free_formulas(case: &Case, start: State) -> Result<(), TestCaseError> {
     let (nu, eta, f) = (case.nu, case.eta, case.forcing());
-    let p = coef::free_particular(nu, eta, f);
-    let beta_sq = coef::free_damped_frequency_sq(nu).beta_sq;
+    let model = case.model();
+    let p = coef::free_particular(&model);
+    let beta = coef::free_damped_frequency_sq(&model);
+    let beta_sq = beta.beta_sq;
     let th0 = case.theta(0.0);
-    let h = coef::free_homogeneous(
-        start.x,
-        start.y,
-        start.vx,
-        start.vy,
-        p.c11,
-        p.c22,
-        p.c33,
-        p.c44,
-        th0.cos(),
-        th0.sin(),
-        eta,
-        nu,
-    );
+    let phasor0 = coef::Phasor {
+        ct: th0.cos(),
+        st: th0.sin(),
+    };
+    let h = coef::free_homogeneous(&model, &start.into(), &phasor0, &p);
+    let _ = (nu, eta, f);
     let eval = |s: f64| {
         let (ec, es) = free_basis(nu, beta_sq, s);
         let th = case.theta(s);
-        coef::free_eval(
-            h.xh,
-            h.px,
-            h.yh,
-            h.py,
-            p.c11,
-            p.c22,
-            p.c33,
-            p.c44,
-            ec,
-            es,
-            th.cos(),
-            th.sin(),
-            nu,
-            beta_sq,
-            eta,
-            case.offset.0,
-            case.offset.1,
-        )
+        let phasor = coef::Phasor {
+            ct: th.cos(),
+            st: th.sin(),
+        };
+        coef::free_eval(&model, &phasor, &p, &beta, &h, &coef::FreeBasis { ec, es })
     };
     let scale0 = 1.0 + norm4(&start) + p.c11.abs() + p.c22.abs();
     let e0 = eval(0.0);
@@ -215,7 +194,8 @@ fn free_flight_in_every_damping_regime() {
         }
     }
     // ν = 1 really is the degenerate case: β² = 0 exactly.
-    assert_eq!(coef::free_damped_frequency_sq(1.0).beta_sq, 0.0);
+    let model = crate::support::model(1.0, 0.0, 0.0);
+    assert_eq!(coef::free_damped_frequency_sq(&model).beta_sq, 0.0);
 }
 
 proptest! {

@@ -75,7 +75,12 @@ fn taylor_terms_at_the_contact_boundary() {
         let (ex, ey) = (0.3, -0.2);
         let (c, s) = (th.cos(), th.sin());
         let (x0, y0) = (ex + c, ey + s);
-        let t = coef::taylor_terms(x0, y0, ex, ey);
+        let model = coef::ModelParams {
+            ex,
+            ey,
+            ..coef::ModelParams::default()
+        };
+        let t = coef::taylor_terms(&model, &coef::Position { x: x0, y: y0 });
         let proj = x0 * c + y0 * s;
         for (got, want) in [
             (t.a1, c * c),

@@ -42,7 +42,7 @@ proptest! {
     fn contact_modes_match_nalgebra_eigenvalues(case in any_case()) {
         let l = case.linearized();
         let kl = kl_matrix(&l);
-        let m = coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, case.nu);
+        let m = coef::contact_modes(&case.model(), &l);
         let norm = kl.abs().max();
         let ours = sorted(generated_eigenvalues(&m));
         let ev = kl.complex_eigenvalues();
@@ -60,11 +60,11 @@ proptest! {
         prop_assert!((m.disc - (half * half + l.fb1 * l.fb2)).abs() <= 1e-12 * (1.0 + norm * norm));
         prop_assert!((m.gamma_sq_mean - (m.omega_sq_mean - case.nu * case.nu)).abs() <= 1e-12 * (1.0 + norm));
         for w in ours {
-            let d = coef::damped_frequency_sq(w.re, case.nu).gamma_sq;
+            let d = coef::damped_frequency_sq(&case.model(), &eigen(w.re)).gamma_sq;
             prop_assert!((d - (w.re - case.nu * case.nu)).abs() <= 1e-12 * (1.0 + norm));
 
-            let v0 = coef::mode_shape(l.fa1, l.fb1, l.fb2, l.fa2, w.re);
-            let v1 = coef::mode_shape(l.fa1, l.fb1, l.fb2, l.fa2, w.re + 1.0);
+            let v0 = coef::mode_shape(&l, &eigen(w.re));
+            let v1 = coef::mode_shape(&l, &eigen(w.re + 1.0));
             let lift = |a: f64, b: f64| C::new(a, w.im * (b - a));
             let rows = [
                 Vector2::new(lift(v0.row1_x, v1.row1_x), lift(v0.row1_y, v1.row1_y)),
@@ -83,8 +83,9 @@ proptest! {
     /// `free_damped_frequency_sq` is `damped_frequency_sq` at ω² = 1.
     #[test]
     fn free_damped_frequency_is_unit_mode(nu in 0.0..2.0f64) {
-        let b = coef::free_damped_frequency_sq(nu).beta_sq;
-        prop_assert_eq!(b, coef::damped_frequency_sq(1.0, nu).gamma_sq);
+        let model = crate::support::model(nu, 0.0, 0.0);
+        let b = coef::free_damped_frequency_sq(&model).beta_sq;
+        prop_assert_eq!(b, coef::damped_frequency_sq(&model, &eigen(1.0)).gamma_sq);
         prop_assert!((b - (1.0 - nu * nu)).abs() <= 4.0 * f64::EPSILON);
     }
 }
@@ -153,7 +154,8 @@ pub fn real_modes_case() -> impl Strategy<Value = Case> {
 /// Whether the paper's form applies comfortably: Δ > 0 clearly, both γ² > 0.05, |Fb1| not
 /// small, s1 and s2 well apart (its constants divide by s2 − s1, γ1, γ2).
 pub fn paper_form_valid(l: &coef::LinearizedContact, nu: f64) -> Option<(f64, f64, f64, f64)> {
-    let m = coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, nu);
+    let model = crate::support::model(nu, 0.0, 0.0);
+    let m = coef::contact_modes(&model, l);
     let norm = kl_matrix(l).abs().max();
     if m.disc <= 1e-2 * (1.0 + norm) * (1.0 + norm) || l.fb1.abs() <= 0.05 * norm {
         return None;
@@ -162,11 +164,11 @@ pub fn paper_form_valid(l: &coef::LinearizedContact, nu: f64) -> Option<(f64, f6
         m.omega_sq_mean - m.disc.sqrt(),
         m.omega_sq_mean + m.disc.sqrt(),
     ];
-    let g2 = w.map(|w| coef::damped_frequency_sq(w, nu).gamma_sq);
+    let g2 = w.map(|w| coef::damped_frequency_sq(&model, &eigen(w)).gamma_sq);
     if g2[0] <= 0.05 || g2[1] <= 0.05 {
         return None;
     }
-    let s = w.map(|w| coef::paper_mode_ratio(l.fa1, l.fb1, w).s);
+    let s = w.map(|w| coef::paper_mode_ratio(l, &eigen(w)).s);
     if (s[1] - s[0]).abs() <= 0.05 * (1.0 + s[0].abs() + s[1].abs()) {
         return None;
     }
@@ -199,7 +201,7 @@ proptest! {
             prop_assert!(r.norm() <= 1e-9 * (kl.norm() + w) * (1.0 + s.abs()), "mode residual {r}");
         }
         let [xh0, yh0, vxh0, vyh0] = init;
-        let c = coef::paper_modal_constants(s1, s2, g1, g2, nu, xh0, yh0, vxh0, vyh0);
+        let c = paper_constants([s1, s2, g1, g2], nu, [xh0, yh0, vxh0, vyh0]);
         let q0 = paper_solution(&c, s1, s2, g1, g2, g2, nu, 0.0);
         // Velocity at 0 from the form's analytic derivative: −ν q(0) + (γ1 c2 + γ2 c4, s1γ1c2 + s2γ2c4).
         let v0 = -nu * q0 + Vector2::new(g1 * c.c2 + g2 * c.c4, s1 * g1 * c.c2 + s2 * g2 * c.c4);
@@ -210,4 +212,31 @@ proptest! {
         let res = homogeneous_residual(|t| paper_solution(&c, s1, s2, g1, g2, g2, nu, t), &kl, nu, nu + g1.max(g2));
         prop_assert!(res <= 1e-9, "ODE residual {res:e}");
     }
+}
+
+/// The generated eigenvalue struct for ω².
+pub fn eigen(omega_sq: f64) -> coef::Eigenvalue {
+    coef::Eigenvalue { omega_sq }
+}
+
+/// `paper_modal_constants` for modes [s1, s2, γ1, γ2], damping ν and homogeneous start
+/// [x_h0, y_h0, x_h0', y_h0'].
+pub fn paper_constants(modes: [f64; 4], nu: f64, init: [f64; 4]) -> coef::PaperModalConstants {
+    let [s1, s2, gamma1, gamma2] = modes;
+    let [xh0, yh0, vxh0, vyh0] = init;
+    coef::paper_modal_constants(
+        &crate::support::model(nu, 0.0, 0.0),
+        &coef::PaperModes {
+            s1,
+            s2,
+            gamma1,
+            gamma2,
+        },
+        &coef::HomogeneousInitial {
+            xh0,
+            yh0,
+            vxh0,
+            vyh0,
+        },
+    )
 }

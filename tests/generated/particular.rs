@@ -50,7 +50,7 @@ proptest! {
         let l = case.linearized();
         let kl = kl_matrix(&l);
         let (nu, eta, f) = (case.nu, case.eta, case.forcing());
-        let c = coef::contact_particular(l.fa1, l.fb1, l.fb2, l.fa2, l.fd1, l.fd2, nu, eta, f);
+        let c = coef::contact_particular(&model(nu, eta, f), &l);
         check_harmonic(&kl, nu, eta, f, [c.c11, c.c22, c.c33, c.c44])?;
         let k2 = cond(&kl);
         prop_assume!(k2 < 1e8);
@@ -61,7 +61,7 @@ proptest! {
         prop_assert!((c.c66 - constant.y).abs() <= 1e-13 * k2 * norm, "c66 {} vs {}", c.c66, constant.y);
 
         let (st, ct) = theta.sin_cos();
-        let p = coef::contact_particular_eval(c.c11, c.c22, c.c33, c.c44, c.c55, c.c66, ct, st, eta);
+        let p = coef::contact_particular_eval(&model(nu, eta, f), &coef::Phasor { ct, st }, &c);
         prop_assert!((p.x - (c.c11 * ct + c.c22 * st + c.c55)).abs() <= 1e-12 * (1.0 + p.x.abs()));
         prop_assert!((p.vx - eta * (-c.c11 * st + c.c22 * ct)).abs() <= 1e-12 * (1.0 + p.vx.abs()));
         let q = Vector2::new(p.x, p.y);
@@ -78,9 +78,10 @@ proptest! {
     /// contact_particular reduces to it for Kl = I, Fd = 0.
     #[test]
     fn free_particular_matches_lu(nu in 0.05..1.5f64, eta in 0.2..5.0f64, f in 0.01..2.0f64) {
-        let c = coef::free_particular(nu, eta, f);
+        let c = coef::free_particular(&model(nu, eta, f));
         check_harmonic(&Matrix2::identity(), nu, eta, f, [c.c11, c.c22, c.c33, c.c44])?;
-        let d = coef::contact_particular(1.0, 0.0, 0.0, 1.0, 0.0, 0.0, nu, eta, f);
+        let unit = coef::LinearizedContact { fa1: 1.0, fa2: 1.0, ..Default::default() };
+        let d = coef::contact_particular(&model(nu, eta, f), &unit);
         for (a, b) in [(c.c11, d.c11), (c.c22, d.c22), (c.c33, d.c33), (c.c44, d.c44)] {
             prop_assert!((a - b).abs() <= 1e-13 * (a.abs() + b.abs()));
         }
@@ -102,7 +103,7 @@ proptest! {
         let kl = kl_matrix(&l);
         prop_assume!(cond(&kl) < 1e4);
         let nu = case.nu;
-        let b = coef::polynomial_particular(l.fa1, l.fb1, l.fb2, l.fa2, nu, a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]);
+        let b = coef::polynomial_particular(&model(nu, 0.0, 0.0), &l, &cubic(&a));
         let bk = [
             Vector2::new(b.b0x, b.b0y),
             Vector2::new(b.b1x, b.b1y),
@@ -128,7 +129,7 @@ proptest! {
             let r = (lhs - ak[k]).abs().max();
             prop_assert!(r <= 1e-10 * scale, "s^{k}: residual {r:e}, scale {scale:e}");
         }
-        let e = coef::polynomial_eval(b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y, s);
+        let e = coef::polynomial_eval(&coef::LocalTime { s }, &b);
         let want = bk[0] + bk[1] * s + bk[2] * s * s + bk[3] * s * s * s;
         let dwant = bk[1] + bk[2] * (2.0 * s) + bk[3] * (3.0 * s * s);
         let sc = 1e-13 * (1.0 + bk.iter().map(|v| v.abs().max()).sum::<f64>()) * 8.0;

@@ -95,7 +95,7 @@ fn start_of(case: &Case) -> State {
 
 fn eigenvalues(case: &Case) -> [Complex<f64>; 2] {
     let l = case.linearized();
-    crate::modes::generated_eigenvalues(&coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, case.nu))
+    crate::modes::generated_eigenvalues(&coef::contact_modes(&case.model(), &l))
 }
 
 proptest! {
@@ -172,7 +172,7 @@ fn case_complex_omega_sq() {
             let mut case = base().at(z0, f64::from(i) * PI / 18.0);
             case.k = [[20.0, 20.0], [-10.0, 40.0]];
             let l = case.linearized();
-            let m = coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, case.nu);
+            let m = coef::contact_modes(&case.model(), &l);
             if m.disc >= -1e-3 {
                 continue;
             }
@@ -241,7 +241,7 @@ fn case_critical_nu_1_at_entry() {
             "ω²₁ = {}",
             w[0]
         );
-        let g = coef::damped_frequency_sq(w[0].re, 1.0).gamma_sq;
+        let g = coef::damped_frequency_sq(&crate::support::model(1.0, 0.0, 0.0), &crate::modes::eigen(w[0].re)).gamma_sq;
         assert!(g.abs() <= 1e-13, "γ²₁ = {g}");
         check_case(
             &format!("critical ν = 1, angle {angle}"),
@@ -292,7 +292,7 @@ fn case_repeated_omega_sq() {
             (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)
         );
         assert_eq!(
-            coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, nu).disc,
+            coef::contact_modes(&crate::support::model(nu, 0.0, 0.0), &l).disc,
             0.0
         );
         check_case(&format!("Kl = I, ν = {nu}"), &case, start_of(&case));
@@ -319,7 +319,7 @@ fn case_defective_repeated_omega_sq() {
             "Kl = {:?}",
             l
         );
-        let m = coef::contact_modes(l.fa1, l.fb1, l.fb2, l.fa2, case.nu);
+        let m = coef::contact_modes(&case.model(), &l);
         assert!(m.disc.abs() <= 2e-7, "Δ = {}", m.disc);
         check_case(&format!("near-defective ε = {eps}"), &case, start_of(&case));
     }

@@ -9,7 +9,9 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 use rotor_rub::analytic::linear::Linearization;
 use rotor_rub::analytic::segment::Segment;
-use rotor_rub::coefficients::{self as coef, LinearizedContact, TaylorTerms};
+use rotor_rub::coefficients::{
+    self as coef, CubicForcing, LinearizedContact, ModelParams, Position, TaylorTerms,
+};
 use rotor_rub::{Params, State};
 
 /// Proptest configuration: `cases` cases, no regression files written into the source tree.
@@ -70,16 +72,21 @@ impl Case {
         Matrix2::new(self.k[0][0], self.k[0][1], self.k[1][0], self.k[1][1])
     }
 
+    /// The generated code's parameter struct for this case.
+    pub fn model(&self) -> ModelParams {
+        ModelParams::of(&self.params())
+    }
+
     pub fn taylor(&self) -> TaylorTerms {
-        coef::taylor_terms(self.x0, self.y0, self.offset.0, self.offset.1)
+        let at = Position {
+            x: self.x0,
+            y: self.y0,
+        };
+        coef::taylor_terms(&self.model(), &at)
     }
 
     pub fn linearized(&self) -> LinearizedContact {
-        let t = self.taylor();
-        let k = self.k;
-        coef::linearized_stiffness(
-            k[0][0], k[0][1], k[1][0], k[1][1], t.a1, t.b1, t.b2, t.a2, t.d1, t.d2,
-        )
+        coef::linearized_stiffness(&self.model(), &self.taylor())
     }
 
     /// The linearization point at distance `z0` from the stator centre, direction `angle`.
@@ -361,12 +368,10 @@ pub fn check_contact_segment(case: &Case, state: State, a: [f64; 8], horizon: f6
     // Magnitudes that cancel in the closed form: the particular solution (harmonic and constant)
     // and, when the runtime uses it (`Linearization::segment`: non-zero forcing and
     // ‖Kl‖_F·horizon² > 1), the polynomial particular solution.
-    let c = coef::contact_particular(k.fa1, k.fb1, k.fb2, k.fa2, k.fd1, k.fd2, nu, eta, f);
+    let c = coef::contact_particular(&model(nu, eta, f), &k);
     let mut big = c.c11.abs() + c.c22.abs() + c.c33.abs() + c.c44.abs() + c.c55.abs() + c.c66.abs();
     if a.iter().any(|&v| v != 0.0) && kl_matrix(&k).norm() * horizon * horizon > 1.0 {
-        let b = coef::polynomial_particular(
-            k.fa1, k.fb1, k.fb2, k.fa2, nu, a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7],
-        );
+        let b = coef::polynomial_particular(&model(nu, eta, f), &k, &cubic(&a));
         big += [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y]
             .iter()
             .map(|v| v.abs())
@@ -480,4 +485,29 @@ pub fn check_free_segment(case: &Case, state: State) -> SegmentCheck {
         out.expm = out.expm.max(norm4(&diff) / (1.0 + norm4(&exact)));
     }
     out
+}
+
+/// The generated code's parameter struct with ν, η, F (the formulas using only these).
+pub fn model(nu: f64, eta: f64, f: f64) -> ModelParams {
+    ModelParams {
+        nu,
+        eta,
+        f,
+        ..ModelParams::default()
+    }
+}
+
+/// A cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]` as the generated struct.
+pub fn cubic(a: &[f64; 8]) -> CubicForcing {
+    let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = *a;
+    CubicForcing {
+        a0x,
+        a0y,
+        a1x,
+        a1y,
+        a2x,
+        a2y,
+        a3x,
+        a3y,
+    }
 }

@@ -22,9 +22,9 @@ pub(super) fn derive(m: &mut Model) {
 fn contact_particular(m: &mut Model) {
     let mut rates = Rates::new();
     let ph = m.forcing_phasor(&mut rates);
-    let c = ["c11", "c22", "c33", "c44"].map(|n| m.var(n));
-    let (c55, c66) = (m.var("c55"), m.var("c66"));
+    let c = ["cp11", "cp22", "cp33", "cp44"].map(|n| m.var(n));
     let h = harmonic(m, ph, c);
+    let (c55, c66) = (m.var("cp55"), m.var("cp66"));
     let q = [m.graph.add(h[0], c55), m.graph.add(h[1], c66)];
     let (kl, fd) = m.linearized_inputs();
     let stiffness = m.linear_stiffness_term(kl, fd, q);
@@ -36,13 +36,12 @@ fn contact_particular(m: &mut Model) {
         eqs.extend(m.coefficients(ri, &ph));
         eqs.push(m.subst(ri, &[("ct", zero), ("st", zero)]));
     }
-    let s = m.solve(&eqs, &["c11", "c22", "c33", "c44", "c55", "c66"]);
+    let s = m.solve(&eqs, &["cp11", "cp22", "cp33", "cp44", "cp55", "cp66"]);
     m.add_formula(
         "contact_particular",
         "Particular solution of the linearized contact equations: xp = c11 cos θ + c22 sin θ + c55, yp = c33 cos θ + c44 sin θ + c66.",
         "model.md §5 (particular part), eqs. (8)–(9)",
         "harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd = F(cos θ, sin θ); the system splits into a 2×2 block (constants, Kl⁻¹) and a 4×4 block (harmonic), each solved by Cramer's rule.",
-        &["fa1", "fb1", "fb2", "fa2", "fd1", "fd2", "nu", "eta", "f"],
         "ContactParticular",
         vec![
             ("c11", "c11, cos θ coefficient of x", s[0]),
@@ -59,9 +58,9 @@ fn contact_particular(m: &mut Model) {
 fn contact_particular_eval(m: &mut Model) {
     let mut rates = Rates::new();
     let ph = m.forcing_phasor(&mut rates);
-    let c = ["c11", "c22", "c33", "c44"].map(|n| m.var(n));
-    let (c55, c66) = (m.var("c55"), m.var("c66"));
+    let c = ["cp11", "cp22", "cp33", "cp44"].map(|n| m.var(n));
     let h = harmonic(m, ph, c);
+    let (c55, c66) = (m.var("cp55"), m.var("cp66"));
     let g = &mut m.graph;
     let q = [g.add(h[0], c55), g.add(h[1], c66)];
     let v = [derivative(g, q[0], &rates), derivative(g, q[1], &rates)];
@@ -70,7 +69,6 @@ fn contact_particular_eval(m: &mut Model) {
         "Position and velocity of the contact particular solution at forcing phase (cos θ, sin θ).",
         "model.md §5, eqs. (8)–(9)",
         "the harmonic-plus-constant trajectory and its total derivative ((cos θ)' = −η sin θ, (sin θ)' = η cos θ).",
-        &["c11", "c22", "c33", "c44", "c55", "c66", "ct", "st", "eta"],
         "ParticularState",
         vec![("x", "x_p", q[0]), ("y", "y_p", q[1]), ("vx", "x_p'", v[0]), ("vy", "y_p'", v[1])],
     );
@@ -122,7 +120,6 @@ fn contact_modes(m: &mut Model) {
         "Eigenvalues of Kl: ω²₁,₂ = mean ∓ √Δ (complex when Δ < 0), det Kl = ω²₁ ω²₂, and the mean of γ² = ω² − ν².",
         "model.md §5 (modes), §6 cases 2, 7–9",
         "characteristic polynomial det(Kl − λI) = c2 λ² + c1 λ + c0 differentiated at λ = 0; mean = −c1/(2c2); Δ = −det(Kl − mean·I)/c2 (trace-free shift, no cancellation).",
-        &["fa1", "fb1", "fb2", "fa2", "nu"],
         "ContactModes",
         vec![
             ("omega_sq_mean", "(ω²₁ + ω²₂)/2 = (Fa1 + Fa2)/2", mean),
@@ -144,12 +141,11 @@ fn mode_shapes(m: &mut Model) {
     // The null vector of a row (a, b) is (b, −a).
     let n1 = [r1[1], g.neg(r1[0])];
     let n2 = [g.neg(r2[1]), r2[0]];
-    m.add_formula(
+    m.add_test_formula(
         "mode_shape",
         "Eigenvectors of Kl for eigenvalue ω², one from each row of (Kl − ω²I)v = 0; the runtime keeps the longer (`model.md` §6 case 1: Fb1 = 0).",
         "model.md §5 (s_i), §6 case 1",
         "null vector (b, −a) of each row (a, b) of Kl − ω²I.",
-        &["fa1", "fb1", "fb2", "fa2", "omega_sq"],
         "ModeShape",
         vec![
             ("row1_x", "x of (Fb1, ω² − Fa1)", n1[0]),
@@ -165,12 +161,11 @@ fn mode_shapes(m: &mut Model) {
         g.add(r1[0], t)
     };
     let sol = m.solve(&[e], &["s_ratio"])[0];
-    m.add_formula(
+    m.add_test_formula(
         "paper_mode_ratio",
         "The paper's mode ratio s = y/x = (ω² − Fa1)/Fb1 (valid only when Fb1 ≠ 0, erratum 7).",
         "model.md §5, erratum 7",
         "first row of (Kl − ω²I)(1, s) = 0 solved for s.",
-        &["fa1", "fb1", "omega_sq"],
         "PaperModeRatio",
         vec![("s", "s = (ω² − Fa1)/Fb1", sol)],
     );
@@ -216,12 +211,11 @@ fn paper_modal_constants(m: &mut Model) {
         [("xh0", "vxh0"), ("yh0", "vyh0")],
     );
     let sol = m.solve(&eqs, &["c1", "c2", "c3", "c4"]);
-    m.add_formula(
+    m.add_test_formula(
         "paper_modal_constants",
         "The paper's homogeneous constants c1 … c4 of eqs. (8)–(9), with γ2 in the s2 terms, from the homogeneous initial state (xh0, yh0, x'h0, y'h0) in local time.",
         "model.md §5 (homogeneous part), errata 5–7",
         "initial conditions of the modal ansatz e^{−ντ}[(1, s1)(c1 cos γ1τ + c2 sin γ1τ) + (1, s2)(c3 cos γ2τ + c4 sin γ2τ)] at τ = 0; positions then velocities, each a 2×2 Cramer solve.",
-        &["s1", "s2", "gamma1", "gamma2", "nu", "xh0", "yh0", "vxh0", "vyh0"],
         "PaperModalConstants",
         vec![
             ("c1", "c1, cos γ1 s coefficient", sol[0]),
@@ -238,7 +232,7 @@ fn paper_modal_constants(m: &mut Model) {
 fn matrix_function_trajectory(m: &mut Model) -> ([ExprId; 2], Rates) {
     let (kl, _) = m.linearized_inputs();
     let [sigma, nu, decay, cc, cd, sc, sd] =
-        ["sigma", "nu", "decay", "cc", "cd", "sc", "sd"].map(|n| m.var(n));
+        ["omega_sq_mean", "nu", "decay", "cc", "cd", "sc", "sd"].map(|n| m.var(n));
     let [q0x, q0y, w0x, w0y] = ["q0x", "q0y", "w0x", "w0y"].map(|n| m.var(n));
     let g = &mut m.graph;
     let b = [
@@ -316,7 +310,6 @@ fn homogeneous_start(m: &mut Model) {
         "Start vectors q0, w0 of the homogeneous contact solution q_h = e^{−νs}[C(s) q0 + S(s) w0] from its initial position and velocity.",
         "model.md §5 (alternative without eigenvectors)",
         "initial conditions of the matrix-function ansatz at s = 0 (C = I, S = 0, C' = 0, S' = I) solved for q0, w0.",
-        &["xh0", "yh0", "vxh0", "vyh0", "nu"],
         "HomogeneousStart",
         vec![
             ("q0x", "q0, x", sol[0]),
@@ -338,7 +331,6 @@ fn homogeneous_eval(m: &mut Model) {
         "Homogeneous contact solution q_h = e^{−νs}[C q0 + S w0] and its velocity, from C = cc·I + cd·B, S = sc·I + sd·B (B = Kl − σI) and decay = e^{−νs}.",
         "model.md §5 (alternative without eigenvectors), §6 cases 1–8",
         "the matrix-function form and its total derivative using C' = −(B + (σ − ν²)I) S, S' = C reduced with Cayley–Hamilton B² = tr(B) B − det(B) I.",
-        &["fa1", "fb1", "fb2", "fa2", "sigma", "nu", "q0x", "q0y", "w0x", "w0y", "decay", "cc", "cd", "sc", "sd"],
         "HomogeneousState",
         vec![("x", "x_h", q[0]), ("y", "y_h", q[1]), ("vx", "x_h'", v[0]), ("vy", "y_h'", v[1])],
     );

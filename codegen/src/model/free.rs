@@ -28,7 +28,6 @@ fn free_particular(m: &mut Model) {
         "Steady-state harmonic response of free flight: xp = c11 cos θ + c22 sin θ, yp = c33 cos θ + c44 sin θ.",
         "model.md §4, eqs. (5)–(6)",
         "harmonic ansatz substituted into the free equations of motion; the 4×4 system for the coefficients of cos θ and sin θ solved by Cramer's rule.",
-        &["nu", "eta", "f"],
         "FreeParticular",
         vec![
             ("c11", "c11, cos θ coefficient of x", c[0]),
@@ -82,12 +81,11 @@ fn damped_frequency(m: &mut Model) {
     let r = m.equations_of_motion([x, zero], &rates, [stiff, zero], [zero, zero]);
     let at0 = m.subst(r[0], &[("tau", zero)]);
     let b = m.solve(&[at0], &["bsq"])[0];
-    m.add_formula(
+    m.add_test_formula(
         "damped_frequency_sq",
         "Squared damped frequency γ² = ω² − ν² of a mode of undamped frequency² ω² (β² for free flight, ω² = 1); negative when over-damped.",
         "model.md §4 (β), §5 (γ_i), §6 cases 4–6, 11",
         "ansatz e^{−ντ} cos(√b τ) substituted into the homogeneous equation x'' + 2νx' + ω²x = 0, residual at τ = 0 solved for b.",
-        &["omega_sq", "nu"],
         "DampedFrequency",
         vec![("gamma_sq", "γ² = ω² − ν²", b)],
     );
@@ -98,7 +96,6 @@ fn damped_frequency(m: &mut Model) {
         "Squared damped frequency β² = 1 − ν² of free flight (negative for ν > 1, zero at critical damping).",
         "model.md §4",
         "`damped_frequency_sq` at ω² = 1.",
-        &["nu"],
         "FreeDampedFrequency",
         vec![("beta_sq", "β² = 1 − ν²", beta)],
     );
@@ -169,7 +166,6 @@ fn free_homogeneous(m: &mut Model) {
         "Constants X, P, Y, Q of the free homogeneous solution x_h = X·EC(s) + P·ES(s) from the state (x0, y0, vx0, vy0) and forcing phase (cos θ0, sin θ0) at the segment start (P = c2·β of the paper; no division by β).",
         "model.md §4 (robust form), §6 cases 11–12",
         "initial conditions of the trajectory X·EC + P·ES + xp at s = 0 (EC = 1, ES = 0) solved for X, P, Y, Q.",
-        &["x0", "y0", "vx0", "vy0", "c11", "c22", "c33", "c44", "ct", "st", "eta", "nu"],
         "FreeHomogeneous",
         vec![
             ("xh", "X = x0 − xp(τ0)", c[0]),
@@ -200,7 +196,6 @@ fn free_eval(m: &mut Model) {
         "State (x, y, x', y') and switching function h = z² − 1 with h' on a free segment, from the basis values EC(s), ES(s) and the forcing phasor (cos θ, sin θ).",
         "model.md §4, eq. (10)",
         "the trajectory X·EC + P·ES + xp and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, (cos θ)' = −η sin θ, (sin θ)' = η cos θ.",
-        &["xh", "px", "yh", "py", "c11", "c22", "c33", "c44", "ec", "es", "ct", "st", "nu", "beta_sq", "eta", "ex", "ey"],
         "FreeState",
         vec![
             ("x", "x", q[0]),

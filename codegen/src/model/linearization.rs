@@ -42,7 +42,7 @@ fn taylor_terms(m: &mut Model) {
         let s = g.add(t1, t2);
         g.sub(gy, s)
     };
-    let (x0, y0) = (m.var("x0"), m.var("y0"));
+    let (x0, y0) = (m.var("lx"), m.var("ly"));
     let at = |m: &mut Model, e| m.subst(e, &[("x", x0), ("y", y0)]);
     let outs = [a1, b1, b2, a2, d1, d2].map(|e| at(m, e));
     m.add_formula(
@@ -50,7 +50,6 @@ fn taylor_terms(m: &mut Model) {
         "Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].",
         "model.md §2",
         "partial derivatives of g = (1 − 1/z)(x − εx, y − εy) at (x0, y0); D = g(r0) − J r0.",
-        &["x0", "y0", "ex", "ey"],
         "TaylorTerms",
         vec![
             ("a1", "A1 = ∂gx/∂x", outs[0]),
@@ -95,7 +94,6 @@ fn linearized_stiffness(m: &mut Model) {
         "Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] = I + K_s J and constant Fd = K_s D (erratum 2: Fb2 is the y–x entry, Fa2 the diagonal).",
         "model.md §3, errata 2–3",
         "coefficients of x and y, and the constant, of q + K_s (J q + D) in the equations of motion.",
-        &["kxx", "kxy", "kyx", "kyy", "a1", "b1", "b2", "a2", "d1", "d2"],
         "LinearizedContact",
         vec![
             ("fa1", "Fa1 = Kl[0][0] (x equation, coefficient of x)", kl[0][0]),

@@ -14,6 +14,7 @@ mod contact;
 mod free;
 mod linearization;
 mod polynomial;
+pub mod symbols;
 
 use std::collections::HashMap;
 
@@ -49,12 +50,24 @@ pub(crate) type Rates = HashMap<Symbol, ExprId>;
 pub(crate) type Vec2 = [ExprId; 2];
 
 impl Model {
+    /// The context named in a build failure: the formula derived next.
+    fn context(&self) -> String {
+        match self.formulas.last() {
+            Some(f) => format!("after {}", f.name),
+            None => "first".to_owned(),
+        }
+    }
+
+    /// The declared symbol `name` (the build fails naming it when it is not declared).
     pub(crate) fn sym(&mut self, name: &str) -> Symbol {
+        symbols::Symbols::lookup(name, &self.context());
         self.graph.symbol(name)
     }
 
+    /// The input expression of the declared symbol `name`.
     pub(crate) fn var(&mut self, name: &str) -> ExprId {
-        self.graph.input(name)
+        let s = self.sym(name);
+        self.graph.input_of(s)
     }
 
     /// The forcing phasor's symbols (cos θ, sin θ) and their rates, θ = ητ + φ0:
@@ -192,19 +205,41 @@ impl Model {
         self.graph.substitute(e, &map)
     }
 
-    /// Record a formula.
-    #[allow(clippy::too_many_arguments)]
+    /// Record a formula used by the runtime. Its inputs are the declared structs of the symbols
+    /// its outputs use.
     pub(crate) fn add_formula(
         &mut self,
         name: &str,
         summary: &str,
         source: &str,
         derivation: &str,
-        inputs: &[&str],
         output_type: &str,
         outputs: Vec<(&str, &str, ExprId)>,
     ) {
-        let inputs = inputs.iter().map(|n| self.graph.symbol(n)).collect();
+        self.push_formula(name, [summary, source, derivation], output_type, outputs, false);
+    }
+
+    /// Record a formula only the verification tests use (emitted `#[doc(hidden)]`).
+    pub(crate) fn add_test_formula(
+        &mut self,
+        name: &str,
+        summary: &str,
+        source: &str,
+        derivation: &str,
+        output_type: &str,
+        outputs: Vec<(&str, &str, ExprId)>,
+    ) {
+        self.push_formula(name, [summary, source, derivation], output_type, outputs, true);
+    }
+
+    fn push_formula(
+        &mut self,
+        name: &str,
+        [summary, source, derivation]: [&str; 3],
+        output_type: &str,
+        outputs: Vec<(&str, &str, ExprId)>,
+        test_only: bool,
+    ) {
         let outputs = outputs
             .into_iter()
             .map(|(name, doc, expr)| Output {
@@ -218,7 +253,7 @@ impl Model {
             summary: summary.to_owned(),
             source: source.to_owned(),
             derivation: derivation.to_owned(),
-            inputs,
+            test_only,
             output_type: output_type.to_owned(),
             outputs,
         });

@@ -57,10 +57,6 @@ fn polynomial_particular(m: &mut Model) {
     }
     let unknowns: Vec<&str> = B.iter().flatten().copied().collect();
     let sol = m.solve(&eqs, &unknowns);
-    let inputs: Vec<&str> = ["fa1", "fb1", "fb2", "fa2", "nu"]
-        .into_iter()
-        .chain(A.iter().flatten().copied())
-        .collect();
     let docs = [
         "b0 (constant), x",
         "b0, y",
@@ -82,7 +78,6 @@ fn polynomial_particular(m: &mut Model) {
         "Cubic particular solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² + a3 s³.",
         "model.md §8 (φ-terms as polynomial particular solutions)",
         "cubic ansatz substituted into the linearized equations; coefficients of s³, s², s, 1 solved top-down as 2×2 blocks with Kl (Cramer).",
-        &inputs,
         "PolynomialParticular",
         outputs,
     );
@@ -97,13 +92,11 @@ fn polynomial_eval(m: &mut Model) {
         derivative(&mut m.graph, q[0], &rates),
         derivative(&mut m.graph, q[1], &rates),
     ];
-    let inputs: Vec<&str> = B.iter().flatten().copied().chain(["s"]).collect();
     m.add_formula(
         "polynomial_eval",
         "Position and velocity of the cubic particular solution at local time s.",
         "model.md §8",
         "the cubic and its derivative.",
-        &inputs,
         "PolynomialState",
         vec![
             ("x", "x", q[0]),

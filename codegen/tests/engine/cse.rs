@@ -98,17 +98,12 @@ fn cse_plan_invariants_and_op_counts() {
         // division is paid on top (see the ignored `bug_shared_reciprocal_costs_an_extra_division`;
         // about one random set in ten per 300 shows a total excess of 1–2, always within one
         // division per reciprocal binding).
-        let all: Vec<Symbol> = VARS.iter().map(|n| g.symbol(n)).collect();
-        let inputs: Vec<Symbol> = all
-            .into_iter()
-            .filter(|&s| outputs.iter().any(|&o| g.depends_on(o, s)))
-            .collect();
         let formula = Formula {
             name: "f".into(),
             summary: "test".into(),
             source: "test".into(),
             derivation: "test".into(),
-            inputs,
+            test_only: false,
             output_type: "Out".into(),
             outputs: outputs
                 .iter()
@@ -120,7 +115,7 @@ fn cse_plan_invariants_and_op_counts() {
                 })
                 .collect(),
         };
-        let emitted = emit_formula(&g, &formula);
+        let emitted = emit_formula(&g, &formula, TEST_GROUPS);
         assert_eq!(emitted.before, p.before);
         let (b, a) = (emitted.before, emitted.after);
         let total = |c: rotor_rub_codegen::optimize::OpCounts| {
@@ -165,13 +160,12 @@ fn bug_shared_reciprocal_costs_an_extra_division() {
     let ac = g.mul(a, c);
     let o1 = g.div(x, ab);
     let o2 = g.div(y, ac);
-    let inputs = ["a", "b", "c", "x", "y"].map(|n| g.symbol(n)).to_vec();
     let formula = Formula {
         name: "f".into(),
         summary: "test".into(),
         source: "test".into(),
         derivation: "test".into(),
-        inputs,
+        test_only: false,
         output_type: "Out".into(),
         outputs: vec![
             Output {
@@ -186,7 +180,7 @@ fn bug_shared_reciprocal_costs_an_extra_division() {
             },
         ],
     };
-    let e = emit_formula(&g, &formula);
+    let e = emit_formula(&g, &formula, TEST_GROUPS);
     assert!(
         e.after.div <= e.before.div,
         "after {}, before {}",

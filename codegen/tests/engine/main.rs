@@ -26,6 +26,7 @@ use rotor_rub_codegen::derive::{
 use rotor_rub_codegen::emit::{Formula, Output, emit_formula};
 use rotor_rub_codegen::expr::{Env, ExprId, Graph, Node, Symbol};
 use rotor_rub_codegen::format::format_file;
+use rotor_rub_codegen::model::symbols::Group;
 use rotor_rub_codegen::optimize::plan;
 
 /// Unit roundoff of f64.
@@ -176,6 +177,23 @@ enum Ast {
 }
 
 const VARS: [&str; 3] = ["x0", "x1", "x2"];
+
+/// The one input struct of the engine tests' formulas: every symbol they use.
+const TEST_GROUPS: &[Group] = &[Group {
+    ty: "In",
+    arg: "input",
+    doc: "test inputs",
+    fields: &[
+        ("x0", "x0", ""),
+        ("x1", "x1", ""),
+        ("x2", "x2", ""),
+        ("a", "a", ""),
+        ("b", "b", ""),
+        ("c", "c", ""),
+        ("x", "x", ""),
+        ("y", "y", ""),
+    ],
+}];
 
 impl Ast {
     /// A random expression of depth ≤ `depth`. `consts` is the pool of constants.

@@ -1,0 +1,305 @@
+//! Every symbol the model uses, declared once: its name, its meaning and the input struct of the
+//! generated functions it belongs to (`None` for symbols that only live inside a derivation: an
+//! unknown being solved for, a time variable that is substituted away).
+//!
+//! The generated code takes and returns these structs instead of positional `f64`s. A formula
+//! whose expression uses a symbol declared nowhere, or a symbol of no input struct, fails the
+//! build with a message naming the symbol and the formula (see [`Symbols::lookup`] and
+//! `emit::emit_formula`).
+
+/// An input struct of the generated functions: its type, the argument name functions give it,
+/// its doc line and its fields as (symbol, field, meaning).
+pub struct Group {
+    /// Struct name in the generated code.
+    pub ty: &'static str,
+    /// Argument name of the struct in generated signatures.
+    pub arg: &'static str,
+    /// Doc line of the struct.
+    pub doc: &'static str,
+    /// (symbol, field name, meaning), in struct order.
+    pub fields: &'static [(&'static str, &'static str, &'static str)],
+}
+
+/// The declared input structs, in the order generated functions take them.
+pub const GROUPS: &[Group] = &[
+    Group {
+        ty: "ModelParams",
+        arg: "model",
+        doc: "The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).",
+        fields: &[
+            ("nu", "nu", "ν, damping ratio"),
+            ("eta", "eta", "η = Ω/ω_n, speed ratio"),
+            ("f", "f", "F = η_m ρ̂ η², unbalance forcing amplitude"),
+            ("kxx", "kxx", "K̂xx, stator stiffness"),
+            ("kxy", "kxy", "K̂xy, stator stiffness"),
+            ("kyx", "kyx", "K̂yx, stator stiffness"),
+            ("kyy", "kyy", "K̂yy, stator stiffness"),
+            ("ex", "ex", "ε̂x, stator centre offset"),
+            ("ey", "ey", "ε̂y, stator centre offset"),
+        ],
+    },
+    Group {
+        ty: "Position",
+        arg: "at",
+        doc: "A rotor position (x, y): the point a formula is evaluated or linearized at.",
+        fields: &[("lx", "x", "x"), ("ly", "y", "y")],
+    },
+    Group {
+        ty: "Velocity",
+        arg: "rate",
+        doc: "A rotor velocity (x', y').",
+        fields: &[("vx", "vx", "x'"), ("vy", "vy", "y'")],
+    },
+    Group {
+        ty: "Force",
+        arg: "load",
+        doc: "An extra force (per unit mass) on the rotor.",
+        fields: &[("fx", "fx", "x component"), ("fy", "fy", "y component")],
+    },
+    Group {
+        ty: "StartState",
+        arg: "start",
+        doc: "The state at a segment start.",
+        fields: &[
+            ("x0", "x0", "x(τ0)"),
+            ("y0", "y0", "y(τ0)"),
+            ("vx0", "vx0", "x'(τ0)"),
+            ("vy0", "vy0", "y'(τ0)"),
+        ],
+    },
+    Group {
+        ty: "Phasor",
+        arg: "phasor",
+        doc: "The forcing direction (cos θ, sin θ), θ = ητ + φ0.",
+        fields: &[("ct", "ct", "cos θ"), ("st", "st", "sin θ")],
+    },
+    Group {
+        ty: "LocalTime",
+        arg: "time",
+        doc: "Local time s = τ − τ0 in a segment.",
+        fields: &[("s", "s", "s = τ − τ0")],
+    },
+    Group {
+        ty: "TaylorTerms",
+        arg: "taylor",
+        doc: "Taylor terms of the contact function g ≈ J r + D, J = [[A1, B1], [B2, A2]] (`docs/MODEL.md` §2).",
+        fields: &[
+            ("a1", "a1", "A1 = ∂gx/∂x"),
+            ("b1", "b1", "B1 = ∂gx/∂y"),
+            ("b2", "b2", "B2 = ∂gy/∂x"),
+            ("a2", "a2", "A2 = ∂gy/∂y"),
+            ("d1", "d1", "D1 = gx(r0) − A1 x0 − B1 y0"),
+            ("d2", "d2", "D2 = gy(r0) − B2 x0 − A2 y0"),
+        ],
+    },
+    Group {
+        ty: "LinearizedContact",
+        arg: "kl",
+        doc: "Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] and constant Fd (`docs/MODEL.md` §3).",
+        fields: &[
+            ("fa1", "fa1", "Fa1 = Kl[0][0] (x equation, coefficient of x)"),
+            ("fb1", "fb1", "Fb1 = Kl[0][1] (x equation, coefficient of y)"),
+            ("fb2", "fb2", "Fb2 = Kl[1][0] (y equation, coefficient of x)"),
+            ("fa2", "fa2", "Fa2 = Kl[1][1] (y equation, coefficient of y)"),
+            ("fd1", "fd1", "Fd1 = (K_s D)_x, the x equation's constant"),
+            ("fd2", "fd2", "Fd2 = (K_s D)_y, the y equation's constant"),
+        ],
+    },
+    Group {
+        ty: "ContactModes",
+        arg: "modes",
+        doc: "Eigenvalue data of Kl (`docs/MODEL.md` §5).",
+        fields: &[
+            ("omega_sq_mean", "omega_sq_mean", "(ω²₁ + ω²₂)/2 = (Fa1 + Fa2)/2"),
+            ("disc", "disc", "Δ = ((Fa1 − Fa2)/2)² + Fb1 Fb2"),
+            ("det", "det", "det Kl = Fa1 Fa2 − Fb1 Fb2"),
+            ("gamma_sq_mean", "gamma_sq_mean", "(γ²₁ + γ²₂)/2 = mean − ν²"),
+        ],
+    },
+    Group {
+        ty: "Eigenvalue",
+        arg: "mode",
+        doc: "One eigenvalue ω² of Kl (undamped squared frequency of a mode).",
+        fields: &[("omega_sq", "omega_sq", "ω²")],
+    },
+    Group {
+        ty: "PaperModes",
+        arg: "paper",
+        doc: "The paper's mode ratios and damped frequencies (`docs/MODEL.md` §5).",
+        fields: &[
+            ("s1", "s1", "s1 = y/x of mode 1"),
+            ("s2", "s2", "s2 = y/x of mode 2"),
+            ("gamma1", "gamma1", "γ1, damped frequency of mode 1"),
+            ("gamma2", "gamma2", "γ2, damped frequency of mode 2"),
+        ],
+    },
+    Group {
+        ty: "ContactParticular",
+        arg: "particular",
+        doc: "Particular solution of the linearized contact equations (`docs/MODEL.md` §5).",
+        fields: &[
+            ("cp11", "c11", "c11, cos θ coefficient of x"),
+            ("cp22", "c22", "c22, sin θ coefficient of x"),
+            ("cp33", "c33", "c33, cos θ coefficient of y"),
+            ("cp44", "c44", "c44, sin θ coefficient of y"),
+            ("cp55", "c55", "c55, constant of x: −(Kl⁻¹ Fd)_x"),
+            ("cp66", "c66", "c66, constant of y: −(Kl⁻¹ Fd)_y"),
+        ],
+    },
+    Group {
+        ty: "HomogeneousInitial",
+        arg: "initial",
+        doc: "Initial state of the homogeneous part of a contact segment (state minus particular).",
+        fields: &[
+            ("xh0", "xh0", "x_h(0)"),
+            ("yh0", "yh0", "y_h(0)"),
+            ("vxh0", "vxh0", "x_h'(0)"),
+            ("vyh0", "vyh0", "y_h'(0)"),
+        ],
+    },
+    Group {
+        ty: "HomogeneousStart",
+        arg: "homogeneous",
+        doc: "Start vectors q0, w0 of q_h = e^{−νs}[C(s) q0 + S(s) w0] (`docs/MODEL.md` §5).",
+        fields: &[
+            ("q0x", "q0x", "q0, x"),
+            ("q0y", "q0y", "q0, y"),
+            ("w0x", "w0x", "w0 = q_h'(0) + ν q0, x"),
+            ("w0y", "w0y", "w0, y"),
+        ],
+    },
+    Group {
+        ty: "ContactBasis",
+        arg: "basis",
+        doc: "Scalars of the matrix functions at s: C = cc·I + cd·B, S = sc·I + sd·B (B = Kl − σI), decay = e^{−νs}.",
+        fields: &[
+            ("decay", "decay", "e^{−νs}"),
+            ("cc", "cc", "even part of cos(√μ s) over the eigenvalue pair"),
+            ("cd", "cd", "odd part of cos(√μ s)"),
+            ("sc", "sc", "even part of sin(√μ s)/√μ"),
+            ("sd", "sd", "odd part of sin(√μ s)/√μ"),
+        ],
+    },
+    Group {
+        ty: "CubicForcing",
+        arg: "forcing",
+        doc: "An extra cubic forcing a0 + a1 s + a2 s² + a3 s³ (`docs/MODEL.md` §8).",
+        fields: &[
+            ("a0x", "a0x", "a0, x"),
+            ("a0y", "a0y", "a0, y"),
+            ("a1x", "a1x", "a1, x"),
+            ("a1y", "a1y", "a1, y"),
+            ("a2x", "a2x", "a2, x"),
+            ("a2y", "a2y", "a2, y"),
+            ("a3x", "a3x", "a3, x"),
+            ("a3y", "a3y", "a3, y"),
+        ],
+    },
+    Group {
+        ty: "PolynomialParticular",
+        arg: "poly",
+        doc: "Cubic particular solution b0 + b1 s + b2 s² + b3 s³ (`docs/MODEL.md` §8).",
+        fields: &[
+            ("b0x", "b0x", "b0 (constant), x"),
+            ("b0y", "b0y", "b0, y"),
+            ("b1x", "b1x", "b1 (linear), x"),
+            ("b1y", "b1y", "b1, y"),
+            ("b2x", "b2x", "b2 (quadratic), x"),
+            ("b2y", "b2y", "b2, y"),
+            ("b3x", "b3x", "b3 (cubic), x"),
+            ("b3y", "b3y", "b3, y"),
+        ],
+    },
+    Group {
+        ty: "FreeParticular",
+        arg: "free",
+        doc: "Steady-state harmonic response of free flight (`docs/MODEL.md` §4).",
+        fields: &[
+            ("c11", "c11", "c11, cos θ coefficient of x"),
+            ("c22", "c22", "c22, sin θ coefficient of x"),
+            ("c33", "c33", "c33, cos θ coefficient of y"),
+            ("c44", "c44", "c44, sin θ coefficient of y"),
+        ],
+    },
+    Group {
+        ty: "FreeDampedFrequency",
+        arg: "beta",
+        doc: "Squared damped frequency of free flight (`docs/MODEL.md` §4).",
+        fields: &[("beta_sq", "beta_sq", "β² = 1 − ν²")],
+    },
+    Group {
+        ty: "FreeHomogeneous",
+        arg: "homogeneous",
+        doc: "Constants of the free homogeneous solution x_h = X·EC + P·ES (`docs/MODEL.md` §4).",
+        fields: &[
+            ("xh", "xh", "X = x0 − xp(τ0)"),
+            ("px", "px", "P = x0' − xp'(τ0) + ν X"),
+            ("yh", "yh", "Y = y0 − yp(τ0)"),
+            ("py", "py", "Q = y0' − yp'(τ0) + ν Y"),
+        ],
+    },
+    Group {
+        ty: "FreeBasis",
+        arg: "basis",
+        doc: "The free-flight basis EC = e^{−νs} cos βs, ES = e^{−νs} sin(βs)/β at s.",
+        fields: &[("ec", "ec", "EC(s)"), ("es", "es", "ES(s)")],
+    },
+];
+
+/// Symbols that only live inside derivations (unknowns, variables substituted away).
+pub const INTERNAL: &[(&str, &str)] = &[
+    ("x", "x, the displacement variable of a derivation"),
+    ("y", "y, the displacement variable of a derivation"),
+    ("lam", "λ, the variable of the characteristic polynomial det(Kl − λI)"),
+    ("tau", "τ, time in a modal ansatz (substituted by 0 for initial conditions)"),
+    ("bsq", "b, the unknown squared frequency of the damped-frequency ansatz"),
+    ("s_ratio", "s, the unknown mode ratio y/x"),
+    ("c1", "c1, unknown of the paper's modal constants"),
+    ("c2", "c2, unknown of the paper's modal constants"),
+    ("c3", "c3, unknown of the paper's modal constants"),
+    ("c4", "c4, unknown of the paper's modal constants"),
+];
+
+/// A declared symbol: its group (if any) and its field name there.
+#[derive(Clone, Copy)]
+pub struct Declared {
+    /// The input struct, `None` for derivation-internal symbols.
+    pub group: Option<&'static Group>,
+    /// The struct field (and local variable) name.
+    pub field: &'static str,
+}
+
+/// The declaration table.
+pub struct Symbols;
+
+impl Symbols {
+    /// The declaration of `name`, if declared.
+    pub fn find(name: &str) -> Option<Declared> {
+        for g in GROUPS {
+            if let Some(&(_, field, _)) = g.fields.iter().find(|f| f.0 == name) {
+                return Some(Declared {
+                    group: Some(g),
+                    field,
+                });
+            }
+        }
+        INTERNAL.iter().find(|f| f.0 == name).map(|_| Declared {
+            group: None,
+            field: "",
+        })
+    }
+
+    /// The declaration of `name`; the build fails naming the symbol and `formula` otherwise.
+    pub fn lookup(name: &str, formula: &str) -> Declared {
+        Self::find(name).unwrap_or_else(|| {
+            panic!(
+                "formula `{formula}` uses the undeclared symbol `{name}`: declare it once in codegen/src/model/symbols.rs (GROUPS or INTERNAL)"
+            )
+        })
+    }
+
+    /// The group whose struct is named `ty`.
+    pub fn group(ty: &str) -> Option<&'static Group> {
+        GROUPS.iter().find(|g| g.ty == ty)
+    }
+}
