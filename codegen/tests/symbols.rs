@@ -63,7 +63,10 @@ fn declared_symbols_become_struct_arguments() {
     let e = emit_formula(&g, &f, GROUPS);
     let text = e.tokens.to_string();
     assert!(text.contains("model : & ModelParams"), "{text}");
-    assert!(!text.contains(": f64 ,") || text.contains("pub o : f64"), "{text}");
+    assert!(
+        !text.contains(": f64 ,") || text.contains("pub o : f64"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -78,7 +81,10 @@ fn no_generated_function_takes_a_positional_f64() {
         if line.starts_with("pub fn") && !line.ends_with('{') {
             in_sig = true;
         } else if in_sig {
-            assert!(!line.trim_end().ends_with(": f64,"), "positional f64: `{line}`");
+            assert!(
+                !line.trim_end().ends_with(": f64,"),
+                "positional f64: `{line}`"
+            );
             if line.contains(") ->") {
                 in_sig = false;
             }

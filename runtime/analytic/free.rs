@@ -120,7 +120,14 @@ impl Segment for FreeSegment {
         let beta = FreeDampedFrequency {
             beta_sq: self.beta_sq,
         };
-        let r = coef::free_eval(&model, &Phasor { ct, st }, p, &beta, h, &FreeBasis { ec, es });
+        let r = coef::free_eval(
+            &model,
+            &Phasor { ct, st },
+            p,
+            &beta,
+            h,
+            &FreeBasis { ec, es },
+        );
         Point {
             state: State::new(r.x, r.y, r.vx, r.vy),
             h: r.h,

@@ -7,7 +7,8 @@ use super::free::harmonic_amplitude;
 use super::segment::{Bounds, Point, Segment, point_of};
 use crate::coefficients::{
     self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
-    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular, Position,
+    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
+    Position,
 };
 use crate::math;
 use crate::params::{Params, State};

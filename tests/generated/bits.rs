@@ -52,7 +52,12 @@ fn bits() {
     };
     let mut text = String::new();
     let mut now = BTreeMap::new();
-    for method in [Method::Dop853, Method::Hybrid, Method::Analytic, Method::Rk45] {
+    for method in [
+        Method::Dop853,
+        Method::Hybrid,
+        Method::Analytic,
+        Method::Rk45,
+    ] {
         for (k, v) in record(method) {
             let _ = writeln!(text, "{k} {:016x}", v.to_bits());
             now.insert(k, v);

@@ -241,7 +241,11 @@ fn case_critical_nu_1_at_entry() {
             "ω²₁ = {}",
             w[0]
         );
-        let g = coef::damped_frequency_sq(&crate::support::model(1.0, 0.0, 0.0), &crate::modes::eigen(w[0].re)).gamma_sq;
+        let g = coef::damped_frequency_sq(
+            &crate::support::model(1.0, 0.0, 0.0),
+            &crate::modes::eigen(w[0].re),
+        )
+        .gamma_sq;
         assert!(g.abs() <= 1e-13, "γ²₁ = {g}");
         check_case(
             &format!("critical ν = 1, angle {angle}"),

@@ -216,7 +216,13 @@ impl Model {
         output_type: &str,
         outputs: Vec<(&str, &str, ExprId)>,
     ) {
-        self.push_formula(name, [summary, source, derivation], output_type, outputs, false);
+        self.push_formula(
+            name,
+            [summary, source, derivation],
+            output_type,
+            outputs,
+            false,
+        );
     }
 
     /// Record a formula only the verification tests use (emitted `#[doc(hidden)]`).
@@ -229,7 +235,13 @@ impl Model {
         output_type: &str,
         outputs: Vec<(&str, &str, ExprId)>,
     ) {
-        self.push_formula(name, [summary, source, derivation], output_type, outputs, true);
+        self.push_formula(
+            name,
+            [summary, source, derivation],
+            output_type,
+            outputs,
+            true,
+        );
     }
 
     fn push_formula(

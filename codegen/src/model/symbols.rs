@@ -97,10 +97,26 @@ pub const GROUPS: &[Group] = &[
         arg: "kl",
         doc: "Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] and constant Fd (`docs/MODEL.md` §3).",
         fields: &[
-            ("fa1", "fa1", "Fa1 = Kl[0][0] (x equation, coefficient of x)"),
-            ("fb1", "fb1", "Fb1 = Kl[0][1] (x equation, coefficient of y)"),
-            ("fb2", "fb2", "Fb2 = Kl[1][0] (y equation, coefficient of x)"),
-            ("fa2", "fa2", "Fa2 = Kl[1][1] (y equation, coefficient of y)"),
+            (
+                "fa1",
+                "fa1",
+                "Fa1 = Kl[0][0] (x equation, coefficient of x)",
+            ),
+            (
+                "fb1",
+                "fb1",
+                "Fb1 = Kl[0][1] (x equation, coefficient of y)",
+            ),
+            (
+                "fb2",
+                "fb2",
+                "Fb2 = Kl[1][0] (y equation, coefficient of x)",
+            ),
+            (
+                "fa2",
+                "fa2",
+                "Fa2 = Kl[1][1] (y equation, coefficient of y)",
+            ),
             ("fd1", "fd1", "Fd1 = (K_s D)_x, the x equation's constant"),
             ("fd2", "fd2", "Fd2 = (K_s D)_y, the y equation's constant"),
         ],
@@ -110,10 +126,18 @@ pub const GROUPS: &[Group] = &[
         arg: "modes",
         doc: "Eigenvalue data of Kl (`docs/MODEL.md` §5).",
         fields: &[
-            ("omega_sq_mean", "omega_sq_mean", "(ω²₁ + ω²₂)/2 = (Fa1 + Fa2)/2"),
+            (
+                "omega_sq_mean",
+                "omega_sq_mean",
+                "(ω²₁ + ω²₂)/2 = (Fa1 + Fa2)/2",
+            ),
             ("disc", "disc", "Δ = ((Fa1 − Fa2)/2)² + Fb1 Fb2"),
             ("det", "det", "det Kl = Fa1 Fa2 − Fb1 Fb2"),
-            ("gamma_sq_mean", "gamma_sq_mean", "(γ²₁ + γ²₂)/2 = mean − ν²"),
+            (
+                "gamma_sq_mean",
+                "gamma_sq_mean",
+                "(γ²₁ + γ²₂)/2 = mean − ν²",
+            ),
         ],
     },
     Group {
@@ -174,7 +198,11 @@ pub const GROUPS: &[Group] = &[
         doc: "Scalars of the matrix functions at s: C = cc·I + cd·B, S = sc·I + sd·B (B = Kl − σI), decay = e^{−νs}.",
         fields: &[
             ("decay", "decay", "e^{−νs}"),
-            ("cc", "cc", "even part of cos(√μ s) over the eigenvalue pair"),
+            (
+                "cc",
+                "cc",
+                "even part of cos(√μ s) over the eigenvalue pair",
+            ),
             ("cd", "cd", "odd part of cos(√μ s)"),
             ("sc", "sc", "even part of sin(√μ s)/√μ"),
             ("sd", "sd", "odd part of sin(√μ s)/√μ"),
@@ -250,9 +278,18 @@ pub const GROUPS: &[Group] = &[
 pub const INTERNAL: &[(&str, &str)] = &[
     ("x", "x, the displacement variable of a derivation"),
     ("y", "y, the displacement variable of a derivation"),
-    ("lam", "λ, the variable of the characteristic polynomial det(Kl − λI)"),
-    ("tau", "τ, time in a modal ansatz (substituted by 0 for initial conditions)"),
-    ("bsq", "b, the unknown squared frequency of the damped-frequency ansatz"),
+    (
+        "lam",
+        "λ, the variable of the characteristic polynomial det(Kl − λI)",
+    ),
+    (
+        "tau",
+        "τ, time in a modal ansatz (substituted by 0 for initial conditions)",
+    ),
+    (
+        "bsq",
+        "b, the unknown squared frequency of the damped-frequency ansatz",
+    ),
     ("s_ratio", "s, the unknown mode ratio y/x"),
     ("c1", "c1, unknown of the paper's modal constants"),
     ("c2", "c2, unknown of the paper's modal constants"),
