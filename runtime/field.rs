@@ -78,17 +78,20 @@ pub fn switching_function(params: &Params, s: &State) -> (f64, f64) {
 }
 
 /// The regime of a state (`model.md` §6 case 14): by the sign of h = z² − 1; on z = 1 (|h| within
-/// rounding, 4ε), by the sign of z' (radial velocity), then of z'' (both fields agree on z = 1,
-/// where g = 0, so the free acceleration is used); free when all three vanish.
+/// rounding, 4ε), by the sign of z' (radial velocity) unless it too is within its rounding (a
+/// tangential start: deciding by the rounding's sign would start a zero-length regime), then of
+/// z'' (both fields agree on z = 1, where g = 0, so the free acceleration is used); free when
+/// all three vanish.
 pub fn regime_of(params: &Params, tau: f64, state: &State) -> Regime {
     let (h, dh) = switching_function(params, state);
+    let (u, v) = (state.x - params.offset_x, state.y - params.offset_y);
+    let dh_rounding = 8.0 * f64::EPSILON * (math::abs(u * state.vx) + math::abs(v * state.vy));
     let sign = if math::abs(h) > 4.0 * f64::EPSILON {
         h
-    } else if dh != 0.0 {
+    } else if math::abs(dh) > dh_rounding {
         dh
     } else {
         let (ax, ay) = acceleration(params, Regime::Free, tau, state);
-        let (u, v) = (state.x - params.offset_x, state.y - params.offset_y);
         state.vx * state.vx + state.vy * state.vy + u * ax + v * ay
     };
     if sign > 0.0 {

@@ -3,6 +3,11 @@
 //! case with exact events, agreement with DOP853 on the paper's Fig. 2 cases, typed errors.
 
 use proptest::prelude::*;
+use rotor_rub::analytic::free::{FreeConstants, FreeSegment};
+use rotor_rub::analytic::segment::Segment;
+use rotor_rub::analytic::switch::{
+    Budget, Direction, EventFunction, Search, first_crossing_to, locate,
+};
 use rotor_rub::compare::compare_events;
 use rotor_rub::{
     ContactScheme, Event, EventKind, Method, Options, Preset, Problem, Propagate, PropagationError,
@@ -366,4 +371,138 @@ fn flutter_ends_in_diverged() {
             "{method:?}: {r:?}"
         );
     }
+}
+
+/// g(s) = A cos(ω(s − peak)) − level on local time, with the exact bound |g''| ≤ Aω² and a
+/// count of evaluations: an event function independent of the rotor, with known roots.
+struct Cosine {
+    amp: f64,
+    omega: f64,
+    peak: f64,
+    level: f64,
+    calls: std::cell::Cell<u32>,
+}
+
+impl Cosine {
+    fn new(amp: f64, omega: f64, peak: f64, level: f64) -> Self {
+        let calls = std::cell::Cell::new(0);
+        Cosine {
+            amp,
+            omega,
+            peak,
+            level,
+            calls,
+        }
+    }
+
+    /// The first root after `lo`: the rising side of the first peak past `lo`.
+    fn first_root(&self, lo: f64) -> f64 {
+        let period = std::f64::consts::TAU / self.omega;
+        let half = (self.level / self.amp).acos() / self.omega;
+        let mut p = self.peak;
+        while p - half > lo {
+            p -= period;
+        }
+        while p - half <= lo {
+            p += period;
+        }
+        p - half
+    }
+}
+
+impl EventFunction for Cosine {
+    type Point = (f64, f64);
+    fn point(&self, s: f64) -> (f64, f64) {
+        self.calls.set(self.calls.get() + 1);
+        let (sin, cos) = (self.omega * (s - self.peak)).sin_cos();
+        (self.amp * cos - self.level, -self.amp * self.omega * sin)
+    }
+    fn value(&self, p: &(f64, f64)) -> (f64, f64) {
+        *p
+    }
+    fn curvature(&self, _lo: f64, _at: &(f64, f64), _hi: f64) -> f64 {
+        self.amp * self.omega * self.omega
+    }
+}
+
+/// The one switch kernel with any event function: a crossing pair 3e-5 wide whose peak clears
+/// 0 by 1e-9 is found first and refined to the exact root, with the analytic method's budget;
+/// with the stepper's hard caps it is found the same, or the result is flagged uncertain —
+/// never a silent "no crossing".
+#[test]
+fn the_switch_kernel_finds_a_grazing_crossing_of_any_event_function() {
+    for (omega, peak, depth) in [(10.0, 0.7, 1e-9), (37.0, 0.05, 1e-7), (3.0, 0.9, 1e-3)] {
+        let f = Cosine::new(1.0, omega, peak, 1.0 - depth);
+        let exact = f.first_root(0.0);
+        let explore = locate(&f, 0.0, f.point(0.0), 1.0, None, 0.25, &Budget::EXPLORE);
+        match explore {
+            Search::Found { s, certain, .. } => {
+                assert!(certain);
+                assert!((s - exact).abs() <= 1e-11, "{s} vs exact {exact}");
+            }
+            other => panic!("ω {omega}: missed, {other:?}"),
+        }
+        let capped = locate(&f, 0.0, f.point(0.0), 1.0, None, 0.25, &Budget::CAPPED);
+        match capped {
+            Search::Found {
+                s, certain: true, ..
+            } => assert_eq!(s, explore.found().unwrap().0),
+            Search::Found { certain: false, .. } | Search::Unresolved => {}
+            Search::None => panic!("ω {omega}: the capped search claims no crossing"),
+        }
+    }
+    // A peak that stays below 0 by 1e-9: proved free.
+    let f = Cosine::new(1.0, 10.0, 0.7, 1.0 + 1e-9);
+    let r = locate(&f, 0.0, f.point(0.0), 1.0, None, 0.25, &Budget::EXPLORE);
+    assert_eq!(r, Search::None);
+}
+
+/// g within rounding of 0 on a whole interval (a trajectory sliding on z = 1) with a loose
+/// curvature bound: the bound can never prove the interval free, and the search stops at its
+/// budget, flagged, after at most `tests` + 1 evaluations (the work that once grew like 2^depth).
+#[test]
+fn the_switch_kernel_work_is_bounded_when_sliding() {
+    struct Sliding(std::cell::Cell<u32>);
+    impl EventFunction for Sliding {
+        type Point = (f64, f64);
+        fn point(&self, _s: f64) -> (f64, f64) {
+            self.0.set(self.0.get() + 1);
+            (-1e-17, 0.0)
+        }
+        fn value(&self, p: &(f64, f64)) -> (f64, f64) {
+            *p
+        }
+        fn curvature(&self, _lo: f64, _at: &(f64, f64), _hi: f64) -> f64 {
+            1.0
+        }
+    }
+    for budget in [Budget::EXPLORE, Budget::CAPPED] {
+        let f = Sliding(std::cell::Cell::new(0));
+        let r = locate(&f, 0.0, (-1e-17, 0.0), 1.0, None, 1.0, &budget);
+        assert_eq!(r, Search::Unresolved);
+        let calls = f.0.get();
+        assert!(calls <= budget.tests + 1, "{calls} evaluations");
+    }
+}
+
+/// The analytic method and the stepper search with the same kernel: on the same free segment
+/// and span, both return the same entry, bit for bit, and it is the propagator's entry.
+#[test]
+fn the_analytic_method_and_the_stepper_share_the_switch_kernel() {
+    let problem = Preset::Paper.problem();
+    let mut p = Propagator::new(&problem, &Options::default()).unwrap();
+    let entry = p.advance(50.0).unwrap().expect("an entry");
+    assert_eq!(entry.kind, EventKind::Enter);
+    let params = &problem.params;
+    let seg = FreeSegment::new(params, &FreeConstants::new(params), 0.0, problem.initial);
+    let (lo, hi) = (entry.time - 0.05, entry.time + 0.03);
+    let (a, b) = (seg.point(lo), seg.point(hi));
+    let analytic = first_crossing_to(&seg, lo, a, hi, b, Direction::Up).expect("found");
+    let stepper = rotor_rub::stepper::locate(&seg, (lo, a), (hi, b), Direction::Up, hi - lo);
+    let Search::Found { s, point, certain } = stepper else {
+        panic!("{stepper:?}")
+    };
+    assert!(certain);
+    assert_eq!((s, point), analytic);
+    assert!((s - entry.time).abs() <= 1e-12, "{s} vs {}", entry.time);
 }

@@ -1,27 +1,44 @@
-//! Switch location: the first time a closed-form segment crosses z = 1, found so that no crossing
-//! can be skipped, and refined to near machine precision.
+//! The switch search, one kernel for every closed-form method: the first time an event function
+//! g crosses 0 upward on a closed-form piece, found so that no crossing is skipped, and refined
+//! to rounding. The analytic propagator and the fixed-step stepper both call [`locate`]; they
+//! differ only in their [`Budget`]. The event function is a parameter ([`EventFunction`]): z = 1
+//! in either direction today ([`Boundary`]), further switches (friction's w = 0, |λ| = μN) later.
 //!
-//! # Why a root cannot be skipped
-//! On an interval [a, b] of length L the search knows g = ±h and g' at both ends (exactly, from
-//! the closed form) and a rigorous bound M ≥ |h''| on the interval (from the segment's amplitudes
-//! and frequencies, [`Segment::bounds`]). Then g(t) ≤ min(g(a) + g'(a)t + Mt²/2,
-//! g(b) − g'(b)(L − t) + M(L − t)²/2). Each parabola is convex and g(a) ≤ 0 (a is the start or
-//! a point already examined), so g < 0 on (a, b] follows from g(b) < 0 and a negative value of
-//! either parabola at the point where they meet (or of one of them at the far end). If so the
-//! interval holds no crossing and is discarded — a start on z = 1 that leaves at once included; otherwise it is halved and both halves examined, left
-//! first. Every discarded interval is *proven* crossing-free, so a contact of any duration,
-//! grazing ones included, is found; only intervals shorter than [`MIN_INTERVAL`] relative, where
-//! g stays ≤ 0 at every sampled point, are dropped as tangential touches (z reaches 1 but does not
-//! exceed it). Intervals where g' > 0 throughout (g'(a) > M·L) hold at most one crossing, which is
-//! refined by safeguarded Newton steps on the exact derivative.
+//! # Why no crossing is skipped (`docs/MODEL.md` §12)
+//! On an interval [a, b] of length L the search knows g and g' at both ends (exactly, from the
+//! closed form) and a rigorous bound M ≥ |g''| on [a, b] ([`EventFunction::curvature`]). Then
+//! g(t) ≤ min(Ua(t), Ub(t)) with the parabolas Ua(t) = g(a) + g'(a)t + Mt²/2 and
+//! Ub(t) = g(b) − g'(b)(L − t) + M(L − t)²/2. Both are convex and Ua − Ub is linear, so the
+//! maximum of their minimum over [a, b] is at an end or where they meet ([`no_crossing`]).
+//! If that maximum is ≤ [`TOUCH`] the interval is discarded: it is *proven* to hold no contact
+//! deeper than the rounding of g (h = z² − 1 is known to ~4ε near z = 1). Otherwise it is
+//! halved and both halves examined, left first, so the first crossing is the one found. An
+//! interval with g(b) > 0 whose slope stays positive (g'(a) > M·L) holds exactly one crossing,
+//! refined by safeguarded Newton. The left end of a search is the start of the current regime:
+//! its g is clamped to ≤ 0, so a start on z = 1 is never reported again (`docs/MODEL.md` §6
+//! case 15), and one that leaves at once is discarded by the first test.
 //!
-//! Work is bounded: ≤ [`MAX_SPLITS`] splits per chunk, recursion depth ≤ [`MAX_DEPTH`],
-//! refinement ≤ [`MAX_REFINE`] steps.
+//! Two shortcuts keep the common case cheap: a span whose end is known is first tested whole,
+//! and a chunk whose end is past a switch has that sign change refined first, then one bound
+//! test over the part before it proves it the first (the interval search runs only if that
+//! fails).
+//!
+//! # Work
+//! Intervals are dropped without proof only when shorter than [`Budget::min_interval`]
+//! (relative to 1 + |s|: a contact inside is shallower than M·L²/8), deeper than [`MAX_DEPTH`]
+//! or once [`Budget::tests`] bound tests are spent; the last two make the search report
+//! [`Search::Unresolved`] or an uncertain [`Search::Found`], never a silent miss. One call costs
+//! at most `tests` bound tests and as many point evaluations in the interval search, one point
+//! per chunk end, and `refine` Newton steps for each of at most two refined brackets (the chunk
+//! that returns refines its end's sign change first, then, if that is not proved the first, the
+//! bracket the interval search ends on). The sliding case that made a recursive search's work
+//! grow like 2^depth (g within rounding of 0 along a whole interval) is cut by the touch slack
+//! and, failing that, by the budget.
 
 use super::segment::{Point, Segment};
 use crate::math;
 
-/// Which way the crossing goes.
+/// Which way a z = 1 crossing goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Direction {
     /// h becomes positive: contact starts.
@@ -39,22 +56,223 @@ impl Direction {
     }
 }
 
-/// Intervals shorter than this (relative to 1 + |s|) are not split further.
-pub const MIN_INTERVAL: f64 = 1e-13;
-/// Most interval splits (one evaluation each) per searched chunk. Exhausted, an interval whose
-/// ends do not change sign is taken as a tangential touch, so a contact shallower than what the
-/// bounds resolved by then could be missed. Measured over `tests/analytic.rs` (2000 random
-/// degenerate-corner problems and the Fig. 2 agreement runs): never exhausted, at most 255
-/// splits in one chunk.
-pub const MAX_SPLITS: u32 = 512;
-/// Largest recursion depth of the interval search.
-pub const MAX_DEPTH: u32 = 60;
-/// Largest number of refinement steps.
-pub const MAX_REFINE: u32 = 80;
+/// An event function along a closed-form piece, in local time s: g ≤ 0 in the current regime,
+/// the switch is where g crosses 0 upward.
+pub trait EventFunction {
+    /// One evaluation of the piece (its state, with whatever g is computed from).
+    type Point: Copy;
+    /// The piece at local time `s`.
+    fn point(&self, s: f64) -> Self::Point;
+    /// g and g' = dg/ds at a point.
+    fn value(&self, point: &Self::Point) -> (f64, f64);
+    /// A rigorous upper bound M ≥ |g''| on [lo, hi], given the point at `lo`. May be loose,
+    /// must never be low: the proof rests on it.
+    fn curvature(&self, lo: f64, at_lo: &Self::Point, hi: f64) -> f64;
+}
 
-/// The first crossing in `direction` on (lo, hi], given the point at `lo` (treated as inside the
-/// current regime, so a start exactly on z = 1 is not reported again) and a largest search
-/// chunk. Returns the local time and point of the crossing.
+/// The switching function of contact, g = ±h with h = z² − 1, on a [`Segment`].
+#[derive(Clone, Copy, Debug)]
+pub struct Boundary<'a, S> {
+    segment: &'a S,
+    sign: f64,
+}
+
+impl<'a, S: Segment> Boundary<'a, S> {
+    /// Crossings of z = 1 in `direction` along `segment`.
+    pub fn new(segment: &'a S, direction: Direction) -> Self {
+        Boundary {
+            segment,
+            sign: direction.sign(),
+        }
+    }
+}
+
+impl<S: Segment> EventFunction for Boundary<'_, S> {
+    type Point = Point;
+
+    #[inline]
+    fn point(&self, s: f64) -> Point {
+        self.segment.point(s)
+    }
+
+    #[inline]
+    fn value(&self, point: &Point) -> (f64, f64) {
+        (self.sign * point.h, self.sign * point.dh)
+    }
+
+    #[inline]
+    fn curvature(&self, lo: f64, at_lo: &Point, hi: f64) -> f64 {
+        curvature(self.segment, lo, at_lo, hi)
+    }
+}
+
+/// A bound of |h''| on [x, y]: the segment's bounds, with the radius and speed tightened
+/// around the known point at x (|r(s) − ε| ≤ |r(x) − ε| + (s − x)·speed and
+/// |r'(s)| ≤ |r'(x)| + (s − x)·accel): the closed forms' bounds add the amplitudes of terms
+/// that largely cancel, the local ones do not.
+pub fn curvature<S: Segment>(seg: &S, x: f64, px: &Point, y: f64) -> f64 {
+    let b = seg.bounds(x, y);
+    let s = &px.state;
+    let r0 = math::sqrt((px.h + 1.0).max(0.0));
+    let v0 = math::sqrt(s.vx * s.vx + s.vy * s.vy);
+    local_curvature(r0, v0, b.radius, b.speed, b.accel, y - x)
+}
+
+/// 2(v² + r·a) with r = min(radius, r0 + len·speed) and v = min(speed, v0 + len·accel): the
+/// bound of |h''| = |2(|r'|² + (r − ε)·r'')| from bounds of |r − ε|, |r'|, |r''| on an interval
+/// of length `len` and the values r0 = |r − ε|, v0 = |r'| at its start.
+#[inline]
+pub fn local_curvature(r0: f64, v0: f64, radius: f64, speed: f64, accel: f64, len: f64) -> f64 {
+    let r = radius.min(r0 + len * speed);
+    let v = speed.min(v0 + len * accel);
+    2.0 * (v * v + r * accel)
+}
+
+/// g must exceed this to count as a crossing when an interval is discarded: h = z² − 1 is only
+/// known to ~4ε near z = 1, so a touch below 8ε (penetration z − 1 < 1e-15) is not a switch.
+pub const TOUCH: f64 = 8.0 * f64::EPSILON;
+/// Deepest interval split (the search's stack). Below [`Budget::min_interval`] = 1e-13 relative
+/// a chunk of length ≤ 1 is never split deeper than 44 levels.
+pub const MAX_DEPTH: usize = 48;
+/// |g| at which refinement stops (converged to rounding).
+const CONVERGED: f64 = 1e-15;
+
+/// The work one search may do. Exhausting it is reported, never silent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// Most bound tests (each followed by at most one evaluation) in one call.
+    pub tests: u32,
+    /// Intervals shorter than this times 1 + |s| are not split: they are dropped when g ≤ 0 at
+    /// both ends (a contact inside is shallower than M·L²/8) and refined when g changes sign.
+    pub min_interval: f64,
+    /// Most Newton/bisection steps refining one bracket.
+    pub refine: u32,
+}
+
+impl Budget {
+    /// The analytic propagator's: explore down to 1e-13 relative; the test cap (≈ 512 splits)
+    /// is never reached on the test suites and only bounds pathological input.
+    pub const EXPLORE: Budget = Budget {
+        tests: 1024,
+        min_interval: 1e-13,
+        refine: 80,
+    };
+    /// The fixed-step stepper's: hard caps for a bounded step time.
+    pub const CAPPED: Budget = Budget {
+        tests: 32,
+        min_interval: 4.0 * f64::EPSILON,
+        refine: 40,
+    };
+}
+
+/// What a search found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Search<P> {
+    /// No switch in the interval (proved, up to touches below [`TOUCH`]).
+    None,
+    /// The first switch, at local time `s`. `certain` is false when a cap was hit: the
+    /// refinement stopped at [`Budget::refine`] (the time is known to its last bracket, not to
+    /// rounding), or the budget ran out before the part of the interval left of the sign change
+    /// was proved free (an earlier, shallower contact may exist).
+    Found {
+        /// Local time of the switch.
+        s: f64,
+        /// The point there (g within 1e-15 of 0 when converged).
+        point: P,
+        /// Whether the switch is proved first and refined to rounding.
+        certain: bool,
+    },
+    /// The budget ran out with no sign change of g left to refine: a shallow crossing pair
+    /// inside the unresolved part may be missed.
+    Unresolved,
+}
+
+impl<P> Search<P> {
+    /// The switch as (s, point), however certain; `None` for no switch or an unresolved search.
+    pub fn found(self) -> Option<(f64, P)> {
+        match self {
+            Search::Found { s, point, .. } => Some((s, point)),
+            Search::None | Search::Unresolved => None,
+        }
+    }
+}
+
+/// A point with its time and (clamped) g, g'.
+#[derive(Clone, Copy)]
+struct Knot<P> {
+    s: f64,
+    g: f64,
+    dg: f64,
+    p: P,
+}
+
+impl<P: Copy> Knot<P> {
+    fn at<F: EventFunction<Point = P>>(f: &F, s: f64, p: P) -> Self {
+        let (g, dg) = f.value(&p);
+        Knot { s, g, dg, p }
+    }
+}
+
+/// The first crossing on (lo, hi], given the point at `lo` (inside the current regime whatever
+/// rounding says) and, if known, at `hi`; searched in chunks of at most `chunk` (the bounds are
+/// tight on chunks of a fraction of the fastest period). See the module docs.
+pub fn locate<F: EventFunction>(
+    f: &F,
+    lo: f64,
+    start: F::Point,
+    hi: f64,
+    end: Option<F::Point>,
+    chunk: f64,
+    budget: &Budget,
+) -> Search<F::Point> {
+    if lo >= hi || lo.is_nan() || hi.is_nan() {
+        return Search::None;
+    }
+    let mut a = Knot::at(f, lo, start);
+    a.g = a.g.min(0.0);
+    let mut work = Work {
+        tests: budget.tests,
+        capped: false,
+    };
+    if let Some(end) = end.filter(|_| hi - lo > chunk) {
+        // The whole span at once: one bound test, no evaluation.
+        let b = Knot::at(f, hi, end);
+        if b.g <= TOUCH && proves_free(f, &a, &b) {
+            return Search::None;
+        }
+    }
+    while a.s < hi {
+        // (A chunk below the spacing of floats at a.s, or NaN, takes the rest at once.)
+        let s = if hi - a.s > chunk && a.s + chunk > a.s {
+            a.s + chunk
+        } else {
+            hi
+        };
+        let p = match end {
+            Some(end) if s == hi => end,
+            _ => f.point(s),
+        };
+        let b = Knot::at(f, s, p);
+        match search_chunk(f, a, b, budget, &mut work) {
+            Search::None => {
+                a = Knot {
+                    g: b.g.min(0.0),
+                    ..b
+                }
+            }
+            found => return found,
+        }
+    }
+    if work.capped {
+        Search::Unresolved
+    } else {
+        Search::None
+    }
+}
+
+/// The analytic method's search for the first z = 1 crossing of `seg` in `direction` on
+/// (lo, hi], in chunks of at most `max_chunk`: [`locate`] with [`Budget::EXPLORE`]; an
+/// unresolved part is taken as a touch.
 pub fn first_crossing<S: Segment>(
     seg: &S,
     lo: f64,
@@ -63,23 +281,8 @@ pub fn first_crossing<S: Segment>(
     direction: Direction,
     max_chunk: f64,
 ) -> Option<(f64, Point)> {
-    let sign = direction.sign();
-    let mut a = lo;
-    // The start belongs to the current regime whatever rounding says.
-    let mut pa = Point {
-        h: if sign * start.h > 0.0 { 0.0 } else { start.h },
-        ..start
-    };
-    while a < hi {
-        let b = (a + max_chunk).min(hi);
-        let pb = seg.point(b);
-        if let Some(found) = search(seg, a, pa, b, pb, sign, 0, &mut MAX_SPLITS.clone()) {
-            return Some(found);
-        }
-        a = b;
-        pa = pb;
-    }
-    None
+    let f = Boundary::new(seg, direction);
+    locate(&f, lo, start, hi, None, max_chunk, &Budget::EXPLORE).found()
 }
 
 /// As [`first_crossing`] over the single chunk (lo, hi], with the point at `hi` already known
@@ -92,129 +295,168 @@ pub fn first_crossing_to<S: Segment>(
     end: Point,
     direction: Direction,
 ) -> Option<(f64, Point)> {
-    if lo >= hi || lo.is_nan() || hi.is_nan() {
-        return None;
-    }
-    let sign = direction.sign();
-    let pa = Point {
-        h: if sign * start.h > 0.0 { 0.0 } else { start.h },
-        ..start
-    };
-    search(seg, lo, pa, hi, end, sign, 0, &mut MAX_SPLITS.clone())
+    let f = Boundary::new(seg, direction);
+    locate(
+        &f,
+        lo,
+        start,
+        hi,
+        Some(end),
+        f64::INFINITY,
+        &Budget::EXPLORE,
+    )
+    .found()
 }
 
-#[allow(clippy::too_many_arguments)]
-fn search<S: Segment>(
-    seg: &S,
-    a: f64,
-    pa: Point,
-    b: f64,
-    pb: Point,
-    sign: f64,
-    depth: u32,
-    budget: &mut u32,
-) -> Option<(f64, Point)> {
-    let (ga, gb) = (sign * pa.h, sign * pb.h);
-    let (dga, dgb) = (sign * pa.dh, sign * pb.dh);
-    let len = b - a;
-    let m2 = seg.bounds(a, b).second_derivative();
-    let tiny = len <= MIN_INTERVAL * (1.0 + math::abs(b)) || depth >= MAX_DEPTH || *budget == 0;
-    if gb > 0.0 {
-        if dga > m2 * len || tiny {
-            return Some(refine(seg, a, ga, dga, b, pb, sign));
-        }
-    } else {
-        if upper_bound(ga, dga, gb, dgb, m2, len) < 0.0 || tiny {
-            return None;
-        }
-    }
-    let mid = a + 0.5 * len;
-    let pm = seg.point(mid);
-    *budget -= 1;
-    search(seg, a, pa, mid, pm, sign, depth + 1, budget)
-        .or_else(|| search(seg, mid, pm, b, pb, sign, depth + 1, budget))
+/// The budget left in one call, and whether anything was dropped unproved.
+struct Work {
+    tests: u32,
+    capped: bool,
 }
 
-/// A value that is negative only if g < 0 on the half-open (0, len], from end values, end
-/// slopes and |g''| ≤ m2, given ga ≤ 0 (the left end is never a crossing: it is the start,
-/// treated as inside, or a point already examined with g ≤ 0).
-///
-/// Ua(t) = ga + dga t + m2 t²/2 and Ub(t) = gb − dgb (len − t) + m2 (len − t)²/2 both bound g
-/// from above; each is convex, so with Ua(0) = ga ≤ 0, Ua(t) < 0 on (0, T] as soon as
-/// Ua(T) < 0, and Ub < 0 on (0, len] as soon as Ub(0) ≤ 0 and gb < 0. Three certificates:
-/// Ua(len) < 0; Ub(0) ≤ 0 and gb < 0; or, with t* where Ua = Ub (Ua − Ub is linear, Ua ≤ Ub
-/// before t*), Ua(t*) < 0 and gb < 0. The left end excluded, a start exactly on z = 1 that
-/// leaves at once (g(0) = 0, g'(0) < 0) is discarded at the first level instead of being halved
-/// down to [`MIN_INTERVAL`].
-fn upper_bound(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64) -> f64 {
-    let ua = |t: f64| ga + dga * t + 0.5 * m2 * t * t;
-    // Ua − Ub = c0 + c1 t.
+/// Whether the bound proves g ≤ [`TOUCH`] on [a, b] (one curvature bound, no evaluation).
+fn proves_free<F: EventFunction>(f: &F, a: &Knot<F::Point>, b: &Knot<F::Point>) -> bool {
+    let m2 = f.curvature(a.s, &a.p, b.s);
+    no_crossing(a.g, a.dg, b.g, b.dg, m2, b.s - a.s, TOUCH)
+}
+
+/// The first crossing in one chunk [a, b] (both ends known, g(a) ≤ 0).
+fn search_chunk<F: EventFunction>(
+    f: &F,
+    a: Knot<F::Point>,
+    b: Knot<F::Point>,
+    budget: &Budget,
+    work: &mut Work,
+) -> Search<F::Point> {
+    if b.g > TOUCH && a.g < -TOUCH {
+        // A sign change: refine it first, then one bound test proves that no earlier crossing
+        // precedes it (the common case: one transversal switch in the chunk). Not from a start
+        // within rounding of g = 0 (just after a switch): the secant would be drawn to the
+        // rounding noise there; the interval search proves the start's neighbourhood first.
+        let (x, converged) = refine(f, a, b, budget.refine);
+        if x.s > a.s && proves_free(f, &a, &x) {
+            return found(x, converged && !work.capped);
+        }
+    }
+    // Left-first depth-first search: the current interval is [x, top of the stack]; a
+    // discarded interval moves x to its right end.
+    let mut stack = [(b, 0usize); MAX_DEPTH + 1];
+    let mut top = 1usize;
+    let mut x = a;
+    while let Some(&(y, depth)) = top.checked_sub(1).and_then(|i| stack.get(i)) {
+        if y.g.is_nan() {
+            work.capped = true;
+            return Search::Unresolved;
+        }
+        let len = y.s - x.s;
+        let short = len <= budget.min_interval * (1.0 + math::abs(y.s));
+        let spent = work.tests == 0 || depth >= MAX_DEPTH;
+        let m2 = if short || spent {
+            f64::NAN
+        } else {
+            work.tests -= 1;
+            f.curvature(x.s, &x.p, y.s)
+        };
+        if y.g > TOUCH && (short || spent || x.dg > m2 * len) {
+            // g(x) ≤ 0 < g(y): one crossing (g increases throughout), or no more splitting.
+            let (r, converged) = refine(f, x, y, budget.refine);
+            return found(r, converged && !spent && !work.capped);
+        }
+        if y.g <= TOUCH && (short || spent || no_crossing(x.g, x.dg, y.g, y.dg, m2, len, TOUCH)) {
+            // Proved free, a touch, or (spent) dropped unproved.
+            work.capped |= spent && !short;
+            top -= 1;
+            // g ≤ TOUCH is within rounding of the boundary: inside, as the start.
+            x = Knot {
+                g: y.g.min(0.0),
+                ..y
+            };
+            continue;
+        }
+        let mid = x.s + 0.5 * len;
+        let Some(slot) = stack.get_mut(top) else {
+            work.capped = true;
+            return Search::Unresolved;
+        };
+        *slot = (Knot::at(f, mid, f.point(mid)), depth + 1);
+        top += 1;
+    }
+    Search::None
+}
+
+fn found<P>(k: Knot<P>, certain: bool) -> Search<P> {
+    Search::Found {
+        s: k.s,
+        point: k.p,
+        certain,
+    }
+}
+
+/// Whether g provably stays ≤ `slack` on [0, len], from its values and slopes at both ends and
+/// a bound `m2` ≥ |g''| on the interval: g ≤ min(Ua, Ub) (module docs), and with t* where
+/// Ua = Ub (Ua − Ub = c0 + c1 t, c1 ≥ 0 for a valid bound) the maximum of that minimum is
+/// max(ga, gb, Ua(t*)) when t* ∈ [0, len], else that of the lower parabola at the ends. False
+/// when the bound does not prove it (NaN included).
+#[inline]
+pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slack: f64) -> bool {
+    if !(ga <= slack && gb <= slack && m2 >= 0.0 && m2.is_finite()) {
+        return false;
+    }
     let c0 = ga - gb + dgb * len - 0.5 * m2 * len * len;
     let c1 = dga - dgb + m2 * len;
-    let by_a = ua(len);
-    let ub0 = ga - c0;
-    let by_b = if ub0 <= 0.0 { gb } else { ub0 };
-    let mut bound = by_a.min(by_b);
-    if c1 > 0.0 {
-        let t = -c0 / c1;
-        if t > 0.0 && t < len {
-            bound = bound.min(ua(t).max(gb));
-        }
-    }
-    // NaN (a non-finite segment): as before, the larger end value decides.
-    if bound.is_nan() { ga.max(gb) } else { bound }
+    let meet = if c1 > 0.0 {
+        let t = (-c0 / c1).clamp(0.0, len);
+        ga + dga * t + 0.5 * m2 * t * t
+    } else if c1 == 0.0 {
+        ga.max(gb)
+    } else {
+        return false;
+    };
+    meet <= slack
 }
 
-/// Safeguarded Newton on g over a bracket with g(a) ≤ 0 < g(b).
-fn refine<S: Segment>(
-    seg: &S,
-    mut a: f64,
-    mut ga: f64,
-    mut dga: f64,
-    mut b: f64,
-    mut pb: Point,
-    sign: f64,
-) -> (f64, Point) {
-    let mut best = (b, pb);
-    let mut gb = sign * pb.h;
-    for _ in 0..MAX_REFINE {
-        if b - a <= 4.0 * f64::EPSILON * (1.0 + math::abs(b)) {
-            break;
+/// Safeguarded Newton on g over a bracket g(a) ≤ 0 < g(b): Newton from the end with the smaller
+/// residual, else the secant, else bisection, and a bisection whenever two iterations in a row
+/// failed to halve the bracket. Returns the point with the smallest |g| seen in (a, b] and
+/// whether it converged to rounding within `iterations` steps.
+fn refine<F: EventFunction>(
+    f: &F,
+    lo: Knot<F::Point>,
+    hi: Knot<F::Point>,
+    iterations: u32,
+) -> (Knot<F::Point>, bool) {
+    let (mut a, mut b) = (lo, hi);
+    let mut best = b;
+    let mut slow = 0;
+    for _ in 0..iterations {
+        let width = b.s - a.s;
+        if width <= 4.0 * f64::EPSILON * (1.0 + math::abs(b.s)) || math::abs(best.g) <= CONVERGED {
+            return (best, true);
         }
-        // Newton from the end with the smaller residual, else the secant, else bisection.
-        let (gs, ds, s0) = if -ga < gb {
-            (ga, dga, a)
+        let (g0, d0, s0) = if -a.g < b.g {
+            (a.g, a.dg, a.s)
         } else {
-            (gb, sign * pb.dh, b)
+            (b.g, b.dg, b.s)
         };
-        let mut t = if ds != 0.0 { s0 - gs / ds } else { f64::NAN };
-        if !(t > a && t < b) {
-            t = if gb != ga {
-                a - ga * (b - a) / (gb - ga)
-            } else {
-                f64::NAN
-            };
+        let inside = |t: f64| t > a.s && t < b.s;
+        let mut t = if d0 != 0.0 { s0 - g0 / d0 } else { f64::NAN };
+        if !inside(t) {
+            t = a.s - a.g * width / (b.g - a.g);
         }
-        if !(t > a && t < b) {
-            t = a + 0.5 * (b - a);
+        if !inside(t) || slow >= 2 {
+            t = a.s + 0.5 * width;
         }
-        let pt = seg.point(t);
-        let gt = sign * pt.h;
-        if math::abs(pt.h) <= math::abs(best.1.h) {
-            best = (t, pt);
+        let k = Knot::at(f, t, f.point(t));
+        if math::abs(k.g) <= math::abs(best.g) {
+            best = k;
         }
-        if math::abs(pt.h) <= 1e-15 {
-            break;
-        }
-        if gt > 0.0 {
-            b = t;
-            gb = gt;
-            pb = pt;
+        if k.g > 0.0 {
+            b = k;
         } else {
-            a = t;
-            ga = gt;
-            dga = sign * pt.dh;
+            a = k;
         }
+        slow = if b.s - a.s > 0.5 * width { slow + 1 } else { 0 };
     }
-    best
+    let converged = math::abs(best.g) <= CONVERGED;
+    (best, converged)
 }

@@ -2,12 +2,12 @@
 //! exprb43/exprb2, switches located by the capped search of [`super::search`].
 
 use super::report::StepReport;
-use super::search::{Search, TOUCH, curvature, locate, no_crossing};
+use super::search::locate;
 use super::{Stepper, StepperError, check_bounded};
 use crate::analytic::free::FreeSegment;
 use crate::analytic::schemes::{SubStep, exprb2, exprb43};
 use crate::analytic::segment::{Point, Segment, point_of};
-use crate::analytic::switch::Direction;
+use crate::analytic::switch::{Direction, Search};
 use crate::field;
 use crate::method::ContactScheme;
 use crate::params::State;
@@ -95,15 +95,9 @@ impl Stepper {
         let seg = FreeSegment::new(p, &self.free, t, state);
         let start = point_of(state, p.offset_x, p.offset_y);
         let end = seg.point(rem);
-        if end.h < 0.0 {
-            let m2 = curvature(&seg, 0.0, &start, rem);
-            if no_crossing(start.h.min(0.0), start.dh, end.h, end.dh, m2, rem, TOUCH) {
-                return Err(end.state);
-            }
-        }
         // h holds frequencies up to 2·max(η, 1): chunks as in `FreeFlight`.
         let chunk = 0.5 / p.speed_ratio.max(1.0 + p.damping_ratio);
-        let found = locate(&seg, 0.0, start, rem, Direction::Up, chunk);
+        let found = locate(&seg, (0.0, start), (rem, end), Direction::Up, chunk);
         resolve(found, report).ok_or(end.state)
     }
 
@@ -136,21 +130,19 @@ impl Stepper {
         let (ex, ey) = (self.params.offset_x, self.params.offset_y);
         let start = point_of(state, ex, ey);
         let end = point_of(sub.end, ex, ey);
-        if end.h > 0.0 {
-            let m2 = curvature(&sub.segment, 0.0, &start, sub.h);
-            // g = −h: contact ends when g crosses 0 upwards.
-            let g0 = (-start.h).min(0.0);
-            if no_crossing(g0, -start.dh, -end.h, -end.dh, m2, sub.h, TOUCH) {
-                return None;
-            }
-        }
-        let found = locate(&sub.segment, 0.0, start, sub.h, Direction::Down, sub.h);
+        let found = locate(
+            &sub.segment,
+            (0.0, start),
+            (sub.h, end),
+            Direction::Down,
+            sub.h,
+        );
         resolve(found, report)
     }
 }
 
 /// The switch of a search, if any; a capped search is flagged in the report.
-fn resolve(found: Search, report: &mut StepReport) -> Option<(f64, Point)> {
+fn resolve(found: Search<Point>, report: &mut StepReport) -> Option<(f64, Point)> {
     match found {
         Search::None => None,
         Search::Unresolved => {

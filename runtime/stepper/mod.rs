@@ -15,13 +15,13 @@
 //!   the step is free. This is rigorous: no contact deeper than the rounding of h (z − 1 above
 //!   ~1e-15) is missed, grazing ones included. The residual risk is rounding in M itself
 //!   (relative 1e-15 of M·dt²/8, far below TOUCH for dt ≤ 1). Otherwise the step falls back to
-//!   the exact machinery: `FreeSegment` and the capped interval search of [`locate`]
-//!   (interval bounds, then safeguarded Newton).
+//!   the exact machinery: `FreeSegment` and the switch search of [`locate`] — the analytic
+//!   method's kernel (`analytic::switch`) with the stepper's hard caps.
 //! * **Contact**: `contact_substeps` sub-steps of exprb43 (or exprb2) per `dt`, each
 //!   re-linearized at its start; a contact exit is proved absent by the same two-parabola test
 //!   on the sub-step's closed form (`LinearSegment::bounds`, tightened by [`curvature`]), else
-//!   located on the sub-step's continuous extension with [`locate`] (not
-//!   `analytic::switch::first_crossing`, whose work is not bounded: see [`search`]). A step that enters contact mid-way fills the rest
+//!   located on the sub-step's continuous extension with [`locate`]. A step that enters
+//!   contact mid-way fills the rest
 //!   with equal sub-steps of at most dt / `contact_substeps`; one that leaves contact continues
 //!   in exact free flight.
 //!
@@ -29,9 +29,10 @@
 //! At most `max_substeps` contact sub-steps with exit search, one final sub-step without it,
 //! and `max_substeps + 2` free pieces. Each exprb43 sub-step costs one linearization and eight
 //! closed-form evaluations (four segments); each switch search at most
-//! [`MAX_SEARCH_EVALUATIONS`] = 32 evaluations of a point and a bound, plus at most
-//! [`MAX_REFINE_ITERATIONS`] = 40 Newton/bisection steps (a located switch typically costs
-//! 1–2 evaluations and 3–6 refinements). Measured on the paper preset: a contact step
+//! [`MAX_SEARCH_EVALUATIONS`] = 32 evaluations of a point and a bound, one point per search
+//! chunk (a free piece of length ≤ dt has ≤ 2·max(η, 1 + ν)·dt + 1 chunks) and at most
+//! [`MAX_REFINE_ITERATIONS`] = 40 Newton/bisection steps for each of at most two brackets
+//! (a located switch typically costs 1–2 evaluations and 3–6 refinements). Measured on the paper preset: a contact step
 //! 0.6–0.8 µs, a step holding a switch 1–3.5 µs (the slowest of 10⁶ steps re-timed,
 //! `cargo bench --bench stepper`). Caps are reported, never silent:
 //! * [`StepReport::capped`] (sub-step cap): the last contact sub-step covers the rest of the
@@ -52,9 +53,10 @@ mod report;
 pub mod search;
 mod transition;
 
+pub use crate::analytic::switch::Search;
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
 pub use search::{
-    MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, Search, TOUCH, curvature, locate, no_crossing,
+    MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, no_crossing,
 };
 pub use transition::FreeTransition;
 

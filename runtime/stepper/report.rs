@@ -47,7 +47,7 @@ impl EventList {
 
     /// The kept switches, in time order.
     pub fn as_slice(&self) -> &[Event] {
-        &self.events[..self.len]
+        self.events.get(..self.len).unwrap_or(&[])
     }
 
     /// Number of kept switches (at most [`EVENT_CAPACITY`]).

@@ -1,0 +1,242 @@
+//! Near the degenerate manifolds of `docs/MODEL.md` §6 — light damping (ν → 0), near resonance
+//! (η → 1), critical damping (ν = 1: every contact entry critical too), complex contact modes
+//! (Kxy·Kyx < 0) and starts on the boundary (z0 = 1) — the analytic method, the hybrid method
+//! and the fixed-step stepper agree with DOP853 at tol 1e-13: the same switches (count and
+//! kinds), switch times and states at the switches within [`SWITCH_TOL`], end states within
+//! [`STATE_TOL`].
+
+use proptest::prelude::*;
+use rotor_rub::compare::{compare_events, state_difference};
+use rotor_rub::{
+    Event, Method, Options, Params, Problem, Propagate, PropagationError, Propagator, State,
+    Stepper, StepperConfig, events,
+};
+
+/// Length of each run (a few forcing periods: long enough for several contacts, short enough
+/// that chaotic growth does not amplify the methods' local errors past the tolerances).
+const HORIZON: f64 = 10.0;
+/// Switch times and states at switches (the methods' tight settings reach ~1e-10; margin 100).
+const SWITCH_TOL: f64 = 1e-7;
+/// Largest component difference of the end states.
+const STATE_TOL: f64 = 1e-6;
+/// The stepper's step.
+const STEP: f64 = 1e-3;
+
+/// Which manifold a case sits near.
+#[derive(Clone, Copy, Debug)]
+enum Manifold {
+    /// ν ∈ [0, 1e-3], η away from resonance.
+    LightDamping,
+    /// η ∈ 1 ± 1e-3 with moderate damping.
+    NearResonance,
+    /// ν = 1 exactly.
+    Critical,
+    /// Kxy·Kyx < 0: complex contact modes wherever the circulatory part dominates.
+    ComplexModes,
+    /// The start exactly on z = 1, any radial velocity (zero included).
+    OnBoundary,
+}
+
+/// Moderate parameters (the strategies' domain with a stiffness that keeps flutter rare).
+fn base() -> impl Strategy<Value = Problem> {
+    (
+        (
+            0.3f64..4.0,
+            0.05f64..1.0,
+            0.002f64..0.01,
+            20.0f64..100.0,
+            0.0f64..std::f64::consts::TAU,
+        ),
+        (1.0f64..50.0, -5.0f64..5.0, 1.0f64..50.0),
+        (-0.3f64..0.3, -0.3f64..0.3),
+        rotor_rub::strategies::initial_state(),
+    )
+        .prop_map(
+            |((eta, nu, m, rho, phase), (kxx, kxy, kyy), (ex, ey), initial)| Problem {
+                params: Params {
+                    speed_ratio: eta,
+                    damping_ratio: nu,
+                    mass_ratio: m,
+                    eccentricity_ratio: rho,
+                    phase,
+                    k_xx: kxx,
+                    k_xy: kxy,
+                    k_yx: kxy,
+                    k_yy: kyy,
+                    offset_x: ex,
+                    offset_y: ey,
+                },
+                initial,
+                start_time: 0.0,
+            },
+        )
+}
+
+fn near_manifold() -> impl Strategy<Value = (Manifold, Problem)> {
+    (base(), 0usize..5, 0.0f64..1.0, 0.0f64..1.0, -1.0f64..1.0).prop_map(
+        |(mut p, which, u, v, w)| {
+            let q = &mut p.params;
+            let manifold = match which {
+                0 => {
+                    q.damping_ratio = 1e-3 * u;
+                    // η ∈ [0.3, 0.9] ∪ [1.1, 4]: resonance is the next manifold's.
+                    q.speed_ratio = if v < 0.3 {
+                        0.3 + 2.0 * v
+                    } else {
+                        1.1 + 2.9 * v
+                    };
+                    Manifold::LightDamping
+                }
+                1 => {
+                    q.speed_ratio = 1.0 + 1e-3 * w;
+                    q.damping_ratio = 0.05 + 0.5 * u;
+                    Manifold::NearResonance
+                }
+                2 => {
+                    q.damping_ratio = 1.0;
+                    Manifold::Critical
+                }
+                3 => {
+                    q.k_xy = 1.0 + 9.0 * u;
+                    q.k_yx = -(1.0 + 9.0 * v);
+                    Manifold::ComplexModes
+                }
+                _ => {
+                    let angle = core::f64::consts::TAU * u;
+                    let (s, c) = angle.sin_cos();
+                    // A third of the starts have no radial velocity at all (tangential).
+                    let radial = if v < 1.0 / 3.0 { 0.0 } else { w };
+                    p.initial = State::new(
+                        q.offset_x + c,
+                        q.offset_y + s,
+                        radial * c - 0.5 * s,
+                        radial * s + 0.5 * c,
+                    );
+                    Manifold::OnBoundary
+                }
+            };
+            (manifold, p)
+        },
+    )
+}
+
+/// The switches and end state of an event-driven method, or its typed error.
+fn run(problem: &Problem, options: &Options) -> Result<(Vec<Event>, State), PropagationError> {
+    let mut p = Propagator::new(problem, options)?;
+    let evs = events(&mut p, HORIZON).collect::<Result<Vec<_>, _>>()?;
+    Ok((evs, p.state()))
+}
+
+/// The stepper's switches and end state over the same horizon, or `None` on a typed error. No
+/// step may hit a cap, except the search cap after a tangential start on the boundary (g = g' = 0
+/// there, so the trajectory stays within ~g''s²/2 of z = 1 for a while: proving that stretch
+/// free needs more bound tests than the stepper's budget; the flag is raised, and the result
+/// must still agree).
+fn run_stepper(problem: &Problem, tangential: bool) -> Option<(Vec<Event>, State)> {
+    let mut s = Stepper::new(problem, StepperConfig::with_dt(STEP)).ok()?;
+    let mut evs = Vec::new();
+    let steps = (HORIZON / STEP).round() as usize;
+    for _ in 0..steps {
+        let r = s.step(STEP).ok()?;
+        let search_capped = r.search_capped && !tangential;
+        let flags = (r.capped, search_capped, r.events.overflowed());
+        assert_eq!(flags, (false, false, false), "stepper capped at {}", r.time);
+        evs.extend(r.events.iter().copied());
+    }
+    Some((evs, s.state()))
+}
+
+/// Drops a regime of zero length (left and re-entered within 1e-6) at the very start: DOP853's
+/// dense-output detection (the reference, and the hybrid method in contact), which has no touch
+/// threshold, reports one from a tangential start on z = 1, where the switching function is
+/// rounding noise (measured lengths 1e-13 to 4e-8; the state moves by less than 1e-7 meanwhile).
+fn without_start_artefact(mut evs: Vec<Event>) -> Vec<Event> {
+    if let [a, b, ..] = evs.as_slice()
+        && b.time < 1e-6
+        && a.kind != b.kind
+    {
+        evs.drain(..2);
+    }
+    evs
+}
+
+fn check(name: &str, (evs, end): &(Vec<Event>, State), reference: &(Vec<Event>, State)) {
+    let c = compare_events(evs, &reference.0, SWITCH_TOL);
+    assert!(c.agrees(), "{name}: {c:?}\n{evs:?}\nvs {:?}", reference.0);
+    let d = state_difference(end, &reference.1);
+    assert!(d <= STATE_TOL, "{name}: end states differ by {d:e}");
+}
+
+/// Every method against DOP853 at tol 1e-13 on one problem.
+fn agree_with_dop853(manifold: Manifold, problem: &Problem) {
+    let p = &problem.params;
+    let (u, v) = (
+        problem.initial.x - p.offset_x,
+        problem.initial.y - p.offset_y,
+    );
+    let tangential = matches!(manifold, Manifold::OnBoundary)
+        && (u * problem.initial.vx + v * problem.initial.vy).abs() < 1e-12;
+    let dop = Options {
+        tol: Some(1e-13),
+        ..Options::with_method(Method::Dop853)
+    };
+    let reference = match run(problem, &dop) {
+        Ok((evs, end)) if tangential => (without_start_artefact(evs), end),
+        Ok(r) => r,
+        // Flutter (diverging growth in contact) or a singular linearization: nothing to
+        // compare; the typed outcomes are tested elsewhere.
+        Err(PropagationError::Diverged { .. } | PropagationError::SingularContact { .. }) => {
+            return;
+        }
+        Err(e) => panic!("{manifold:?}: reference failed: {e}"),
+    };
+    let analytic = Options {
+        tol: Some(1e-11),
+        ..Options::default()
+    };
+    let hybrid = Options {
+        tol: Some(1e-12),
+        ..Options::with_method(Method::Hybrid)
+    };
+    for (name, options) in [("analytic", analytic), ("hybrid", hybrid)] {
+        let (evs, end) =
+            run(problem, &options).unwrap_or_else(|e| panic!("{manifold:?} {name}: {e}"));
+        let artefact = tangential && name == "hybrid";
+        let r = if artefact {
+            (without_start_artefact(evs), end)
+        } else {
+            (evs, end)
+        };
+        check(&format!("{manifold:?} {name}"), &r, &reference);
+    }
+    let stepped = run_stepper(problem, tangential).expect("stepper");
+    check(&format!("{manifold:?} stepper"), &stepped, &reference);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn methods_agree_with_dop853_near_degenerate_manifolds((manifold, problem) in near_manifold()) {
+        agree_with_dop853(manifold, &problem);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    /// Light damping *at* resonance: ν ∈ [0, 1e-3] and η ∈ 1 ± 1e-3 together, where the free
+    /// closed form's particular and homogeneous parts cancel (issue 13 item 1).
+    #[test]
+    #[ignore = "near-resonance free flight: re-enable when the resonance-stable form lands"]
+    fn methods_agree_with_dop853_at_resonance_with_light_damping(
+        problem in base(),
+        nu in 0.0f64..1e-3,
+        detuning in -1e-3f64..1e-3,
+    ) {
+        let mut problem = problem;
+        problem.params.damping_ratio = nu;
+        problem.params.speed_ratio = 1.0 + detuning;
+        agree_with_dop853(Manifold::LightDamping, &problem);
+    }
+}
