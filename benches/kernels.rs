@@ -28,8 +28,11 @@ use rotor_rub::{Event, EventKind, Regime, State, events};
 
 fn switches(case: Case) -> Vec<Event> {
     let problem = case.problem();
-    let mut p = rotor_rub::Propagator::new(&problem, &common::Setting::Hybrid(1e-12).options())
-        .expect("valid");
+    let mut p = rotor_rub::Propagator::new(
+        &problem,
+        &common::Setting::tol(rotor_rub::Method::Hybrid, 1e-12).options(),
+    )
+    .expect("valid");
     let end = 10.0 * problem.params.forcing_period();
     events(&mut p, end)
         .collect::<Result<_, _>>()

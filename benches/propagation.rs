@@ -16,11 +16,20 @@ mod common;
 use std::fmt::Write as _;
 use std::time::Duration;
 
-use common::{Accuracy, Case, METHODS, PERIODS, Run, Setting, peer};
+use common::{Accuracy, Case, PERIODS, Run, Setting, methods, peer};
 use criterion::{BenchmarkId, Criterion};
 
 /// The tolerance of the targets.
 const TARGET_TOL: f64 = 1e-10;
+
+/// Every method whose knob is a tolerance, at [`TARGET_TOL`].
+fn tolerance_settings() -> Vec<Setting> {
+    methods()
+        .iter()
+        .map(|name| Setting::with(name, TARGET_TOL))
+        .filter(|s| !s.fixed_step())
+        .collect()
+}
 
 fn bench_setting(c: &mut Criterion, group: &str, case: Case, setting: Setting, slow: bool) {
     let problem = case.problem();
@@ -86,7 +95,8 @@ fn main() {
         );
         // Equal accuracy: the loosest knob per method, asserted.
         let mut settings = Vec::new();
-        for name in METHODS {
+        for name in methods() {
+            let name = name.as_str();
             let (setting, acc) = common::loosest_accurate(name, case, &reference)
                 .unwrap_or_else(|| panic!("{name} reaches the common accuracy on no knob"));
             assert!(acc.meets(), "{name} does not meet the accuracy");
@@ -113,10 +123,9 @@ fn main() {
             note(case, "peer-dop853", format!("tol={tol:e}"), acc);
         }
         // At the targets' tolerance (accuracy reported, not required).
-        for name in ["analytic-exprb43", "hybrid", "dop853", "rk45"] {
-            let s = Setting::with(name, TARGET_TOL);
+        for s in tolerance_settings() {
             let acc = Accuracy::of(&common::run(&problem, &s.options(), PERIODS), &reference);
-            note(case, name, s.knob_label(), &acc);
+            note(case, &s.name(), s.knob_label(), &acc);
         }
         let peer_acc = Accuracy::of(&peer::run(&problem, TARGET_TOL, PERIODS), &reference);
         note(
@@ -128,7 +137,7 @@ fn main() {
 
         let group = format!("propagate_100_periods/{}/equal-accuracy", case.name());
         for s in &settings {
-            let slow = matches!(s, Setting::Exprb2 { .. }) && case == Case::Heavy;
+            let slow = s.fixed_step() && case == Case::Heavy;
             bench_setting(&mut c, &group, case, *s, slow);
         }
         bench_peer(&mut c, &group, case, dop853_tol);
@@ -142,8 +151,8 @@ fn main() {
         }
 
         let group = format!("propagate_100_periods/{}/tol=1e-10", case.name());
-        for name in ["analytic-exprb43", "hybrid", "dop853", "rk45"] {
-            bench_setting(&mut c, &group, case, Setting::with(name, TARGET_TOL), false);
+        for s in tolerance_settings() {
+            bench_setting(&mut c, &group, case, s, false);
         }
         bench_peer(&mut c, &group, case, TARGET_TOL);
     }

@@ -11,7 +11,7 @@ use std::time::Duration;
 use common::Setting;
 use criterion::{BenchmarkId, Throughput};
 use rayon::prelude::*;
-use rotor_rub::{Preset, Propagator, poincare};
+use rotor_rub::{Method, Preset, Propagator, poincare};
 
 const VALUES: usize = 64;
 const TRANSIENT: usize = 200;
@@ -57,7 +57,10 @@ fn main() {
     g.throughput(Throughput::Elements((VALUES * KEEP) as u64));
     // The analytic method (exprb43) is left out: its contact phase makes one sweep take seconds
     // (see the propagation benches for its cost per period).
-    for setting in [Setting::Hybrid(1e-10), Setting::Dop853(1e-10)] {
+    for setting in [
+        Setting::tol(Method::Hybrid, 1e-10),
+        Setting::tol(Method::Dop853, 1e-10),
+    ] {
         let points = sweep(setting);
         assert_eq!(points, VALUES * KEEP, "{} lost points", setting.name());
         g.bench_function(

@@ -1,4 +1,4 @@
-//! The hybrid method (`model.md` §8): exact closed-form free flight, adaptive DOP853 on the
+//! The hybrid method (`docs/MODEL.md` §8): exact closed-form free flight, adaptive DOP853 on the
 //! nonlinear contact field inside contact, exits located on DOP853's dense output and free flight
 //! restarted there. The forcing is carried through contact as a rotating phasor (two extra
 //! states, c' = −ηs, s' = ηc), so the contact right-hand side needs no trigonometry.
@@ -6,154 +6,76 @@
 //! Tolerance semantics: free flight is exact (rounding only); in contact `tol` is DOP853's
 //! relative and absolute tolerance per step, as for [`crate::Method::Dop853`].
 
-use crate::analytic::free::FreeConstants;
-use crate::analytic::free_flight::{FreeAdvance, FreeFlight};
-use crate::field;
+use crate::analytic::propagator::FreeFlightSolver;
+use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
+use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{
-    Event, EventKind, Propagate, PropagationError, Regime, check_target, within_bounds,
-};
+use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
 use crate::reference::{
-    BASE_STEP_BUDGET, Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, MIN_TOLERANCE,
-    PhasorRotorSystem, STEPS_PER_TIME_UNIT, SUBDIVISIONS, Tolerance, switch_in_deferred_step,
+    Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, PhasorRotorSystem, REFERENCE_BUDGET,
+    SUBDIVISIONS, Tolerance, switch_in_deferred_step,
 };
 
-#[allow(
-    clippy::large_enum_variant,
-    reason = "the runtime has no heap to box into"
-)]
-enum Piece {
-    Free(FreeFlight),
-    /// In contact; the current step (if any) is [`HybridPropagator::step`].
-    Contact {
-        stepped: bool,
-        exit: Option<(f64, [f64; 6])>,
-    },
-}
-
-/// The hybrid method (see [`crate::Method::Hybrid`]).
+/// DOP853 on the 6-state contact field (rotor plus forcing phasor).
 ///
-/// Work in contact, per accepted DOP853 step: the 12 stages of the step and f at its end (the
-/// next step's first stage). The dense output (three more evaluations) is built only for a step
-/// that holds an exit, a minimum of z, or a requested time: the exit test examines the switching
-/// function on sub-intervals no longer than those of the reference propagators
-/// (h_max / [`SUBDIVISIONS`]), which for contact steps (much shorter than h_max) is the step
+/// Work per accepted step: the 12 stages of the step and f at its end (the next step's first
+/// stage). The dense output (three more evaluations) is built only for a step that holds an exit,
+/// a minimum of z, or a requested time: the exit test examines the switching function on
+/// sub-intervals no longer than those of the reference propagators (max step /
+/// [`SUBDIVISIONS`]), which for contact steps (much shorter than the max step) is the step
 /// itself, given by its exact end states. Each contact after the first starts with the step size
 /// the previous contact ended with, instead of a fresh initial guess.
-pub struct HybridPropagator {
+pub struct Dop853Contact {
     params: Params,
-    free: FreeConstants,
-    contact: PhasorRotorSystem,
+    system: PhasorRotorSystem,
     integrator: Integrator<Dop853, 6>,
-    h_max: f64,
+    max_step: f64,
     /// The step size proposed at the end of the last contact.
     carried_step: Option<f64>,
+    /// Whether the current contact has taken a step (`step` holds it).
+    stepped: bool,
     step: Dop853Step<6>,
     dense: Option<Dop853Dense<6>>,
-    time: f64,
-    state: State,
-    piece: Piece,
+    exit: Option<(f64, [f64; 6])>,
 }
 
-impl HybridPropagator {
-    /// Validate `problem` and `tol` (finite, ≥ 1e-14) and start at the problem's start time.
-    pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
-        problem.validate()?;
-        if !(tol.is_finite() && (MIN_TOLERANCE..=1.0).contains(&tol)) {
-            return Err(PropagationError::InvalidOption {
-                what: "tol",
-                value: tol,
-            });
-        }
-        let params = problem.params;
-        let contact = PhasorRotorSystem {
-            params,
+impl Dop853Contact {
+    fn new(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
+        let system = PhasorRotorSystem {
+            params: *params,
             regime: Regime::Contact,
         };
-        let (t0, s0) = (problem.start_time, problem.initial);
         // A quarter of the shorter of the forcing period and 2π, as the reference integrators.
-        let h_max = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
+        let max_step = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
         let integrator = Integrator::new(
-            &contact,
+            &system,
             t0,
-            PhasorRotorSystem::initial(&params, t0, &s0),
+            PhasorRotorSystem::initial(params, t0, &s0),
             Tolerance::uniform(tol),
-            h_max,
+            max_step,
         );
-        let free = FreeConstants::new(&params);
-        let piece = match field::regime_of(&params, t0, &s0) {
-            Regime::Free => Piece::Free(FreeFlight::new(&params, &free, t0, s0)),
-            Regime::Contact => Piece::Contact {
-                stepped: false,
-                exit: None,
-            },
-        };
-        Ok(HybridPropagator {
-            params,
-            free,
-            contact,
+        Dop853Contact {
+            params: *params,
+            system,
             integrator,
-            h_max,
+            max_step,
             carried_step: None,
+            stepped: false,
             step: Dop853Step::default(),
             dense: None,
-            time: t0,
-            state: s0,
-            piece,
-        })
-    }
-
-    fn enter_contact(&mut self, time: f64, state: State) {
-        let y = PhasorRotorSystem::initial(&self.params, time, &state);
-        match self.carried_step {
-            Some(h) => self.integrator.restart_with_step(&self.contact, time, y, h),
-            None => self.integrator.restart(&self.contact, time, y),
-        }
-        self.piece = Piece::Contact {
-            stepped: false,
             exit: None,
-        };
-    }
-
-    /// One DOP853 step in contact into `self.step`, with the exit inside it if any.
-    fn contact_step(&mut self) -> Result<Option<(f64, [f64; 6])>, PropagationError> {
-        self.dense = None;
-        self.integrator
-            .step_deferred(&self.contact, f64::INFINITY, &mut self.step)?;
-        let end = PhasorRotorSystem::rotor_state(&self.step.y1);
-        if !within_bounds(&end) {
-            return Err(PropagationError::Diverged {
-                time: self.step.t1,
-                state: end,
-            });
         }
-        // Sub-intervals no longer than the reference propagators' shortest (h_max / 8).
-        let ratio = (self.step.t1 - self.step.t0) / self.h_max * SUBDIVISIONS as f64;
-        let subdivisions = if ratio <= 1.0 {
-            1
-        } else {
-            (libm::ceil(ratio) as usize).min(SUBDIVISIONS)
-        };
-        Ok(switch_in_deferred_step(
-            &mut self.integrator,
-            &self.contact,
-            &self.step,
-            &self.params,
-            Regime::Contact,
-            subdivisions,
-            &mut self.dense,
-        ))
     }
 
-    /// The state at `t` inside the current contact step (from its dense output).
-    fn contact_state(&mut self, t: f64) -> State {
+    /// The state at `t` inside the current step (from its dense output).
+    fn state_at(&mut self, t: f64) -> State {
         let y = if t == self.step.t1 {
             self.step.y1
         } else {
             let dense = match self.dense {
                 Some(d) => d,
                 None => {
-                    let d = self.step.dense(&self.contact);
+                    let d = self.step.dense(&self.system);
                     self.dense = Some(d);
                     d
                 }
@@ -164,79 +86,121 @@ impl HybridPropagator {
     }
 }
 
+impl SegmentSolver for Dop853Contact {
+    fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+        let y = PhasorRotorSystem::initial(&self.params, time, &state);
+        match self.carried_step {
+            Some(h) => self.integrator.restart_with_step(&self.system, time, y, h),
+            None => self.integrator.restart(&self.system, time, y),
+        }
+        self.stepped = false;
+        self.exit = None;
+        Ok(())
+    }
+
+    fn locate(&mut self, target: f64) -> Located {
+        if let Some((t, y)) = self.exit.filter(|(t, _)| *t <= target) {
+            self.carried_step = Some(self.integrator.proposed_step());
+            return Located::Switch(Event {
+                time: t,
+                kind: EventKind::Exit,
+                state: PhasorRotorSystem::rotor_state(&y),
+            });
+        }
+        if self.stepped && target <= self.step.t1 {
+            Located::Reached(self.state_at(target))
+        } else {
+            Located::NeedStep
+        }
+    }
+
+    fn step(&mut self) -> Result<(), PropagationError> {
+        self.dense = None;
+        self.integrator
+            .step_deferred(&self.system, f64::INFINITY, &mut self.step)?;
+        let end = PhasorRotorSystem::rotor_state(&self.step.y1);
+        if !within_bounds(&end) {
+            return Err(PropagationError::Diverged {
+                time: self.step.t1,
+                state: end,
+            });
+        }
+        // Sub-intervals no longer than the reference propagators' shortest (max step / 8).
+        let ratio = (self.step.t1 - self.step.t0) / self.max_step * SUBDIVISIONS as f64;
+        let subdivisions = if ratio <= 1.0 {
+            1
+        } else {
+            (libm::ceil(ratio) as usize).min(SUBDIVISIONS)
+        };
+        self.exit = switch_in_deferred_step(
+            &mut self.integrator,
+            &self.system,
+            &self.step,
+            &self.params,
+            Regime::Contact,
+            subdivisions,
+            &mut self.dense,
+        );
+        self.stepped = true;
+        Ok(())
+    }
+
+    fn computed_to(&self) -> f64 {
+        self.integrator.time()
+    }
+}
+
+/// The hybrid method (see [`crate::Method::Hybrid`]).
+pub struct HybridPropagator(Piecewise<ByRegime<FreeFlightSolver, Dop853Contact>>);
+
+impl HybridPropagator {
+    /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
+    /// start time.
+    pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
+        problem.validate()?;
+        Method::Hybrid.check_tolerance(tol)?;
+        let params = problem.params;
+        let t0 = problem.start_time;
+        Piecewise::new(problem, Some(REFERENCE_BUDGET), |_, s0| {
+            // The integrator starts at the problem start, ready for a start in contact.
+            Ok(ByRegime {
+                free: FreeFlightSolver::new(&params, t0, s0),
+                contact: Dop853Contact::new(&params, tol, t0, s0),
+            })
+        })
+        .map(HybridPropagator)
+    }
+}
+
+impl Registered for HybridPropagator {
+    const INFO: MethodInfo = MethodInfo {
+        name: "hybrid",
+        description: "closed-form free flight, DOP853 in contact",
+        default_tolerance: crate::reference::DEFAULT_TOLERANCE,
+        tolerance_range: ValidRange {
+            min: 1e-14,
+            max: 1e-3,
+        },
+        numerical_reference: false,
+        contact_scheme: false,
+    };
+
+    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        HybridPropagator::new(problem, options.tolerance())
+    }
+}
+
 impl Propagate for HybridPropagator {
     fn time(&self) -> f64 {
-        self.time
+        self.0.time()
     }
-
     fn state(&self) -> State {
-        self.state
+        self.0.state()
     }
-
     fn regime(&self) -> Regime {
-        match self.piece {
-            Piece::Free(_) => Regime::Free,
-            Piece::Contact { .. } => Regime::Contact,
-        }
+        self.0.regime()
     }
-
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        if !check_target(target, self.time)? {
-            return Ok(None);
-        }
-        let budget = BASE_STEP_BUDGET + STEPS_PER_TIME_UNIT * (target - self.time);
-        let mut steps = 0.0;
-        loop {
-            match &mut self.piece {
-                Piece::Free(flight) => match flight.advance(target) {
-                    FreeAdvance::Reached(state) => {
-                        self.time = target;
-                        self.state = state;
-                        return Ok(None);
-                    }
-                    FreeAdvance::Contact { time, state } => {
-                        self.enter_contact(time, state);
-                        self.time = time;
-                        self.state = state;
-                        return Ok(Some(Event {
-                            time,
-                            kind: EventKind::Enter,
-                            state,
-                        }));
-                    }
-                },
-                Piece::Contact { stepped, exit } => {
-                    if let Some((t, y)) = exit.filter(|(t, _)| *t <= target) {
-                        let state = PhasorRotorSystem::rotor_state(&y);
-                        self.carried_step = Some(self.integrator.proposed_step());
-                        self.piece =
-                            Piece::Free(FreeFlight::new(&self.params, &self.free, t, state));
-                        self.time = t;
-                        self.state = state;
-                        return Ok(Some(Event {
-                            time: t,
-                            kind: EventKind::Exit,
-                            state,
-                        }));
-                    }
-                    if *stepped && target <= self.step.t1 {
-                        self.state = self.contact_state(target);
-                        self.time = target;
-                        return Ok(None);
-                    }
-                    if steps >= budget {
-                        return Err(PropagationError::StepSizeUnderflow {
-                            time: self.integrator.time(),
-                        });
-                    }
-                    steps += 1.0;
-                    let new_exit = self.contact_step()?;
-                    self.piece = Piece::Contact {
-                        stepped: true,
-                        exit: new_exit,
-                    };
-                }
-            }
-        }
+        self.0.advance(target)
     }
 }

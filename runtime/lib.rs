@@ -9,6 +9,7 @@
 pub mod analytic;
 pub mod coefficients;
 pub mod compare;
+pub mod driver;
 pub mod field;
 pub mod hybrid;
 pub mod math;

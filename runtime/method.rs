@@ -1,49 +1,195 @@
-//! Method selection: one entry point that builds any propagation method behind the same
-//! [`Propagate`] interface, so every analysis and the CLI can switch methods by a value.
+//! The method registry (`docs/MODEL.md` §13): every propagation method, its name, description,
+//! default tolerance and valid tolerance range, listed once in [`registry!`]'s invocation below.
+//! [`Method`], [`Method::ALL`], [`Propagator`] and the option validation follow from that list,
+//! and so do the CLI's `--method` values and help and the benches' method lists.
+//!
+//! Adding a method: write its module (a type implementing [`Propagate`], usually a
+//! [`crate::driver::Piecewise`] over its segment solvers, plus [`Registered`]), then add one line
+//! to the list.
+
+use core::fmt;
 
 use crate::params::{Problem, State};
 use crate::propagate::{Event, Propagate, PropagationError, Regime};
 
-/// Which propagation method to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Method {
+/// A closed range `[min, max]` of valid values of a method option.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValidRange {
+    /// Smallest valid value.
+    pub min: f64,
+    /// Largest valid value.
+    pub max: f64,
+}
+
+impl ValidRange {
+    /// Whether `x` lies in the range (never for NaN).
+    pub fn contains(&self, x: f64) -> bool {
+        x >= self.min && x <= self.max
+    }
+}
+
+impl fmt::Display for ValidRange {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{:e}, {:e}]", self.min, self.max)
+    }
+}
+
+/// The fixed contact sub-step of exprb2 and of fixed-step exprb43 (`--step`), in units of τ.
+/// Below 1e-6 a run takes hours for what 1e-6 gives to 1e-9 in switch times; above 0.1 the
+/// sub-step exceeds the contact period of stiff stators and exprb2's switch times err by
+/// O(1) (measured on the paper preset at η = 1.2 and 2.5 against DOP853 at tol 1e-13).
+pub const STEP_RANGE: ValidRange = ValidRange {
+    min: 1e-6,
+    max: 0.1,
+};
+
+/// What the registry knows about a method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MethodInfo {
+    /// Command-line name.
+    pub name: &'static str,
+    /// One line for help texts.
+    pub description: &'static str,
+    /// Tolerance when none is given.
+    pub default_tolerance: f64,
+    /// Tolerances whose answers are meaningful (measured: `docs/MODEL.md` §13).
+    pub tolerance_range: ValidRange,
+    /// Whether it integrates the full equations numerically, so that it can serve as the
+    /// reference of `compare` and `fig2`.
+    pub numerical_reference: bool,
+    /// Whether it takes a contact scheme and a fixed sub-step ([`Options::contact_scheme`],
+    /// [`Options::step`]).
+    pub contact_scheme: bool,
+}
+
+/// A method's entry in the registry: its facts and how to build it from [`Options`].
+pub trait Registered: Propagate + Sized {
+    /// The method's facts.
+    const INFO: MethodInfo;
+    /// Start the method on `problem` with validated `options`.
+    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError>;
+}
+
+macro_rules! registry {
+    ($($(#[$doc:meta])* $variant:ident => $ty:ty,)+) => {
+        /// Which propagation method to use (the registry's list, `docs/MODEL.md` §13).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Method {
+            $($(#[$doc])* $variant,)+
+        }
+
+        impl Method {
+            /// Every method, in the registry's order.
+            pub const ALL: &'static [Method] = &[$(Method::$variant,)+];
+
+            /// The method's facts.
+            pub const fn info(self) -> &'static MethodInfo {
+                match self {
+                    $(Method::$variant => &<$ty as Registered>::INFO,)+
+                }
+            }
+        }
+
+        #[allow(
+            clippy::large_enum_variant,
+            reason = "the runtime has no heap to box into"
+        )]
+        enum Inner {
+            $($variant($ty),)+
+        }
+
+        impl Inner {
+            fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+                Ok(match options.method {
+                    $(Method::$variant => Inner::$variant(<$ty>::build(problem, options)?),)+
+                })
+            }
+
+            fn get(&self) -> &dyn Propagate {
+                match self {
+                    $(Inner::$variant(p) => p,)+
+                }
+            }
+
+            fn get_mut(&mut self) -> &mut dyn Propagate {
+                match self {
+                    $(Inner::$variant(p) => p,)+
+                }
+            }
+        }
+    };
+}
+
+registry! {
     /// Piecewise analytical: exact free flight, re-linearized closed-form contact (the paper's
-    /// family, `model.md` §8).
-    Analytic,
-    /// Exact free flight plus adaptive DOP853 on the nonlinear contact field (`model.md` §8).
-    Hybrid,
+    /// family, `docs/MODEL.md` §8).
+    Analytic => crate::analytic::AnalyticPropagator,
+    /// Exact free flight plus adaptive DOP853 on the nonlinear contact field (`docs/MODEL.md` §8).
+    Hybrid => crate::hybrid::HybridPropagator,
     /// Adaptive Dormand–Prince 8(5,3) on the full piecewise equations.
-    Dop853,
+    Dop853 => crate::reference::Dop853Propagator,
     /// Adaptive Dormand–Prince 5(4) (MATLAB's ode45) on the full piecewise equations.
-    Rk45,
+    Rk45 => crate::reference::Rk45Propagator,
 }
 
 impl Method {
-    /// Every method.
-    pub const ALL: [Method; 4] = [
-        Method::Analytic,
-        Method::Hybrid,
-        Method::Dop853,
-        Method::Rk45,
-    ];
-
     /// The method's command-line name.
     pub const fn name(self) -> &'static str {
-        match self {
-            Method::Analytic => "analytic",
-            Method::Hybrid => "hybrid",
-            Method::Dop853 => "dop853",
-            Method::Rk45 => "rk45",
-        }
+        self.info().name
+    }
+
+    /// One line describing the method.
+    pub const fn description(self) -> &'static str {
+        self.info().description
+    }
+
+    /// The tolerance used when none is given.
+    pub const fn default_tolerance(self) -> f64 {
+        self.info().default_tolerance
+    }
+
+    /// The valid tolerances.
+    pub const fn tolerance_range(self) -> ValidRange {
+        self.info().tolerance_range
     }
 
     /// The method with the given name.
     pub fn from_name(name: &str) -> Option<Method> {
-        Method::ALL.into_iter().find(|m| m.name() == name)
+        Method::ALL.iter().copied().find(|m| m.name() == name)
+    }
+
+    /// The one tolerance validation: `tol` in [`Method::tolerance_range`], else
+    /// [`PropagationError::InvalidOption`] naming the value and the range.
+    pub fn check_tolerance(self, tol: f64) -> Result<(), PropagationError> {
+        let valid = self.tolerance_range();
+        if valid.contains(tol) {
+            Ok(())
+        } else {
+            Err(PropagationError::InvalidOption {
+                method: self.name(),
+                what: "tol",
+                value: tol,
+                valid,
+            })
+        }
     }
 }
 
-/// The analytic method's contact scheme (`model.md` §8).
+/// The fixed contact sub-step validation: `step` in [`STEP_RANGE`].
+pub fn check_step(step: f64) -> Result<(), PropagationError> {
+    if STEP_RANGE.contains(step) {
+        Ok(())
+    } else {
+        Err(PropagationError::InvalidOption {
+            method: Method::Analytic.name(),
+            what: "step",
+            value: step,
+            valid: STEP_RANGE,
+        })
+    }
+}
+
+/// The analytic method's contact scheme (`docs/MODEL.md` §8).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ContactScheme {
     /// Exponential Rosenbrock–Euler: the paper's closed-form step re-linearized at every sub-step
@@ -54,6 +200,9 @@ pub enum ContactScheme {
 }
 
 impl ContactScheme {
+    /// Every scheme; a scheme's index here is its code in the C ABI (`ROTOR_RUB_SCHEME_*`).
+    pub const ALL: [ContactScheme; 2] = [ContactScheme::Exprb2, ContactScheme::Exprb43];
+
     /// The scheme's command-line name.
     pub const fn name(self) -> &'static str {
         match self {
@@ -62,11 +211,22 @@ impl ContactScheme {
         }
     }
 
+    /// The scheme's code in the C ABI: its index in [`ContactScheme::ALL`].
+    pub const fn code(self) -> i32 {
+        match self {
+            ContactScheme::Exprb2 => 0,
+            ContactScheme::Exprb43 => 1,
+        }
+    }
+
+    /// The scheme with the given C ABI code.
+    pub fn from_code(code: i32) -> Option<ContactScheme> {
+        ContactScheme::ALL.into_iter().find(|s| s.code() == code)
+    }
+
     /// The scheme with the given name.
     pub fn from_name(name: &str) -> Option<ContactScheme> {
-        [ContactScheme::Exprb2, ContactScheme::Exprb43]
-            .into_iter()
-            .find(|s| s.name() == name)
+        ContactScheme::ALL.into_iter().find(|s| s.name() == name)
     }
 }
 
@@ -77,10 +237,10 @@ pub struct Options {
     pub method: Method,
     /// The accuracy target; `None` takes the method's default (see [`Options::tolerance`]).
     pub tol: Option<f64>,
-    /// The analytic method's contact scheme.
+    /// The contact scheme of a method that takes one (see [`MethodInfo::contact_scheme`]).
     pub contact_scheme: ContactScheme,
-    /// A fixed contact sub-step for the analytic method (exprb2 always uses a fixed sub-step;
-    /// exprb43 uses it instead of step control when given).
+    /// A fixed contact sub-step in [`STEP_RANGE`] (exprb2 always uses a fixed sub-step; exprb43
+    /// uses it instead of step control when given).
     pub step: Option<f64>,
 }
 
@@ -106,84 +266,45 @@ impl Options {
 
     /// The tolerance in force: the given one or the method's default.
     pub fn tolerance(&self) -> f64 {
-        self.tol.unwrap_or(match self.method {
-            Method::Analytic => crate::analytic::DEFAULT_TOLERANCE,
-            Method::Hybrid | Method::Dop853 | Method::Rk45 => crate::reference::DEFAULT_TOLERANCE,
-        })
+        self.tol.unwrap_or(self.method.default_tolerance())
+    }
+
+    /// Check the tolerance and the fixed sub-step against their ranges.
+    ///
+    /// # Errors
+    /// [`PropagationError::InvalidOption`] naming the value and its range.
+    pub fn validate(&self) -> Result<(), PropagationError> {
+        self.method.check_tolerance(self.tolerance())?;
+        match self.step {
+            Some(step) => check_step(step),
+            None => Ok(()),
+        }
     }
 }
 
 /// Any method behind one type (no heap): build it with [`Propagator::new`].
 pub struct Propagator(Inner);
 
-#[allow(
-    clippy::large_enum_variant,
-    reason = "the runtime has no heap to box into"
-)]
-enum Inner {
-    Analytic(crate::analytic::AnalyticPropagator),
-    Dop853(crate::reference::Dop853Propagator),
-    Rk45(crate::reference::Rk45Propagator),
-    Hybrid(crate::hybrid::HybridPropagator),
-}
-
 impl Propagator {
     /// Validate `problem` and `options` and start the chosen method at the problem's start time.
     pub fn new(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
         problem.validate()?;
-        let tol = options.tolerance();
-        if !(tol.is_finite() && tol > 0.0) {
-            return Err(PropagationError::InvalidOption {
-                what: "tol",
-                value: tol,
-            });
-        }
-        let inner = match options.method {
-            Method::Analytic => Inner::Analytic(crate::analytic::AnalyticPropagator::new(
-                problem,
-                options.contact_scheme,
-                tol,
-                options.step,
-            )?),
-            Method::Dop853 => Inner::Dop853(crate::reference::Dop853Propagator::new(problem, tol)?),
-            Method::Rk45 => Inner::Rk45(crate::reference::Rk45Propagator::new(problem, tol)?),
-            Method::Hybrid => Inner::Hybrid(crate::hybrid::HybridPropagator::new(problem, tol)?),
-        };
-        Ok(Propagator(inner))
+        options.validate()?;
+        Inner::build(problem, options).map(Propagator)
     }
 }
 
 impl Propagate for Propagator {
     fn time(&self) -> f64 {
-        match &self.0 {
-            Inner::Analytic(p) => p.time(),
-            Inner::Dop853(p) => p.time(),
-            Inner::Rk45(p) => p.time(),
-            Inner::Hybrid(p) => p.time(),
-        }
+        self.0.get().time()
     }
     fn state(&self) -> State {
-        match &self.0 {
-            Inner::Analytic(p) => p.state(),
-            Inner::Dop853(p) => p.state(),
-            Inner::Rk45(p) => p.state(),
-            Inner::Hybrid(p) => p.state(),
-        }
+        self.0.get().state()
     }
     fn regime(&self) -> Regime {
-        match &self.0 {
-            Inner::Analytic(p) => p.regime(),
-            Inner::Dop853(p) => p.regime(),
-            Inner::Rk45(p) => p.regime(),
-            Inner::Hybrid(p) => p.regime(),
-        }
+        self.0.get().regime()
     }
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        match &mut self.0 {
-            Inner::Analytic(p) => p.advance(target),
-            Inner::Dop853(p) => p.advance(target),
-            Inner::Rk45(p) => p.advance(target),
-            Inner::Hybrid(p) => p.advance(target),
-        }
+        self.0.get_mut().advance(target)
     }
 }

@@ -10,7 +10,7 @@ use core::fmt;
 
 use crate::params::{ParamError, State};
 
-/// Contact regime (`model.md` §1): free flight for z < 1, contact for z > 1.
+/// Contact regime (`docs/MODEL.md` §1): free flight for z < 1, contact for z > 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Regime {
     /// No contact: the rotor moves freely inside the clearance.
@@ -69,7 +69,7 @@ pub enum PropagationError {
         /// The current time.
         current: f64,
     },
-    /// The motion grows without bound (flutter, `model.md` §6 case 3): the displacement passed
+    /// The motion grows without bound (flutter, `docs/MODEL.md` §6 case 3): the displacement passed
     /// the divergence limit at `time`.
     Diverged {
         /// When the limit was passed.
@@ -77,7 +77,7 @@ pub enum PropagationError {
         /// The state then.
         state: State,
     },
-    /// The linearized contact stiffness is singular (det Kl = 0, `model.md` §6 case 9) or the
+    /// The linearized contact stiffness is singular (det Kl = 0, `docs/MODEL.md` §6 case 9) or the
     /// contact forcing is exactly resonant (case 10) at `time`.
     SingularContact {
         /// When.
@@ -88,12 +88,16 @@ pub enum PropagationError {
         /// When.
         time: f64,
     },
-    /// An invalid method option (tolerance or step size), named in `what`.
+    /// A method option (tolerance, step size, sub-step count) outside its valid range.
     InvalidOption {
-        /// The option's name.
+        /// The method or component the option belongs to (`rk45`, `stepper`, …).
+        method: &'static str,
+        /// The option's name (`tol`, `step`, `dt`, …).
         what: &'static str,
         /// Its value.
         value: f64,
+        /// Its valid range.
+        valid: crate::method::ValidRange,
     },
 }
 
@@ -103,24 +107,30 @@ impl fmt::Display for PropagationError {
             PropagationError::InvalidProblem(e) => write!(f, "invalid problem: {e}"),
             PropagationError::InvalidTarget { target, current } => write!(
                 f,
-                "target time {target} is invalid: it must be finite and not before the current time {current}"
+                "target time {target:e} is invalid: it must be finite and not before the current time {current:e}"
             ),
             PropagationError::Diverged { time, state } => write!(
                 f,
-                "the motion diverged at time {time} (x = {}, y = {}): the contact feeds energy faster than damping removes it",
+                "the motion diverged at time {time:e} (x = {:e}, y = {:e}): the contact feeds energy faster than damping removes it",
                 state.x, state.y
             ),
             PropagationError::SingularContact { time } => write!(
                 f,
-                "the linearized contact system is singular or resonant at time {time}"
+                "the linearized contact system is singular or resonant at time {time:e}"
             ),
             PropagationError::StepSizeUnderflow { time } => write!(
                 f,
-                "the step size underflowed at time {time}: the tolerance cannot be met"
+                "the step size underflowed at time {time:e}: the tolerance cannot be met"
             ),
-            PropagationError::InvalidOption { what, value } => {
-                write!(f, "{what} = {value} is invalid")
-            }
+            PropagationError::InvalidOption {
+                method,
+                what,
+                value,
+                valid,
+            } => write!(
+                f,
+                "{what} = {value:e} is out of range for {method}: it must be in {valid}"
+            ),
         }
     }
 }

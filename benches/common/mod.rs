@@ -70,102 +70,118 @@ impl Case {
     }
 }
 
-/// A method with its accuracy knob: `tol` for the adaptive methods, the fixed contact sub-step
-/// for exprb2.
+/// A method (and contact scheme, for a method that takes one) with its accuracy knob: `tol`, or
+/// the fixed contact sub-step for exprb2.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Setting {
-    Exprb43(f64),
-    Exprb2 { step: f64 },
-    Hybrid(f64),
-    Dop853(f64),
-    Rk45(f64),
+pub struct Setting {
+    pub method: Method,
+    pub scheme: Option<ContactScheme>,
+    pub knob: f64,
 }
 
-/// The methods compared, by name; the knob is filled in by [`Setting::with`].
-pub const METHODS: [&str; 5] = [
-    "analytic-exprb43",
-    "analytic-exprb2",
-    "hybrid",
-    "dop853",
-    "rk45",
-];
+/// The methods compared, by name, from the registry: `method` or `method-scheme` for a method
+/// with contact schemes. The knob is filled in by [`Setting::with`].
+pub fn methods() -> Vec<String> {
+    let mut names = Vec::new();
+    for &m in Method::ALL {
+        if m.info().contact_scheme {
+            for s in ContactScheme::ALL {
+                names.push(format!("{}-{}", m.name(), s.name()));
+            }
+        } else {
+            names.push(m.name().to_string());
+        }
+    }
+    names
+}
 
 impl Setting {
-    pub fn with(name: &str, knob: f64) -> Setting {
-        match name {
-            "analytic-exprb43" => Setting::Exprb43(knob),
-            "analytic-exprb2" => Setting::Exprb2 { step: knob },
-            "hybrid" => Setting::Hybrid(knob),
-            "dop853" => Setting::Dop853(knob),
-            "rk45" => Setting::Rk45(knob),
-            other => panic!("unknown method {other}"),
+    /// `method` at tolerance `tol` (default contact scheme).
+    pub fn tol(method: Method, tol: f64) -> Setting {
+        let scheme = method
+            .info()
+            .contact_scheme
+            .then_some(ContactScheme::Exprb43);
+        Setting {
+            method,
+            scheme,
+            knob: tol,
         }
     }
 
-    pub fn name(self) -> &'static str {
-        match self {
-            Setting::Exprb43(_) => "analytic-exprb43",
-            Setting::Exprb2 { .. } => "analytic-exprb2",
-            Setting::Hybrid(_) => "hybrid",
-            Setting::Dop853(_) => "dop853",
-            Setting::Rk45(_) => "rk45",
+    /// The setting named as in [`methods`] with `knob`.
+    pub fn with(name: &str, knob: f64) -> Setting {
+        let (method, scheme) = match name.split_once('-') {
+            Some((m, s)) => (Method::from_name(m), ContactScheme::from_name(s)),
+            None => (Method::from_name(name), None),
+        };
+        let method = method.unwrap_or_else(|| panic!("unknown method {name}"));
+        Setting {
+            method,
+            scheme: scheme.or(method
+                .info()
+                .contact_scheme
+                .then_some(ContactScheme::Exprb43)),
+            knob,
+        }
+    }
+
+    /// Whether the knob is a fixed sub-step (exprb2) rather than a tolerance.
+    pub fn fixed_step(self) -> bool {
+        self.scheme == Some(ContactScheme::Exprb2)
+    }
+
+    pub fn name(self) -> String {
+        match self.scheme {
+            Some(s) => format!("{}-{}", self.method.name(), s.name()),
+            None => self.method.name().to_string(),
         }
     }
 
     /// The knob's value.
     pub fn knob(self) -> f64 {
-        match self {
-            Setting::Exprb43(t) | Setting::Hybrid(t) | Setting::Dop853(t) | Setting::Rk45(t) => t,
-            Setting::Exprb2 { step } => step,
-        }
+        self.knob
     }
 
     /// `tol=1e-10` or `step=2e-5`.
     pub fn knob_label(self) -> String {
-        match self {
-            Setting::Exprb2 { step } => format!("step={step:e}"),
-            other => format!("tol={:e}", other.knob()),
+        if self.fixed_step() {
+            format!("step={:e}", self.knob)
+        } else {
+            format!("tol={:e}", self.knob)
         }
     }
 
     pub fn options(self) -> Options {
-        match self {
-            Setting::Exprb43(tol) => Options {
-                tol: Some(tol),
-                ..Options::with_method(Method::Analytic)
-            },
-            Setting::Exprb2 { step } => Options {
-                contact_scheme: ContactScheme::Exprb2,
-                step: Some(step),
-                ..Options::with_method(Method::Analytic)
-            },
-            Setting::Hybrid(tol) => Options {
-                tol: Some(tol),
-                ..Options::with_method(Method::Hybrid)
-            },
-            Setting::Dop853(tol) => Options {
-                tol: Some(tol),
-                ..Options::with_method(Method::Dop853)
-            },
-            Setting::Rk45(tol) => Options {
-                tol: Some(tol),
-                ..Options::with_method(Method::Rk45)
-            },
+        let mut options = Options::with_method(self.method);
+        if let Some(scheme) = self.scheme {
+            options.contact_scheme = scheme;
         }
+        if self.fixed_step() {
+            options.step = Some(self.knob);
+        } else {
+            options.tol = Some(self.knob);
+        }
+        options
     }
 
-    /// Knob values searched for the loosest accurate one, loosest first ({1, 5, 2}·10^k).
+    /// Knob values searched for the loosest accurate one, loosest first ({1, 5, 2}·10^k), within
+    /// the valid range (the method's tolerances, or the fixed sub-steps).
     pub fn ladder(name: &str) -> Vec<f64> {
-        let (hi, lo) = if name == "analytic-exprb2" {
-            (-2, -6)
+        let setting = Setting::with(name, 0.0);
+        let (hi, lo, valid) = if setting.fixed_step() {
+            (-2, -6, rotor_rub::method::STEP_RANGE)
         } else {
-            (-5, -13)
+            (-5, -13, setting.method.tolerance_range())
         };
         let mut v = Vec::new();
         for e in (lo..=hi).rev() {
             // Parsed from text so that the values print as written (2e-10, not 2.0000000000000003e-10).
             for (m, shift) in [(1, 0), (5, -1), (2, -1)] {
-                v.push(format!("{m}e{}", e + shift).parse().expect("a number"));
+                let knob: f64 = format!("{m}e{}", e + shift).parse().expect("a number");
+                if valid.contains(knob) {
+                    v.push(knob);
+                }
             }
         }
         v
@@ -216,7 +232,7 @@ pub fn run(problem: &Problem, options: &Options, periods: usize) -> Run {
 pub fn reference(case: Case) -> Run {
     run(
         &case.problem(),
-        &Setting::Dop853(REFERENCE_TOL).options(),
+        &Setting::tol(Method::Dop853, REFERENCE_TOL).options(),
         PERIODS,
     )
 }

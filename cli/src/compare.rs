@@ -6,7 +6,9 @@ use rotor_rub::{Event, EventKind, Method, Options};
 
 use crate::analysis::switches::{MATCH_GAP, Matching};
 use crate::error::Result;
-use crate::options::{SchemeArgs, TimeArgs, describe, parse_positive, parse_reference};
+use crate::options::{
+    SchemeArgs, TimeArgs, describe, parse_positive, parse_reference, reference_help,
+};
 use crate::output::{CsvOut, ensure_dir};
 use crate::plot::orbit::{Orbit, OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, ENTER, EXIT, LegendMark, REFERENCE};
@@ -26,8 +28,7 @@ pub struct Args {
     #[command(flatten)]
     pub scheme: SchemeArgs,
 
-    /// Numerical reference method: dop853 or rk45
-    #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference)]
+    #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference, help = reference_help())]
     pub reference: Method,
 
     /// Tolerance of the reference method, > 0 [default: 1e-10]

@@ -13,7 +13,7 @@ use crate::analysis::lyapunov::largest_exponent;
 use crate::analysis::switches::Matching;
 use crate::compare::{legend, orbit};
 use crate::error::{CliError, Result};
-use crate::options::{SchemeArgs, describe, parse_positive, parse_reference};
+use crate::options::{SchemeArgs, describe, parse_positive, parse_reference, reference_help};
 use crate::output::ensure_dir;
 use crate::plot::orbit::{OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, REFERENCE};
@@ -29,8 +29,7 @@ pub struct Args {
     #[command(flatten)]
     pub scheme: SchemeArgs,
 
-    /// Numerical reference method: dop853 or rk45
-    #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference)]
+    #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference, help = reference_help())]
     pub reference: Method,
 
     /// Tolerance of the reference method, > 0 [default: 1e-10]

@@ -40,33 +40,97 @@ pub fn parse_method(name: &str) -> Result<Method, String> {
     Method::from_name(name).ok_or_else(|| {
         format!(
             "unknown method '{name}': expected one of {}",
-            Method::ALL.map(Method::name).join(", ")
+            names(Method::ALL.iter().copied())
         )
     })
 }
 
-/// A numerical reference method: dop853 or rk45.
+/// A numerical reference method (one whose registry entry says it integrates the full
+/// equations: dop853, rk45).
 pub fn parse_reference(name: &str) -> Result<Method, String> {
     match Method::from_name(name) {
-        Some(m @ (Method::Dop853 | Method::Rk45)) => Ok(m),
+        Some(m) if m.info().numerical_reference => Ok(m),
         _ => Err(format!(
-            "unknown reference method '{name}': expected dop853 or rk45"
+            "unknown reference method '{name}': expected one of {}",
+            names(references())
         )),
     }
 }
 
+/// The numerical reference methods, in the registry's order.
+fn references() -> impl Iterator<Item = Method> {
+    Method::ALL
+        .iter()
+        .copied()
+        .filter(|m| m.info().numerical_reference)
+}
+
+/// `a, b or c`.
+fn names(methods: impl Iterator<Item = Method>) -> String {
+    let all: Vec<&str> = methods.map(Method::name).collect();
+    match all.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => all.join(""),
+    }
+}
+
+/// `--method`'s help, from the registry.
+fn method_help() -> String {
+    let list: Vec<String> = Method::ALL
+        .iter()
+        .map(|m| format!("{} ({})", m.name(), m.description()))
+        .collect();
+    format!("Propagation method: {}", list.join("; "))
+}
+
+/// `--reference`'s help, from the registry.
+pub fn reference_help() -> String {
+    format!("Numerical reference method: {}", names(references()))
+}
+
+/// `--tol`'s help, from the registry.
+fn tol_help() -> String {
+    let list: Vec<String> = Method::ALL
+        .iter()
+        .map(|m| {
+            format!(
+                "{} {:e} in {}",
+                m.name(),
+                m.default_tolerance(),
+                m.tolerance_range()
+            )
+        })
+        .collect();
+    format!(
+        "Accuracy target (relative and absolute) [default and valid range: {}]",
+        list.join(", ")
+    )
+}
+
+/// `--step`'s help, with its range.
+fn step_help() -> String {
+    format!(
+        "Fixed contact sub-step of the analytic method, in units of τ, in {} (exprb2 always uses a fixed sub-step, default {:e}; exprb43 uses it instead of step control)",
+        rotor_rub::method::STEP_RANGE,
+        rotor_rub::analytic::DEFAULT_EXPRB2_STEP
+    )
+}
+
 /// A contact scheme by name.
 pub fn parse_scheme(name: &str) -> Result<ContactScheme, String> {
-    ContactScheme::from_name(name)
-        .ok_or_else(|| format!("unknown contact scheme '{name}': expected exprb43 or exprb2"))
+    ContactScheme::from_name(name).ok_or_else(|| {
+        let all: Vec<&str> = ContactScheme::ALL.iter().map(|s| s.name()).collect();
+        format!(
+            "unknown contact scheme '{name}': expected one of {}",
+            all.join(", ")
+        )
+    })
 }
 
 /// The analytic method's settings (also the accuracy of any other method through `--tol`).
 #[derive(Args, Debug, Clone)]
 pub struct SchemeArgs {
-    /// Accuracy target (relative and absolute), a number > 0 [default: 1e-9 for analytic, 1e-10
-    /// for hybrid, dop853 and rk45]
-    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
+    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true, help = tol_help())]
     pub tol: Option<f64>,
 
     /// Contact scheme of the analytic method: exprb43 (4th order, adaptive) or exprb2 (the paper's
@@ -74,17 +138,17 @@ pub struct SchemeArgs {
     #[arg(long, value_name = "SCHEME", value_parser = parse_scheme)]
     pub contact_scheme: Option<ContactScheme>,
 
-    /// Fixed contact sub-step h of the analytic method, in units of τ, > 0 (exprb43 uses it
-    /// instead of step control)
-    #[arg(long, value_name = "H", value_parser = parse_positive, allow_hyphen_values = true)]
+    #[arg(long, value_name = "H", value_parser = parse_positive, allow_hyphen_values = true, help = step_help())]
     pub step: Option<f64>,
 }
 
 impl SchemeArgs {
-    /// Library options for `method` with these settings. `--contact-scheme` and `--step` belong
-    /// to the analytic method: given with another method they are an input error, not ignored.
+    /// Library options for `method` with these settings, validated (a tolerance or step out of
+    /// its range is an input error naming the value and the range). `--contact-scheme` and
+    /// `--step` belong to methods with a contact scheme: given with another method they are an
+    /// input error, not ignored.
     pub fn options(&self, method: Method) -> Result<Options, CliError> {
-        if method != Method::Analytic {
+        if !method.info().contact_scheme {
             let flag = match (self.contact_scheme, self.step) {
                 (Some(_), _) => Some("--contact-scheme"),
                 (None, Some(_)) => Some("--step"),
@@ -97,29 +161,60 @@ impl SchemeArgs {
                 )));
             }
         }
-        Ok(Options {
+        let options = Options {
             method,
             tol: self.tol,
             contact_scheme: self.contact_scheme.unwrap_or(ContactScheme::Exprb43),
             step: self.step,
-        })
+        };
+        options
+            .validate()
+            .map_err(|e| CliError::input(e.to_string()))?;
+        Ok(options)
     }
 }
 
-/// Method selection plus its settings.
+/// The method a command runs when `--method` is not given. The defaults of every command live
+/// here, in one place.
+pub trait DefaultMethod: Clone + std::fmt::Debug + Default + Send + Sync + 'static {
+    /// The default method.
+    const METHOD: Method;
+}
+
+/// `simulate`: the paper's method (analytic), closed forms end to end.
+#[derive(Clone, Debug, Default)]
+pub struct SingleRun;
+
+impl DefaultMethod for SingleRun {
+    const METHOD: Method = Method::Analytic;
+}
+
+/// `sweep`, `poincare`, `spectrum`: many periods or many runs, where speed counts. Hybrid is the
+/// fastest method that meets the default accuracy (BENCHMARKS.md: 15× faster than analytic on a
+/// 21-value sweep, switch times within 1e-9 of DOP853 at tol 1e-13).
+#[derive(Clone, Debug, Default)]
+pub struct Survey;
+
+impl DefaultMethod for Survey {
+    const METHOD: Method = Method::Hybrid;
+}
+
+/// Method selection plus its settings; `D` gives the command's default method.
 #[derive(Args, Debug, Clone)]
-pub struct MethodArgs {
-    /// Propagation method: analytic (piecewise closed form), hybrid (closed-form free flight,
-    /// DOP853 in contact), dop853 or rk45 (adaptive Runge–Kutta on the full equations)
-    #[arg(long, value_name = "METHOD", default_value = "analytic", value_parser = parse_method)]
+pub struct MethodArgs<D: DefaultMethod> {
+    #[arg(long, value_name = "METHOD", default_value = D::METHOD.name(), value_parser = parse_method, help = method_help())]
     pub method: Method,
 
     #[command(flatten)]
     pub scheme: SchemeArgs,
+
+    #[arg(skip)]
+    _default: std::marker::PhantomData<D>,
 }
 
-impl MethodArgs {
-    /// The library options (an input error for analytic-only flags with another method).
+impl<D: DefaultMethod> MethodArgs<D> {
+    /// The library options (an input error for analytic-only flags with another method, or for
+    /// a tolerance or step out of range).
     pub fn options(&self) -> Result<Options, CliError> {
         self.scheme.options(self.method)
     }
@@ -128,15 +223,14 @@ impl MethodArgs {
 /// Describes options for messages, e.g. `analytic (exprb43, tol 1e-9)`.
 pub fn describe(options: &Options) -> String {
     let tol = options.tolerance();
-    match options.method {
-        Method::Analytic => match options.step {
-            Some(h) => format!(
-                "analytic ({}, step {h}, tol {tol:e})",
-                options.contact_scheme.name()
-            ),
-            None => format!("analytic ({}, tol {tol:e})", options.contact_scheme.name()),
-        },
-        m => format!("{} (tol {tol:e})", m.name()),
+    let method = options.method;
+    if !method.info().contact_scheme {
+        return format!("{} (tol {tol:e})", method.name());
+    }
+    let scheme = options.contact_scheme.name();
+    match options.step {
+        Some(h) => format!("{} ({scheme}, step {h:e}, tol {tol:e})", method.name()),
+        None => format!("{} ({scheme}, tol {tol:e})", method.name()),
     }
 }
 

@@ -8,7 +8,7 @@ use rotor_rub::{Problem, State, poincare};
 use crate::analysis::classify::{POINT_TOLERANCE, classify, distinct_points};
 use crate::analysis::lyapunov::largest_exponent;
 use crate::error::Result;
-use crate::options::{MethodArgs, describe};
+use crate::options::{MethodArgs, Survey, describe};
 use crate::output::{CsvOut, ensure_dir};
 use crate::plot::{self, scatter::SectionFigure};
 use crate::problem::ProblemArgs;
@@ -21,7 +21,7 @@ pub struct Args {
     pub problem: ProblemArgs,
 
     #[command(flatten)]
-    pub method: MethodArgs,
+    pub method: MethodArgs<Survey>,
 
     /// Forcing periods skipped as transient
     #[arg(long, value_name = "P", default_value_t = 200)]

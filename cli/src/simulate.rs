@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use rotor_rub::Regime;
 
 use crate::error::Result;
-use crate::options::{MethodArgs, TimeArgs, describe};
+use crate::options::{MethodArgs, SingleRun, TimeArgs, describe};
 use crate::output::CsvOut;
 use crate::problem::ProblemArgs;
 use crate::trajectory::{self, contact_fraction, uniform_times};
@@ -25,7 +25,7 @@ pub struct Args {
     pub time: TimeArgs,
 
     #[command(flatten)]
-    pub method: MethodArgs,
+    pub method: MethodArgs<SingleRun>,
 
     /// Write every contact switch, in order, as CSV with header tau,kind,x,y,vx,vy (kind is
     /// `enter` or `exit`)

@@ -7,7 +7,7 @@ use rotor_rub::samples;
 
 use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
 use crate::error::Result;
-use crate::options::{MethodArgs, describe, parse_positive};
+use crate::options::{MethodArgs, Survey, describe, parse_positive};
 use crate::output::{CsvOut, ensure_dir};
 use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
 use crate::plot::{self, ANALYTIC};
@@ -23,7 +23,7 @@ pub struct Args {
     pub problem: ProblemArgs,
 
     #[command(flatten)]
-    pub method: MethodArgs,
+    pub method: MethodArgs<Survey>,
 
     /// Forcing periods skipped as transient
     #[arg(long, value_name = "P", default_value_t = 100)]

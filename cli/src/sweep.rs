@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use rotor_rub::{Field, Options, Problem, poincare};
 
 use crate::error::{CliError, Result};
-use crate::options::{MethodArgs, describe, parse_finite};
+use crate::options::{MethodArgs, Survey, describe, parse_finite};
 use crate::output::{CsvOut, ensure_dir};
 use crate::plot::{self, scatter::BifurcationFigure};
 use crate::problem::{ProblemArgs, parse_field};
@@ -43,7 +43,7 @@ pub struct Args {
     pub problem: ProblemArgs,
 
     #[command(flatten)]
-    pub method: MethodArgs,
+    pub method: MethodArgs<Survey>,
 
     /// Parameter to sweep (a --set name)
     #[arg(long, value_name = "NAME", default_value = "speed_ratio", value_parser = parse_field)]

@@ -1,151 +1,146 @@
-//! The analytic propagator: exact free flight, re-linearized closed-form contact, switches
-//! located on the closed forms (`model.md` §4–§8).
+//! The analytic method's segment solvers: exact free flight ([`FreeFlightSolver`], shared with
+//! the hybrid method) and re-linearized closed-form contact ([`ExprbContact`]), with switches
+//! located on the closed forms (`docs/MODEL.md` §4–§8), strung together by the piecewise driver.
 
 use super::free::FreeConstants;
 use super::free_flight::{FreeAdvance, FreeFlight};
 use super::schemes::{SubStep, exprb2_into, exprb43_into};
 use super::segment::{Point, Segment, point_of};
 use super::switch::{Direction, first_crossing_to};
-use crate::field;
+use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::math;
-use crate::method::ContactScheme;
-use crate::params::{Params, Problem, State};
-use crate::propagate::{
-    Event, EventKind, Propagate, PropagationError, Regime, check_target, within_bounds,
+use crate::method::{
+    ContactScheme, Method, MethodInfo, Options, Registered, ValidRange, check_step,
 };
+use crate::params::{Params, Problem, State};
+use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
 
-/// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `model.md` §8).
+/// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `docs/MODEL.md`
+/// §8).
 pub const DEFAULT_EXPRB2_STEP: f64 = 1e-3;
 /// Most step attempts for one accepted exprb43 sub-step before giving up.
 const MAX_ATTEMPTS: u32 = 60;
 
-#[allow(
-    clippy::large_enum_variant,
-    reason = "the runtime has no heap to box into"
-)]
-enum Piece {
-    Free(FreeFlight),
-    /// In contact: the current sub-step, from `t0`, is `AnalyticPropagator::current_step`.
-    Contact {
-        t0: f64,
-        exit: Option<(f64, Point)>,
-    },
+/// Free flight in closed form, searched for the next contact (`docs/MODEL.md` §4): serves every
+/// target in [`SegmentSolver::locate`], never asks for a step.
+pub struct FreeFlightSolver {
+    params: Params,
+    constants: FreeConstants,
+    flight: FreeFlight,
+    located: f64,
 }
 
-/// The piecewise-analytical method (see [`crate::Method::Analytic`]).
-pub struct AnalyticPropagator {
+impl FreeFlightSolver {
+    /// A solver for `params`, with a flight started at `(time, state)`.
+    pub fn new(params: &Params, time: f64, state: State) -> Self {
+        let constants = FreeConstants::new(params);
+        FreeFlightSolver {
+            params: *params,
+            constants,
+            flight: FreeFlight::new(params, &constants, time, state),
+            located: time,
+        }
+    }
+}
+
+impl SegmentSolver for FreeFlightSolver {
+    fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+        self.flight = FreeFlight::new(&self.params, &self.constants, time, state);
+        self.located = time;
+        Ok(())
+    }
+
+    fn locate(&mut self, target: f64) -> Located {
+        match self.flight.advance(target) {
+            FreeAdvance::Reached(state) => {
+                self.located = target;
+                Located::Reached(state)
+            }
+            FreeAdvance::Contact { time, state } => Located::Switch(Event {
+                time,
+                kind: EventKind::Enter,
+                state,
+            }),
+        }
+    }
+
+    fn step(&mut self) -> Result<(), PropagationError> {
+        Ok(())
+    }
+
+    fn computed_to(&self) -> f64 {
+        self.located
+    }
+}
+
+/// Contact by exprb2 or exprb43 sub-steps (`docs/MODEL.md` §8), each re-linearized at its start,
+/// its exit searched on the sub-step's closed form.
+pub struct ExprbContact {
     params: Params,
     scheme: ContactScheme,
     tol: f64,
     fixed_step: Option<f64>,
-    free: FreeConstants,
-    h_max: f64,
-    h_next: f64,
-    /// Rounding carried by the sum of contact sub-step lengths (Kahan): without it, a fixed
-    /// sub-step added 10⁷ times drifts the time by its rounding bias (≈ 3e-8 at τ ≈ 250,
-    /// h = 1e-5), which floors exprb2's switch-time accuracy.
+    max_step: f64,
+    next_step: f64,
+    /// Rounding carried by the sum of sub-step lengths (Kahan): without it, a fixed sub-step
+    /// added 10⁷ times drifts the time by its rounding bias (≈ 3e-8 at τ ≈ 250, step 1e-5),
+    /// which floors exprb2's switch-time accuracy.
     time_carry: f64,
     /// Two sub-step slots: the current one (`steps[current]`) and the one the next sub-step is
     /// computed in, swapped by index on acceptance (a sub-step is too large to copy around).
     steps: [SubStep; 2],
     current: usize,
-    time: f64,
-    state: State,
-    piece: Piece,
+    /// Start of the current sub-step.
+    t0: f64,
+    /// The exit inside the current sub-step (local time, point), if any.
+    exit: Option<(f64, Point)>,
 }
 
-impl AnalyticPropagator {
-    /// Start the analytic method. `tol` drives exprb43's step control; `fixed_step` fixes the
-    /// contact sub-step (exprb2 defaults to [`DEFAULT_EXPRB2_STEP`]).
-    pub fn new(
-        problem: &Problem,
-        scheme: ContactScheme,
-        tol: f64,
-        fixed_step: Option<f64>,
-    ) -> Result<Self, PropagationError> {
-        problem.validate()?;
-        if !(tol.is_finite() && (1e-15..=1.0).contains(&tol)) {
-            return Err(PropagationError::InvalidOption {
-                what: "tol",
-                value: tol,
-            });
-        }
-        if let Some(h) = fixed_step.filter(|h| !(h.is_finite() && *h > 0.0 && *h <= 1.0)) {
-            return Err(PropagationError::InvalidOption {
-                what: "step",
-                value: h,
-            });
-        }
-        let params = problem.params;
-        let fixed_step = match scheme {
-            ContactScheme::Exprb2 => Some(fixed_step.unwrap_or(DEFAULT_EXPRB2_STEP)),
-            ContactScheme::Exprb43 => fixed_step,
-        };
+impl ExprbContact {
+    fn new(params: &Params, scheme: ContactScheme, tol: f64, fixed_step: Option<f64>) -> Self {
         // Fastest frequencies: forcing η, free 1, contact ≤ √(1 + ‖K_s‖_F) (‖J‖ ≤ 1 for z ≥ 1).
-        let k = &params;
+        let k = params;
         let k_norm =
             math::sqrt(k.k_xx * k.k_xx + k.k_xy * k.k_xy + k.k_yx * k.k_yx + k.k_yy * k.k_yy);
         let omega = params.speed_ratio.max(1.0 + params.damping_ratio);
         let omega_contact = math::sqrt(1.0 + k_norm).max(omega);
-        let free = FreeConstants::new(&params);
-        let mut me = AnalyticPropagator {
-            params,
+        ExprbContact {
+            params: *params,
             scheme,
             tol,
-            fixed_step,
-            free,
-            h_max: 1.0 / omega_contact,
-            h_next: 0.1 / omega_contact,
+            fixed_step: match scheme {
+                ContactScheme::Exprb2 => Some(fixed_step.unwrap_or(DEFAULT_EXPRB2_STEP)),
+                ContactScheme::Exprb43 => fixed_step,
+            },
+            max_step: 1.0 / omega_contact,
+            next_step: 0.1 / omega_contact,
             time_carry: 0.0,
             steps: [SubStep::zeroed(), SubStep::zeroed()],
             current: 0,
-            time: problem.start_time,
-            state: problem.initial,
-            piece: Piece::Free(FreeFlight::new(
-                &params,
-                &free,
-                problem.start_time,
-                problem.initial,
-            )),
-        };
-        let t0 = problem.start_time;
-        me.piece = match field::regime_of(&params, t0, &problem.initial) {
-            Regime::Free => me.free_piece(t0, problem.initial)?,
-            Regime::Contact => me.contact_piece(t0, problem.initial)?,
-        };
-        Ok(me)
-    }
-
-    fn check_bounded(&self, t: f64, state: State) -> Result<(), PropagationError> {
-        if !within_bounds(&state) {
-            return Err(PropagationError::Diverged { time: t, state });
+            t0: 0.0,
+            exit: None,
         }
-        Ok(())
     }
 
-    fn free_piece(&self, t0: f64, state: State) -> Result<Piece, PropagationError> {
-        self.check_bounded(t0, state)?;
-        Ok(Piece::Free(FreeFlight::new(
-            &self.params,
-            &self.free,
-            t0,
-            state,
-        )))
-    }
-
-    fn contact_piece(&mut self, t0: f64, state: State) -> Result<Piece, PropagationError> {
-        self.check_bounded(t0, state)?;
-        let h_min = 1e-12 * (1.0 + math::abs(t0));
+    /// Compute the sub-step from `(t0, state)` (step control for adaptive exprb43) and its exit.
+    fn sub_step(&mut self, t0: f64, state: State) -> Result<(), PropagationError> {
+        if !within_bounds(&state) {
+            return Err(PropagationError::Diverged { time: t0, state });
+        }
+        let min_step = 1e-12 * (1.0 + math::abs(t0));
         let mut attempts = 0;
         let next = 1 - self.current;
+        let slot = self
+            .steps
+            .get_mut(next)
+            .ok_or(PropagationError::SingularContact { time: t0 })?;
         loop {
-            let h = self
+            let dt = self
                 .fixed_step
-                .unwrap_or(self.h_next.clamp(h_min, self.h_max));
-            let slot = &mut self.steps[next];
+                .unwrap_or(self.next_step.clamp(min_step, self.max_step));
             match self.scheme {
-                ContactScheme::Exprb2 => exprb2_into(&self.params, t0, state, h, slot),
-                ContactScheme::Exprb43 => exprb43_into(&self.params, t0, state, h, self.tol, slot),
+                ContactScheme::Exprb2 => exprb2_into(&self.params, t0, state, dt, slot),
+                ContactScheme::Exprb43 => exprb43_into(&self.params, t0, state, dt, self.tol, slot),
             }
             .map_err(|_| PropagationError::SingularContact { time: t0 })?;
             if self.fixed_step.is_some() {
@@ -159,104 +154,150 @@ impl AnalyticPropagator {
                 4.0
             };
             if error <= 1.0 {
-                self.h_next = h * factor.min(4.0);
+                self.next_step = dt * factor.min(4.0);
                 break;
             }
-            self.h_next = h * factor.clamp(0.1, 0.9);
+            self.next_step = dt * factor.clamp(0.1, 0.9);
             attempts += 1;
-            if attempts >= MAX_ATTEMPTS || self.h_next < h_min {
+            if attempts >= MAX_ATTEMPTS || self.next_step < min_step {
                 return Err(PropagationError::StepSizeUnderflow { time: t0 });
             }
         }
-        let step = &self.steps[next];
-        if !step.end.is_finite() {
+        if !slot.end.is_finite() {
             return Err(PropagationError::Diverged {
-                time: t0 + step.h,
-                state: step.end,
+                time: t0 + slot.h,
+                state: slot.end,
             });
         }
         let (ox, oy) = (self.params.offset_x, self.params.offset_y);
         let start = point_of(state, ox, oy);
-        // The sub-step's end is the segment's point at h: no need to evaluate it again.
-        let end = point_of(step.end, ox, oy);
-        let exit = first_crossing_to(&step.segment, 0.0, start, step.h, end, Direction::Down);
+        // The sub-step's end is the segment's point at its length: no need to evaluate it again.
+        let end = point_of(slot.end, ox, oy);
+        self.exit = first_crossing_to(&slot.segment, 0.0, start, slot.h, end, Direction::Down);
+        self.t0 = t0;
         self.current = next;
-        Ok(Piece::Contact { t0, exit })
+        Ok(())
+    }
+
+    fn current(&self) -> &SubStep {
+        let [a, b] = &self.steps;
+        if self.current == 0 { a } else { b }
+    }
+}
+
+impl SegmentSolver for ExprbContact {
+    fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+        self.time_carry = 0.0;
+        self.sub_step(time, state)
+    }
+
+    fn locate(&mut self, target: f64) -> Located {
+        let step = self.current();
+        let s_target = target - self.t0;
+        if let Some((s, p)) = self.exit.filter(|(s, _)| *s <= s_target) {
+            return Located::Switch(Event {
+                time: self.t0 + s,
+                kind: EventKind::Exit,
+                state: p.state,
+            });
+        }
+        if s_target <= step.h {
+            Located::Reached(if s_target == step.h {
+                step.end
+            } else {
+                step.segment.point(s_target).state
+            })
+        } else {
+            Located::NeedStep
+        }
+    }
+
+    fn step(&mut self) -> Result<(), PropagationError> {
+        let step = self.current();
+        let (length, state) = (step.h, step.end);
+        // Kahan summation of the sub-step lengths.
+        let y = length - self.time_carry;
+        let t_next = self.t0 + y;
+        self.time_carry = (t_next - self.t0) - y;
+        self.sub_step(t_next, state)
+    }
+
+    fn computed_to(&self) -> f64 {
+        self.t0 + self.current().h
+    }
+}
+
+/// The piecewise-analytical method (see [`crate::Method::Analytic`]).
+pub struct AnalyticPropagator(Piecewise<ByRegime<FreeFlightSolver, ExprbContact>>);
+
+impl AnalyticPropagator {
+    /// Start the analytic method. `tol` drives exprb43's step control; `fixed_step` fixes the
+    /// contact sub-step (exprb2 defaults to [`DEFAULT_EXPRB2_STEP`]).
+    ///
+    /// # Errors
+    /// [`PropagationError::InvalidProblem`], or [`PropagationError::InvalidOption`] for a `tol`
+    /// or `fixed_step` outside its range ([`Method::tolerance_range`], [`crate::method::STEP_RANGE`]).
+    pub fn new(
+        problem: &Problem,
+        scheme: ContactScheme,
+        tol: f64,
+        fixed_step: Option<f64>,
+    ) -> Result<Self, PropagationError> {
+        problem.validate()?;
+        Method::Analytic.check_tolerance(tol)?;
+        if let Some(step) = fixed_step {
+            check_step(step)?;
+        }
+        let params = problem.params;
+        let t0 = problem.start_time;
+        Piecewise::new(problem, None, |regime, s0| {
+            let mut solvers = ByRegime {
+                free: FreeFlightSolver::new(&params, t0, s0),
+                contact: ExprbContact::new(&params, scheme, tol, fixed_step),
+            };
+            if regime == Regime::Contact {
+                solvers.contact.start(regime, t0, s0)?;
+            }
+            Ok(solvers)
+        })
+        .map(AnalyticPropagator)
+    }
+}
+
+impl Registered for AnalyticPropagator {
+    const INFO: MethodInfo = MethodInfo {
+        name: "analytic",
+        description: "piecewise closed form: exact free flight, re-linearized closed-form contact (exprb43 or exprb2)",
+        default_tolerance: super::DEFAULT_TOLERANCE,
+        tolerance_range: ValidRange {
+            min: 1e-14,
+            max: 1e-3,
+        },
+        numerical_reference: false,
+        contact_scheme: true,
+    };
+
+    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        AnalyticPropagator::new(
+            problem,
+            options.contact_scheme,
+            options.tolerance(),
+            options.step,
+        )
     }
 }
 
 impl Propagate for AnalyticPropagator {
     fn time(&self) -> f64 {
-        self.time
+        self.0.time()
     }
-
     fn state(&self) -> State {
-        self.state
+        self.0.state()
     }
-
     fn regime(&self) -> Regime {
-        match self.piece {
-            Piece::Free(_) => Regime::Free,
-            Piece::Contact { .. } => Regime::Contact,
-        }
+        self.0.regime()
     }
-
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        if !check_target(target, self.time)? {
-            return Ok(None);
-        }
-        loop {
-            match &mut self.piece {
-                Piece::Free(flight) => match flight.advance(target) {
-                    FreeAdvance::Reached(state) => {
-                        self.time = target;
-                        self.state = state;
-                        return Ok(None);
-                    }
-                    FreeAdvance::Contact { time, state } => {
-                        self.time_carry = 0.0;
-                        self.piece = self.contact_piece(time, state)?;
-                        self.time = time;
-                        self.state = state;
-                        return Ok(Some(Event {
-                            time,
-                            kind: EventKind::Enter,
-                            state,
-                        }));
-                    }
-                },
-                Piece::Contact { t0, exit } => {
-                    let step = &self.steps[self.current];
-                    let s_target = target - *t0;
-                    if let Some((s, p)) = exit.filter(|(s, _)| *s <= s_target) {
-                        let t = *t0 + s;
-                        let state = p.state;
-                        self.piece = self.free_piece(t, state)?;
-                        self.time = t;
-                        self.state = state;
-                        return Ok(Some(Event {
-                            time: t,
-                            kind: EventKind::Exit,
-                            state,
-                        }));
-                    }
-                    if s_target <= step.h {
-                        self.time = target;
-                        self.state = if s_target == step.h {
-                            step.end
-                        } else {
-                            step.segment.point(s_target).state
-                        };
-                        return Ok(None);
-                    }
-                    // Kahan summation of the sub-step lengths.
-                    let y = step.h - self.time_carry;
-                    let t_next = *t0 + y;
-                    self.time_carry = (t_next - *t0) - y;
-                    let state = step.end;
-                    self.piece = self.contact_piece(t_next, state)?;
-                }
-            }
-        }
+        self.0.advance(target)
     }
 }

@@ -51,8 +51,8 @@ pub use events::{
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;
 pub use propagator::{
-    BASE_STEP_BUDGET, Dop853Propagator, MIN_TOLERANCE, ReferencePropagator, Rk45Propagator,
-    STEPS_PER_TIME_UNIT,
+    BASE_STEP_BUDGET, Dop853Propagator, REFERENCE_BUDGET, ReferencePropagator, ReferenceSolver,
+    Rk45Propagator, STEPS_PER_TIME_UNIT,
 };
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
 pub use switch::{switch_in_deferred_step, switch_in_step};

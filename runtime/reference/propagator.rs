@@ -32,15 +32,10 @@ use super::integrator::{AcceptedStep, Integrator, Stats};
 use super::scheme::{Interpolant, Scheme, Tolerance};
 use super::switch::switch_in_step;
 use super::system::RotorSystem;
-use crate::field;
+use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, StepBudget};
+use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{
-    Event, EventKind, Propagate, PropagationError, Regime, check_target, within_bounds,
-};
-
-/// Smallest accepted tolerance (below it the error control asks for less than the rounding
-/// error of a step).
-pub const MIN_TOLERANCE: f64 = 1e-14;
+use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
 
 /// Step budget of one [`Propagate::advance`] call: this many steps plus
 /// [`STEPS_PER_TIME_UNIT`] per unit of the requested time span. Exceeding it reports
@@ -50,98 +45,67 @@ pub const BASE_STEP_BUDGET: f64 = 1.0e6;
 /// See [`BASE_STEP_BUDGET`].
 pub const STEPS_PER_TIME_UNIT: f64 = 1.0e5;
 
-/// The reference propagator for any [`Scheme`] on the 4-state rotor field. Use it through
-/// [`Dop853Propagator`] or [`Rk45Propagator`].
+/// The step budget of the numerical methods (reference and hybrid).
+pub const REFERENCE_BUDGET: StepBudget = StepBudget {
+    base: BASE_STEP_BUDGET,
+    per_time_unit: STEPS_PER_TIME_UNIT,
+};
+
+/// One integrator for both regimes: a switch restarts it on the other regime's field, so the
+/// free and the contact solver of [`crate::driver::Solvers`] are the same object.
 #[derive(Clone, Copy, Debug)]
-pub struct ReferencePropagator<S: Scheme<4>> {
+pub struct ReferenceSolver<S: Scheme<4>> {
     params: Params,
     regime: Regime,
     integrator: Integrator<S, 4>,
-    time: f64,
-    state: State,
     step: Option<AcceptedStep<4, S::Dense>>,
     pending: Option<Event>,
-    events: u64,
-    failure: Option<PropagationError>,
 }
 
-impl<S: Scheme<4>> ReferencePropagator<S> {
-    /// Validate `problem` and `tol` (finite, ≥ [`MIN_TOLERANCE`]) and start at the problem's
-    /// start time.
-    ///
-    /// # Errors
-    /// [`PropagationError::InvalidProblem`] or [`PropagationError::InvalidOption`] with
-    /// `what = "tol"`.
-    pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
-        problem.validate()?;
-        if !(tol.is_finite() && tol >= MIN_TOLERANCE) {
-            return Err(PropagationError::InvalidOption {
-                what: "tol",
-                value: tol,
-            });
-        }
-        let params = problem.params;
-        let t0 = problem.start_time;
-        let regime = field::regime_of(&params, t0, &problem.initial);
-        let sys = RotorSystem { params, regime };
-        let integrator = Integrator::new(
-            &sys,
-            t0,
-            problem.initial.to_array(),
-            Tolerance::uniform(tol),
-            max_step(&params),
-        );
-        Ok(ReferencePropagator {
-            params,
-            regime,
-            integrator,
-            time: t0,
-            state: problem.initial,
-            step: None,
-            pending: None,
-            events: 0,
-            failure: None,
-        })
-    }
-
-    /// Work counters of the integration so far.
-    pub fn stats(&self) -> Stats {
-        self.integrator.stats()
-    }
-
-    /// The number of switches reported so far.
-    pub fn event_count(&self) -> u64 {
-        self.events
-    }
-
-    /// The tolerance (`rtol = atol`).
-    pub fn tolerance(&self) -> f64 {
-        self.integrator.tolerance().rtol
-    }
-
+impl<S: Scheme<4>> ReferenceSolver<S> {
     fn system(&self) -> RotorSystem {
         RotorSystem {
             params: self.params,
             regime: self.regime,
         }
     }
+}
 
-    /// Report `event`: move there, switch the field and restart the integration.
-    fn apply(&mut self, event: Event) -> Event {
-        self.time = event.time;
-        self.state = event.state;
-        self.regime = event.kind.regime_after();
+impl<S: Scheme<4>> Solvers for ReferenceSolver<S> {
+    fn solver(&mut self, _regime: Regime) -> &mut dyn SegmentSolver {
+        self
+    }
+}
+
+impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
+    /// Switch the field and restart the integration at the switch.
+    fn start(&mut self, regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+        self.regime = regime;
         self.step = None;
         self.pending = None;
-        self.events = self.events.saturating_add(1);
         let sys = self.system();
-        self.integrator
-            .restart(&sys, event.time, event.state.to_array());
-        event
+        self.integrator.restart(&sys, time, state.to_array());
+        Ok(())
+    }
+
+    fn locate(&mut self, target: f64) -> Located {
+        if let Some(event) = self.pending
+            && target >= event.time
+        {
+            return Located::Switch(event);
+        }
+        match &self.step {
+            Some(step) if target <= step.t1 => Located::Reached(if target == step.t1 {
+                State::from_array(step.y1)
+            } else {
+                State::from_array(step.dense.eval(target))
+            }),
+            _ => Located::NeedStep,
+        }
     }
 
     /// Take one step and look for a switch in it.
-    fn take_step(&mut self) -> Result<(), PropagationError> {
+    fn step(&mut self) -> Result<(), PropagationError> {
         let sys = self.system();
         let step = self.integrator.step(&sys, f64::INFINITY)?;
         let end = State::from_array(step.y1);
@@ -165,6 +129,66 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         self.step = Some(step);
         Ok(())
     }
+
+    fn computed_to(&self) -> f64 {
+        self.integrator.time()
+    }
+}
+
+/// The reference propagator for any [`Scheme`] on the 4-state rotor field. Use it through
+/// [`Dop853Propagator`] or [`Rk45Propagator`].
+#[derive(Clone, Copy, Debug)]
+pub struct ReferencePropagator<S: Scheme<4>> {
+    driver: Piecewise<ReferenceSolver<S>>,
+    events: u64,
+}
+
+impl<S: Scheme<4>> ReferencePropagator<S> {
+    /// Validate `problem` and `tol` (the range of `method`) and start at the problem's start
+    /// time.
+    ///
+    /// # Errors
+    /// [`PropagationError::InvalidProblem`] or [`PropagationError::InvalidOption`] for the
+    /// tolerance.
+    pub fn new(problem: &Problem, method: Method, tol: f64) -> Result<Self, PropagationError> {
+        problem.validate()?;
+        method.check_tolerance(tol)?;
+        let params = problem.params;
+        let t0 = problem.start_time;
+        let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, start| {
+            let sys = RotorSystem { params, regime };
+            let integrator = Integrator::new(
+                &sys,
+                t0,
+                start.to_array(),
+                Tolerance::uniform(tol),
+                max_step(&params),
+            );
+            Ok(ReferenceSolver {
+                params,
+                regime,
+                integrator,
+                step: None,
+                pending: None,
+            })
+        })?;
+        Ok(ReferencePropagator { driver, events: 0 })
+    }
+
+    /// Work counters of the integration so far.
+    pub fn stats(&self) -> Stats {
+        self.driver.solvers().integrator.stats()
+    }
+
+    /// The number of switches reported so far.
+    pub fn event_count(&self) -> u64 {
+        self.events
+    }
+
+    /// The tolerance (`rtol = atol`).
+    pub fn tolerance(&self) -> f64 {
+        self.driver.solvers().integrator.tolerance().rtol
+    }
 }
 
 /// The largest step: a quarter of the shorter of the forcing period and the free natural period
@@ -181,73 +205,41 @@ fn max_step(params: &Params) -> f64 {
 
 impl<S: Scheme<4>> Propagate for ReferencePropagator<S> {
     fn time(&self) -> f64 {
-        self.time
+        self.driver.time()
     }
 
     fn state(&self) -> State {
-        self.state
+        self.driver.state()
     }
 
     fn regime(&self) -> Regime {
-        self.regime
+        self.driver.regime()
     }
 
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        if !check_target(target, self.time)? {
-            return Ok(None);
+        let event = self.driver.advance(target)?;
+        if event.is_some() {
+            self.events = self.events.saturating_add(1);
         }
-        let budget = BASE_STEP_BUDGET + STEPS_PER_TIME_UNIT * (target - self.time);
-        let mut steps = 0.0;
-        loop {
-            if let Some(event) = self.pending
-                && target >= event.time
-            {
-                return Ok(Some(self.apply(event)));
-            }
-            if let Some(step) = &self.step
-                && target <= step.t1
-            {
-                self.time = target;
-                self.state = if target == step.t1 {
-                    State::from_array(step.y1)
-                } else {
-                    State::from_array(step.dense.eval(target))
-                };
-                return Ok(None);
-            }
-            if let Some(e) = self.failure {
-                return Err(e);
-            }
-            if steps >= budget {
-                return Err(PropagationError::StepSizeUnderflow {
-                    time: self.integrator.time(),
-                });
-            }
-            steps += 1.0;
-            if let Err(e) = self.take_step() {
-                // The integration cannot go on: stay at the last good time and repeat the error.
-                self.failure = Some(e);
-                return Err(e);
-            }
-        }
+        Ok(event)
     }
 }
 
 macro_rules! reference_propagator {
-    ($(#[$doc:meta])* $name:ident, $scheme:ty) => {
+    ($(#[$doc:meta])* $name:ident, $scheme:ty, $method:expr, $info:expr) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug)]
         pub struct $name(ReferencePropagator<$scheme>);
 
         impl $name {
-            /// Validate `problem` and `tol` (finite and ≥ [`MIN_TOLERANCE`]; `rtol = atol = tol`)
-            /// and start at the problem's start time.
+            /// Validate `problem` and `tol` (in the method's [`Method::tolerance_range`];
+            /// `rtol = atol = tol`) and start at the problem's start time.
             ///
             /// # Errors
-            /// [`PropagationError::InvalidProblem`], or [`PropagationError::InvalidOption`] with
-            /// `what = "tol"`.
+            /// [`PropagationError::InvalidProblem`], or [`PropagationError::InvalidOption`] for
+            /// the tolerance.
             pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
-                ReferencePropagator::new(problem, tol).map($name)
+                ReferencePropagator::new(problem, $method, tol).map($name)
             }
 
             /// Work counters of the integration so far.
@@ -263,6 +255,14 @@ macro_rules! reference_propagator {
             /// The tolerance (`rtol = atol`).
             pub fn tolerance(&self) -> f64 {
                 self.0.tolerance()
+            }
+        }
+
+        impl Registered for $name {
+            const INFO: MethodInfo = $info;
+
+            fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+                $name::new(problem, options.tolerance())
             }
         }
 
@@ -287,12 +287,36 @@ reference_propagator!(
     /// Adaptive DOP853 (Dormand–Prince 8(5,3), Hairer's code) on the full piecewise equations,
     /// with switches located on its 7th-order dense output. See the module documentation.
     Dop853Propagator,
-    Dop853
+    Dop853,
+    Method::Dop853,
+    MethodInfo {
+        name: "dop853",
+        description: "adaptive Dormand–Prince 8(5,3) on the full equations",
+        default_tolerance: super::DEFAULT_TOLERANCE,
+        tolerance_range: ValidRange {
+            min: 1e-14,
+            max: 1e-3
+        },
+        numerical_reference: true,
+        contact_scheme: false,
+    }
 );
 
 reference_propagator!(
     /// Adaptive Dormand–Prince 5(4) (MATLAB's `ode45`) on the full piecewise equations, with
     /// switches located on its 4th-order dense output. See the module documentation.
     Rk45Propagator,
-    Dopri5
+    Dopri5,
+    Method::Rk45,
+    MethodInfo {
+        name: "rk45",
+        description: "adaptive Dormand–Prince 5(4) (MATLAB's ode45) on the full equations",
+        default_tolerance: super::DEFAULT_TOLERANCE,
+        tolerance_range: ValidRange {
+            min: 1e-14,
+            max: 1e-4
+        },
+        numerical_reference: true,
+        contact_scheme: false,
+    }
 );

@@ -1,0 +1,55 @@
+//! Starts on z = 1 (`docs/MODEL.md` §6 case 14): which side the motion takes, and a start that
+//! no solver can misread.
+
+use super::TOUCH_DEPTH;
+use crate::field;
+use crate::math;
+use crate::params::{Params, State};
+use crate::propagate::Regime;
+
+/// The regime of a start at `(time, state)` and the state the solvers start from: unchanged off
+/// z = 1; within [`TOUCH_DEPTH`] of z = 1, the side the motion takes once |h| leaves that band
+/// (from the Taylor expansion h0 + h0'·s + ½h0''·s², where both fields agree, the contact force
+/// vanishing on z = 1, so h0'' is the free field's), and the position moved radially to h =
+/// ±2·[`TOUCH_DEPTH`] on that side (z changes by about 3e-14, below every method's resolution),
+/// so that no solver sees a sign of h that is only rounding.
+pub(super) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, State) {
+    let (h, dh) = field::switching_function(params, state);
+    if math::abs(h) > TOUCH_DEPTH || h.is_nan() {
+        return (field::regime_of(params, time, state), *state);
+    }
+    let (ax, ay) = field::acceleration(params, Regime::Free, time, state);
+    let (u, v) = (state.x - params.offset_x, state.y - params.offset_y);
+    let c = state.vx * state.vx + state.vy * state.vy + u * ax + v * ay;
+    // March out geometrically until the expansion leaves the band; its sign there is the side.
+    let mut s = 1e-20;
+    let mut side = 0.0;
+    while s < 1e3 {
+        let hs = h + dh * s + c * s * s;
+        if math::abs(hs) > TOUCH_DEPTH {
+            side = hs;
+            break;
+        }
+        s *= 2.0;
+    }
+    let regime = if side > 0.0 {
+        Regime::Contact
+    } else if side < 0.0 {
+        Regime::Free
+    } else {
+        // The motion stays on z = 1 to rounding: as `regime_of` decides.
+        field::regime_of(params, time, state)
+    };
+    let target = match regime {
+        Regime::Contact => 2.0 * TOUCH_DEPTH,
+        Regime::Free => -2.0 * TOUCH_DEPTH,
+    };
+    let z = math::hypot(u, v);
+    let scale = math::sqrt(1.0 + target) / z;
+    let moved = State {
+        x: params.offset_x + u * scale,
+        y: params.offset_y + v * scale,
+        ..*state
+    };
+    (regime, moved)
+}

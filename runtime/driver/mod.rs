@@ -1,0 +1,95 @@
+//! The piecewise driver (`docs/MODEL.md` §13): the one state machine that strings segments of the
+//! regimes together, shared by every method. A method supplies segment solvers; the driver owns
+//! what happens between them: target handling, the switch from one regime's solver to the next,
+//! divergence at a switch, the step budget, a failure that repeats, and starts on z = 1.
+//!
+//! # How a method plugs in
+//! A [`SegmentSolver`] solves the motion in one regime from a start on: [`SegmentSolver::start`]
+//! begins a segment at a switch (or the problem start), [`SegmentSolver::locate`] serves a
+//! target time from what it has computed (the state there, the switch that ends the segment, or
+//! a request for the next step), and [`SegmentSolver::step`] computes the next step and searches it
+//! for the switch. [`Solvers`] hands the driver the solver of each [`Regime`]; [`ByRegime`] pairs a
+//! free-flight solver with a contact solver. A new regime (rolling, under friction) is one more
+//! solver and one more arm in the [`Solvers`] impl; a new switch is one more [`EventKind`] with its
+//! regime after: the state machine stays as it is.
+//!
+//! # Starts on z = 1
+//! The regime at the start comes from [`crate::field::regime_of`] (the sign of h = z² − 1). On
+//! z = 1 within [`TOUCH_DEPTH`] the switching function stays within its rounding for a while,
+//! and a solver could see sign changes there that are only rounding: a switch at the start
+//! instant, or an enter and an exit a few ulps apart (a zero-length contact). So a start on z = 1
+//! begins on the side the motion takes once |h| leaves that band, read from the Taylor expansion
+//! h0 + h0'·s + ½h0''·s² (z' decides, or z'' where z' is too small to matter), and the solvers
+//! start from the position moved radially 2·[`TOUCH_DEPTH`] onto that side (z changes by about
+//! 3e-14, below every method's resolution). `time()`, `state()` at the start are the problem's.
+
+mod boundary;
+mod piecewise;
+
+pub use piecewise::Piecewise;
+
+use crate::params::State;
+use crate::propagate::{Event, PropagationError, Regime};
+
+/// What a segment solver found on the way to a target time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Located {
+    /// The target lies in the part of the segment already computed: the state there.
+    Reached(State),
+    /// The segment ends at this switch, at or before the target.
+    Switch(Event),
+    /// The target lies beyond what has been computed: take a step.
+    NeedStep,
+}
+
+/// A solver of one regime's segments.
+pub trait SegmentSolver {
+    /// Start a segment in `regime` at `(time, state)`. A solver may compute its first step here.
+    fn start(&mut self, regime: Regime, time: f64, state: State) -> Result<(), PropagationError>;
+    /// Serve `target` (not before the segment start nor before the last target served) from what
+    /// has been computed. A closed-form solver may serve every target without steps. Serving a
+    /// target never changes the steps taken (sampling does not perturb a run).
+    fn locate(&mut self, target: f64) -> Located;
+    /// Compute the next step and search it for the switch that ends the segment.
+    fn step(&mut self) -> Result<(), PropagationError>;
+    /// The time up to which the segment has been computed (reported when the step budget is
+    /// exhausted).
+    fn computed_to(&self) -> f64;
+}
+
+/// The segment solvers of a method, by regime.
+pub trait Solvers {
+    /// The solver of `regime`'s segments.
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver;
+}
+
+/// A free-flight solver and a contact solver.
+pub struct ByRegime<F, C> {
+    /// Free flight (z < 1).
+    pub free: F,
+    /// Contact (z > 1).
+    pub contact: C,
+}
+
+impl<F: SegmentSolver, C: SegmentSolver> Solvers for ByRegime<F, C> {
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver {
+        match regime {
+            Regime::Free => &mut self.free,
+            Regime::Contact => &mut self.contact,
+        }
+    }
+}
+
+/// Most steps of one `advance` call: `base` plus `per_time_unit` per unit of the requested span.
+/// Exceeding it reports [`PropagationError::StepSizeUnderflow`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepBudget {
+    /// Steps allowed whatever the span.
+    pub base: f64,
+    /// Further steps per unit of time.
+    pub per_time_unit: f64,
+}
+
+/// Band around z = 1, in h = z² − 1, within which a start counts as on z = 1 (64 ulps of 1; the
+/// rounding of h near z = 1 is a few ulps).
+pub const TOUCH_DEPTH: f64 = 64.0 * f64::EPSILON;

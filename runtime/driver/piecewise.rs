@@ -1,0 +1,130 @@
+//! The state machine itself: one [`Piecewise`] behind [`Propagate`] for every method.
+
+use super::boundary::start_side;
+use super::{Located, Solvers, StepBudget};
+use crate::params::{Problem, State};
+use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target, within_bounds};
+
+/// A piecewise propagation: the current regime's solver serves targets until it reports a
+/// switch; the next regime's solver starts there. See the module documentation of
+/// [`crate::driver`].
+#[derive(Clone, Copy, Debug)]
+pub struct Piecewise<S> {
+    solvers: S,
+    budget: Option<StepBudget>,
+    time: f64,
+    state: State,
+    regime: Regime,
+    /// A step failure: the run stays at its last good time and reports it again.
+    failure: Option<PropagationError>,
+}
+
+impl<S: Solvers> Piecewise<S> {
+    /// Start at the problem's start, in the regime [`crate::field::regime_of`] decides there (on z = 1:
+    /// the side the motion takes, see the module documentation). `build(regime, state)` makes
+    /// the method's solvers with the solver of `regime` started at the problem's start time in
+    /// `state` (the initial state, or on z = 1 the start moved onto its side).
+    ///
+    /// # Errors
+    /// [`PropagationError::Diverged`] for a start beyond the divergence radius, or what `build`
+    /// reports.
+    pub fn new(
+        problem: &Problem,
+        budget: Option<StepBudget>,
+        build: impl FnOnce(Regime, State) -> Result<S, PropagationError>,
+    ) -> Result<Self, PropagationError> {
+        let params = problem.params;
+        let (time, state) = (problem.start_time, problem.initial);
+        if !within_bounds(&state) {
+            return Err(PropagationError::Diverged { time, state });
+        }
+        let (regime, start) = start_side(&params, time, &state);
+        let solvers = build(regime, start)?;
+        Ok(Piecewise {
+            solvers,
+            budget,
+            time,
+            state,
+            regime,
+            failure: None,
+        })
+    }
+
+    /// The method's solvers (for their work counters).
+    pub fn solvers(&self) -> &S {
+        &self.solvers
+    }
+
+    /// Move to `event` and start the next regime's solver there.
+    fn switch(&mut self, event: Event) -> Result<(), PropagationError> {
+        if !within_bounds(&event.state) {
+            return Err(PropagationError::Diverged {
+                time: event.time,
+                state: event.state,
+            });
+        }
+        let regime = event.kind.regime_after();
+        self.solvers
+            .solver(regime)
+            .start(regime, event.time, event.state)?;
+        self.time = event.time;
+        self.state = event.state;
+        self.regime = regime;
+        Ok(())
+    }
+}
+
+impl<S: Solvers> Propagate for Piecewise<S> {
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn state(&self) -> State {
+        self.state
+    }
+
+    fn regime(&self) -> Regime {
+        self.regime
+    }
+
+    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+        if !check_target(target, self.time)? {
+            return Ok(None);
+        }
+        let limit = self
+            .budget
+            .map(|b| b.base + b.per_time_unit * (target - self.time));
+        let mut steps = 0.0;
+        loop {
+            let solver = self.solvers.solver(self.regime);
+            match solver.locate(target) {
+                Located::Reached(state) => {
+                    self.time = target;
+                    self.state = state;
+                    return Ok(None);
+                }
+                Located::Switch(event) => {
+                    self.switch(event)?;
+                    return Ok(Some(event));
+                }
+                Located::NeedStep => {
+                    if let Some(e) = self.failure {
+                        return Err(e);
+                    }
+                    if let Some(limit) = limit {
+                        if steps >= limit {
+                            return Err(PropagationError::StepSizeUnderflow {
+                                time: solver.computed_to(),
+                            });
+                        }
+                        steps += 1.0;
+                    }
+                    if let Err(e) = solver.step() {
+                        self.failure = Some(e);
+                        return Err(e);
+                    }
+                }
+            }
+        }
+    }
+}
