@@ -90,7 +90,9 @@ impl SegmentSolver for Dop853Contact {
     fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
         let y = PhasorRotorSystem::initial(&self.params, time, &state);
         match self.carried_step {
-            Some(h) => self.integrator.restart_with_step(&self.system, time, y, h),
+            Some(step) => self
+                .integrator
+                .restart_with_step(&self.system, time, y, step),
             None => self.integrator.restart(&self.system, time, y),
         }
         self.stepped = false;

@@ -6,7 +6,8 @@ use proptest::prelude::*;
 use rotor_rub::stepper::{EVENT_CAPACITY, MAX_STEP};
 use rotor_rub::{
     ContactScheme, Event, EventKind, Field, Options, ParamError, Params, Preset, Problem,
-    Propagate, Propagator, Regime, State, Stepper, StepperConfig, StepperError, advance_to,
+    Propagate, PropagationError, Propagator, Regime, State, Stepper, StepperConfig, StepperError,
+    advance_to,
 };
 
 /// The analytic propagator at tol 1e-11 (switch times within ~1e-10 over 20 periods).
@@ -195,10 +196,12 @@ fn invalid_inputs_give_typed_errors() {
     bad.params.speed_ratio = -1.0;
     assert!(matches!(
         Stepper::new(&bad, StepperConfig::default()),
-        Err(StepperError::InvalidProblem(ParamError::NotPositive {
-            field: Field::SpeedRatio,
-            ..
-        }))
+        Err(StepperError::Propagation(PropagationError::InvalidProblem(
+            ParamError::NotPositive {
+                field: Field::SpeedRatio,
+                ..
+            }
+        )))
     ));
     for dt in [0.0, -1e-3, f64::NAN, f64::INFINITY, 1.5] {
         let r = Stepper::new(&problem, StepperConfig::with_dt(dt));
@@ -228,7 +231,9 @@ fn invalid_inputs_give_typed_errors() {
     params.damping_ratio = f64::NAN;
     assert!(matches!(
         stepper.set_params(&params),
-        Err(StepperError::InvalidProblem(ParamError::NonFinite { .. }))
+        Err(StepperError::Propagation(PropagationError::InvalidProblem(
+            ParamError::NonFinite { .. }
+        )))
     ));
     assert_eq!(before, (stepper.time(), stepper.state(), *stepper.params()));
     // A flutter case diverges with a typed error (model.md §6 case 3).
@@ -240,7 +245,10 @@ fn invalid_inputs_give_typed_errors() {
     let mut s = Stepper::new(&flutter, StepperConfig::with_dt(1e-2)).unwrap();
     let err = (0..10_000).find_map(|_| s.step(1e-2).err());
     assert!(
-        matches!(err, Some(StepperError::Diverged { .. })),
+        matches!(
+            err,
+            Some(StepperError::Propagation(PropagationError::Diverged { .. }))
+        ),
         "{err:?}"
     );
 }
@@ -315,7 +323,9 @@ proptest! {
                 Err(e) => {
                     prop_assert!(matches!(
                         e,
-                        StepperError::Diverged { .. } | StepperError::SingularContact { .. }
+                        StepperError::Propagation(
+                            PropagationError::Diverged { .. } | PropagationError::SingularContact { .. }
+                        )
                     ), "{}", e);
                     prop_assert_eq!((stepper.time(), stepper.state()), (t0, s0));
                     break;

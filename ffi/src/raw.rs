@@ -4,6 +4,7 @@
 use core::fmt::Write;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+use rotor_rub::PropagationError;
 use rotor_rub::stepper::{Stepper, StepperError};
 
 use crate::types::*;
@@ -32,11 +33,17 @@ pub(crate) fn guard(body: impl FnOnce() -> Result<(), i32>) -> i32 {
 
 pub(crate) fn error_code(e: &StepperError) -> i32 {
     match e {
-        StepperError::InvalidProblem(_) => ROTOR_RUB_ERR_INVALID_PARAMS,
+        StepperError::Propagation(PropagationError::InvalidProblem(_)) => {
+            ROTOR_RUB_ERR_INVALID_PARAMS
+        }
         StepperError::InvalidConfig { .. } => ROTOR_RUB_ERR_INVALID_CONFIG,
         StepperError::InvalidStep { .. } => ROTOR_RUB_ERR_INVALID_STEP,
-        StepperError::Diverged { .. } => ROTOR_RUB_ERR_DIVERGED,
-        StepperError::SingularContact { .. } => ROTOR_RUB_ERR_SINGULAR_CONTACT,
+        StepperError::Propagation(PropagationError::Diverged { .. }) => ROTOR_RUB_ERR_DIVERGED,
+        StepperError::Propagation(PropagationError::SingularContact { .. }) => {
+            ROTOR_RUB_ERR_SINGULAR_CONTACT
+        }
+        // The stepper reports no other propagation error (targets, step control, options).
+        StepperError::Propagation(_) => ROTOR_RUB_ERR_INTERNAL,
     }
 }
 

@@ -4,7 +4,7 @@
 //! - [`OdeSystem`], [`Scheme`], [`Integrator`]: a small generic adaptive Runge–Kutta core on
 //!   fixed-size `[f64; N]` states (no heap), reusable on other systems (the hybrid method's
 //!   6-state [`PhasorRotorSystem`]).
-//! - [`Dopri5`], [`Dop853`]: the two pairs with their dense outputs.
+//! - [`Rk45`], [`Dop853`]: the two pairs with their dense outputs.
 //! - [`first_crossing`]: event location on a dense output, grazing contacts included.
 //! - [`Dop853Propagator`], [`Rk45Propagator`]: the [`crate::Propagate`] implementations.
 //!
@@ -32,19 +32,18 @@
 //! ```
 
 mod dop853;
-mod dopri5;
 mod events;
 mod integrator;
 mod ode;
 mod propagator;
+mod rk45;
 mod scheme;
 mod switch;
 mod system;
 mod tableau_dop853;
-mod tableau_dopri5;
+mod tableau_rk45;
 
 pub use dop853::{Dop853, Dop853Dense, Dop853Step};
-pub use dopri5::{Dopri5, Dopri5Dense};
 pub use events::{
     SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch, refine_crossing,
 };
@@ -54,6 +53,7 @@ pub use propagator::{
     BASE_STEP_BUDGET, Dop853Propagator, REFERENCE_BUDGET, ReferencePropagator, ReferenceSolver,
     Rk45Propagator, STEPS_PER_TIME_UNIT,
 };
+pub use rk45::{Rk45, Rk45Dense};
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
 pub use switch::{switch_in_deferred_step, switch_in_step};
 pub use system::{PhasorRotorSystem, RotorSystem, inside_measure};

@@ -27,8 +27,8 @@
 //! `10·tol` may be missed.
 
 use super::dop853::Dop853;
-use super::dopri5::Dopri5;
 use super::integrator::{AcceptedStep, Integrator, Stats};
+use super::rk45::Rk45;
 use super::scheme::{Interpolant, Scheme, Tolerance};
 use super::switch::switch_in_step;
 use super::system::RotorSystem;
@@ -306,7 +306,7 @@ reference_propagator!(
     /// Adaptive Dormand–Prince 5(4) (MATLAB's `ode45`) on the full piecewise equations, with
     /// switches located on its 4th-order dense output. See the module documentation.
     Rk45Propagator,
-    Dopri5,
+    Rk45,
     Method::Rk45,
     MethodInfo {
         name: "rk45",

@@ -11,7 +11,7 @@ use crate::analytic::switch::{Direction, Search};
 use crate::field;
 use crate::method::ContactScheme;
 use crate::params::State;
-use crate::propagate::{Event, EventKind, Regime};
+use crate::propagate::{Event, EventKind, PropagationError, Regime};
 
 /// Relative slack when rounding the remaining span to a whole number of nominal sub-steps.
 const SUBSTEP_SLACK: f64 = 1e-9;
@@ -113,7 +113,7 @@ impl Stepper {
             ContactScheme::Exprb2 => exprb2(&self.params, t, state, h),
             ContactScheme::Exprb43 => exprb43(&self.params, t, state, h, 1.0),
         }
-        .map_err(|_| StepperError::SingularContact { time: t })?;
+        .map_err(|_| PropagationError::SingularContact { time: t })?;
         check_bounded(t + h, sub.end)?;
         report.substeps += 1;
         report.error_estimate = report.error_estimate.max(sub.error);

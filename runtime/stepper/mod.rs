@@ -66,7 +66,7 @@ use crate::field;
 use crate::math;
 use crate::method::ContactScheme;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Regime, within_bounds};
+use crate::propagate::{PropagationError, Regime, within_bounds};
 
 /// Longest accepted step (time units). Longer spans: take several steps.
 pub const MAX_STEP: f64 = 1.0;
@@ -293,7 +293,7 @@ fn check_bounded(time: f64, state: State) -> Result<(), StepperError> {
     if within_bounds(&state) {
         Ok(())
     } else {
-        Err(StepperError::Diverged { time, state })
+        Err(PropagationError::Diverged { time, state }.into())
     }
 }
 

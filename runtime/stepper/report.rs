@@ -4,7 +4,7 @@
 use core::fmt;
 
 use crate::params::{ParamError, State};
-use crate::propagate::{Event, EventKind, Regime};
+use crate::propagate::{Event, EventKind, PropagationError, Regime};
 
 /// How many switches one [`StepReport`] holds. More switches inside one step are counted in
 /// [`EventList::dropped`], never silently lost.
@@ -122,12 +122,15 @@ pub struct StepReport {
     pub error_estimate: f64,
 }
 
-/// Why a stepper could not be built or a step not taken. A failed step leaves the stepper
-/// unchanged.
+/// Why a stepper could not be built or a step not taken: a propagation error (shared with every
+/// method: invalid problem, divergence, singular contact) or one of the stepper's own (its
+/// configuration, its step length). A failed step leaves the stepper unchanged.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum StepperError {
-    /// The problem or the new parameters failed validation.
-    InvalidProblem(ParamError),
+    /// What any propagation method reports: [`PropagationError::InvalidProblem`],
+    /// [`PropagationError::Diverged`] (`docs/MODEL.md` §6 case 3) or
+    /// [`PropagationError::SingularContact`] (cases 9–10).
+    Propagation(PropagationError),
     /// A configuration value is out of range (named in `what`).
     InvalidConfig {
         /// The configuration field.
@@ -143,41 +146,19 @@ pub enum StepperError {
         /// The current time.
         time: f64,
     },
-    /// The displacement left the divergence radius or became non-finite (flutter, `model.md`
-    /// §6 case 3).
-    Diverged {
-        /// When.
-        time: f64,
-        /// The state then.
-        state: State,
-    },
-    /// The linearized contact system is singular or resonant (`model.md` §6 cases 9–10).
-    SingularContact {
-        /// When.
-        time: f64,
-    },
 }
 
 impl fmt::Display for StepperError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            StepperError::InvalidProblem(e) => write!(f, "invalid problem: {e}"),
+            StepperError::Propagation(e) => e.fmt(f),
             StepperError::InvalidConfig { what, value } => {
-                write!(f, "stepper configuration {what} = {value} is invalid")
+                write!(f, "stepper configuration {what} = {value:e} is invalid")
             }
             StepperError::InvalidStep { dt, time } => write!(
                 f,
-                "step dt = {dt} at time {time} is invalid: it must be finite, in (0, {}], and advance the time",
+                "step dt = {dt:e} at time {time:e} is invalid: it must be finite, in (0, {:e}], and advance the time",
                 super::MAX_STEP
-            ),
-            StepperError::Diverged { time, state } => write!(
-                f,
-                "the motion diverged at time {time} (x = {}, y = {})",
-                state.x, state.y
-            ),
-            StepperError::SingularContact { time } => write!(
-                f,
-                "the linearized contact system is singular or resonant at time {time}"
             ),
         }
     }
@@ -186,14 +167,20 @@ impl fmt::Display for StepperError {
 impl core::error::Error for StepperError {
     fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
         match self {
-            StepperError::InvalidProblem(e) => Some(e),
+            StepperError::Propagation(e) => Some(e),
             _ => None,
         }
     }
 }
 
+impl From<PropagationError> for StepperError {
+    fn from(e: PropagationError) -> Self {
+        StepperError::Propagation(e)
+    }
+}
+
 impl From<ParamError> for StepperError {
     fn from(e: ParamError) -> Self {
-        StepperError::InvalidProblem(e)
+        StepperError::Propagation(PropagationError::InvalidProblem(e))
     }
 }

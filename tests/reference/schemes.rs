@@ -2,7 +2,7 @@
 //! solution and of the dense output, the adaptive driver, and the 6-state phasor system.
 
 use rotor_rub::reference::{
-    Controller, Dop853, Dopri5, Integrator, Interpolant, OdeSystem, PhasorRotorSystem, RotorSystem,
+    Controller, Dop853, Integrator, Interpolant, OdeSystem, PhasorRotorSystem, Rk45, RotorSystem,
     Scheme, Tolerance,
 };
 use rotor_rub::{Preset, Regime, State};
@@ -51,7 +51,7 @@ fn local_orders<S: Scheme<2>>(h: f64) -> (f64, f64) {
 #[test]
 fn dopri5_local_orders() {
     // Local error of an order-p solution is O(h^{p+1}).
-    let (step, dense) = local_orders::<Dopri5>(0.2);
+    let (step, dense) = local_orders::<Rk45>(0.2);
     assert!(
         (step - 6.0).abs() < 0.3,
         "5th-order solution: local order {step}"
@@ -103,7 +103,7 @@ fn adaptive_driver_meets_tolerance() {
     let (e8, n8) = adaptive_error::<Dop853>(1e-12);
     assert!(e8 < 2e-11, "DOP853 error {e8:e}");
     assert!(n8 < 400, "DOP853 took {n8} steps");
-    let (e5, n5) = adaptive_error::<Dopri5>(1e-10);
+    let (e5, n5) = adaptive_error::<Rk45>(1e-10);
     assert!(e5 < 5e-9, "DOPRI5 error {e5:e}");
     assert!(n5 < 2000, "DOPRI5 took {n5} steps");
 }

@@ -6,22 +6,22 @@ use super::ode::{OdeSystem, lin};
 use super::scheme::{
     Attempt, Controller, Interpolant, Scheme, Tolerance, stage_input_slice, weighted_slice,
 };
-use super::tableau_dopri5 as tab;
+use super::tableau_rk45 as tab;
 
 /// The Dormand–Prince 5(4) pair (marker type; see [`Scheme`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Dopri5;
+pub struct Rk45;
 
 /// Dense output of one DOPRI5 step: a quartic in θ = (t − t0)/h,
 /// `r0 + θ(r1 + (1−θ)(r2 + θ(r3 + (1−θ) r4)))` (Hairer's `CONTD5`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dopri5Dense<const N: usize> {
+pub struct Rk45Dense<const N: usize> {
     t0: f64,
     h: f64,
     r: [[f64; N]; 5],
 }
 
-impl<const N: usize> Interpolant<N> for Dopri5Dense<N> {
+impl<const N: usize> Interpolant<N> for Rk45Dense<N> {
     fn start(&self) -> f64 {
         self.t0
     }
@@ -46,10 +46,10 @@ impl<const N: usize> Interpolant<N> for Dopri5Dense<N> {
     }
 }
 
-impl<const N: usize> Scheme<N> for Dopri5 {
+impl<const N: usize> Scheme<N> for Rk45 {
     /// k1..k7 (k7 = f(t + h, y1)).
     type Stages = [[f64; N]; 7];
-    type Dense = Dopri5Dense<N>;
+    type Dense = Rk45Dense<N>;
     const ORDER: i32 = 5;
     const STAGE_EVALUATIONS: u64 = 6;
     const ACCEPT_EVALUATIONS: u64 = 0;
@@ -105,6 +105,6 @@ impl<const N: usize> Scheme<N> for Dopri5 {
         let r3 = lin(&[(1.0, &ydiff), (-h, k7), (-1.0, &bspl)]);
         let r4 = lin(&[(h, &weighted_slice(&tab::D, k))]);
         let r = [*y, ydiff, bspl, r3, r4];
-        (*k7, Dopri5Dense { t0: t, h, r })
+        (*k7, Rk45Dense { t0: t, h, r })
     }
 }
