@@ -1,6 +1,11 @@
 //! Free flight between contacts, shared by the analytic and the hybrid methods: the exact free
-//! segment (`model.md` §4) searched for the next contact as time advances, and dropped from the
-//! search for good once no contact can ever happen again.
+//! segment (`docs/MODEL.md` §4, §11) searched for the next contact as time advances, and dropped
+//! from the search for good once no contact can ever happen again.
+//!
+//! The search runs on a fixed grid of chunks k·Δ in local time, independent of the targets it is
+//! asked for: a target inside a chunk searches the whole chunk and keeps a crossing found beyond
+//! the target for later. So sampling (any sequence of targets) never moves a switch, and the state
+//! at a target is always the closed form evaluated from the segment start (`docs/MODEL.md` §13).
 
 use super::free::{FreeConstants, FreeSegment};
 use super::segment::{Point, Segment, point_of};
@@ -8,15 +13,19 @@ use super::switch::{Direction, first_crossing_to};
 use crate::params::{Params, State};
 
 /// Search chunks between two checks of whether the flight has settled.
-const SETTLE_CHECK_CHUNKS: u32 = 8;
+const SETTLE_CHECK_CHUNKS: u64 = 8;
 
 /// A free-flight phase from time `t0`.
 #[derive(Clone, Copy, Debug)]
 pub struct FreeFlight {
     t0: f64,
     segment: FreeSegment,
-    searched: f64,
+    /// Chunks searched so far: (0, chunks·Δ] is proven contact-free unless `found` is set.
+    chunks: u64,
+    /// The point at the end of the searched range.
     last: Point,
+    /// The first contact entry, once a chunk found it (possibly beyond the last target).
+    found: Option<(f64, Point)>,
     settled: bool,
     chunk: f64,
 }
@@ -44,8 +53,9 @@ impl FreeFlight {
         FreeFlight {
             t0,
             segment: FreeSegment::new(params, constants, t0, state),
-            searched: 0.0,
+            chunks: 0,
             last: point_of(state, params.offset_x, params.offset_y),
+            found: None,
             settled: false,
             chunk: 0.5 / omega,
         }
@@ -56,48 +66,39 @@ impl FreeFlight {
         self.settled
     }
 
+    /// The local time of the end of the searched range.
+    fn searched(&self) -> f64 {
+        self.chunks as f64 * self.chunk
+    }
+
     /// Advance to `target` (not before the last target) or to the next contact entry.
     ///
-    /// The search goes chunk by chunk; before the first chunk and every eighth one the orbit's
-    /// reach from there on is bounded, so a flight that settles inside the clearance stops
-    /// searching within a few chunks, however far the target lies (one closed-form evaluation at
-    /// the target then).
+    /// The search goes chunk by chunk on the fixed grid; before every eighth chunk (counted from
+    /// the segment start) the orbit's reach from there on is bounded, so a flight that settles
+    /// inside the clearance stops searching within a few chunks, however far the target lies
+    /// (one closed-form evaluation at the target then).
     pub fn advance(&mut self, target: f64) -> FreeAdvance {
         let s_target = target - self.t0;
-        let mut chunks = 0u32;
-        while !self.settled && self.searched < s_target {
-            // The reach is checked at the first chunk of every call and every eighth after.
-            if chunks.is_multiple_of(SETTLE_CHECK_CHUNKS)
-                && self.segment.reach_after(self.searched) < 1.0
+        while self.found.is_none() && !self.settled && self.searched() < s_target {
+            if self.chunks.is_multiple_of(SETTLE_CHECK_CHUNKS)
+                && self.segment.reach_after(self.searched()) < 1.0
             {
                 // The orbit's reach stays inside the clearance from here on: no search needed.
                 self.settled = true;
                 break;
             }
-            let b = (self.searched + self.chunk).min(s_target);
+            let (a, b) = (self.searched(), (self.chunks + 1) as f64 * self.chunk);
             let pb = self.segment.point(b);
-            let found = first_crossing_to(
-                &self.segment,
-                self.searched,
-                self.last,
-                b,
-                pb,
-                Direction::Up,
-            );
-            if let Some((s, p)) = found {
-                return FreeAdvance::Contact {
-                    time: self.t0 + s,
-                    state: p.state,
-                };
-            }
-            self.searched = b;
+            self.found = first_crossing_to(&self.segment, a, self.last, b, pb, Direction::Up);
+            self.chunks += 1;
             self.last = pb;
-            chunks += 1;
         }
-        if self.searched != s_target || self.settled {
-            self.last = self.segment.point(s_target);
-            self.searched = s_target;
+        match self.found {
+            Some((s, p)) if s <= s_target => FreeAdvance::Contact {
+                time: self.t0 + s,
+                state: p.state,
+            },
+            _ => FreeAdvance::Reached(self.segment.point(s_target).state),
         }
-        FreeAdvance::Reached(self.last.state)
     }
 }
