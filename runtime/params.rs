@@ -388,10 +388,6 @@ impl Problem {
                 _ => {}
             }
         }
-        let p = &self.params;
-        if p.damping_ratio == 0.0 && p.speed_ratio == 1.0 {
-            return Err(ParamError::UndampedResonance);
-        }
         Ok(())
     }
 }

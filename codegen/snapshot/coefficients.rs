@@ -16,6 +16,12 @@
 //                               after:    10 add    14 mul    0 div   0 sqrt   0 trans
 // free_eval                    before:    53 add    74 mul    0 div   0 sqrt   0 trans
 //                               after:    25 add    29 mul    0 div   0 sqrt   0 trans
+// free_forcing                 before:     0 add     4 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     3 mul    0 div   0 sqrt   0 trans
+// free_start                   before:     2 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     2 mul    0 div   0 sqrt   0 trans
+// free_forced_eval             before:    53 add    66 mul    0 div   0 sqrt   0 trans
+//                               after:    25 add    25 mul    0 div   0 sqrt   0 trans
 // contact_particular           before:   111 add   290 mul    6 div   0 sqrt   0 trans
 //                               after:    23 add    87 mul    2 div   0 sqrt   0 trans
 // contact_particular_eval      before:     6 add    12 mul    0 div   0 sqrt   0 trans
@@ -288,6 +294,30 @@ pub struct FreeBasis {
     /// ES(s)
     pub es: f64,
 }
+/// The forcing over a free segment as a_x cos ηs + b_x sin ηs, a_y cos ηs + b_y sin ηs (`docs/MODEL.md` §11).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FreeForcing {
+    /// cos ηs coefficient of the x forcing
+    pub ax: f64,
+    /// sin ηs coefficient of the x forcing
+    pub bx: f64,
+    /// cos ηs coefficient of the y forcing
+    pub ay: f64,
+    /// sin ηs coefficient of the y forcing
+    pub by: f64,
+}
+/// The forced basis at s: zero-state responses FC, FS of the free oscillator to cos ηs, sin ηs and their derivatives (`docs/MODEL.md` §11).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ForcedBasis {
+    /// FC(s)
+    pub fc: f64,
+    /// FS(s)
+    pub fs: f64,
+    /// FC'(s)
+    pub dfc: f64,
+    /// FS'(s)
+    pub dfs: f64,
+}
 /// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
 ///
 /// Source: model.md §2.
@@ -499,6 +529,114 @@ pub fn free_eval(
     let t12 = t0 + t1 + t2 + t3 - ex;
     let t13 = t4 + t5 + t6 + t7 - ey;
     FreeState {
+        x: t0 + t1 + t2 + t3,
+        y: t4 + t5 + t6 + t7,
+        vx: t10,
+        vy: t11,
+        h: t12 * t12 + t13 * t13 - 1.0,
+        dh: 2.0 * t10 * t12 + 2.0 * t11 * t13,
+    }
+}
+/// Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = ax cos ηs + bx sin ηs, fy = ay cos ηs + by sin ηs.
+///
+/// Source: model.md §1, §11.
+/// Derivation: the forcing at θ = θ0 + ηs with the phasor rotated by angle addition; coefficients of cos ηs and sin ηs by partial differentiation.
+#[inline]
+#[must_use]
+pub fn free_forcing(model: &ModelParams, phasor: &Phasor) -> FreeForcing {
+    let f = model.f;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = ct * f;
+    FreeForcing {
+        ax: t0,
+        bx: -st * f,
+        ay: st * f,
+        by: t0,
+    }
+}
+/// Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + ax·FC + bx·FS from the start state (the forced part FC, FS starts at rest).
+///
+/// Source: model.md §4, §11.
+/// Derivation: initial conditions of the trajectory at s = 0 (EC = 1, ES = FC = FS = FC' = FS' = 0) solved for X, P, Y, Q.
+#[inline]
+#[must_use]
+pub fn free_start(model: &ModelParams, start: &StartState) -> FreeHomogeneous {
+    let nu = model.nu;
+    let x0 = start.x0;
+    let y0 = start.y0;
+    let vx0 = start.vx0;
+    let vy0 = start.vy0;
+    FreeHomogeneous {
+        xh: x0,
+        px: vx0 + nu * x0,
+        yh: y0,
+        py: vy0 + nu * y0,
+    }
+}
+/// Outputs of [`free_forced_eval`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForcedFreeState {
+    /// x
+    pub x: f64,
+    /// y
+    pub y: f64,
+    /// x'
+    pub vx: f64,
+    /// y'
+    pub vy: f64,
+    /// h = z² − 1
+    pub h: f64,
+    /// h' = dh/dτ
+    pub dh: f64,
+}
+/// State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.
+///
+/// Source: model.md §4, §11, eq. (10).
+/// Derivation: the trajectory X·EC + P·ES + ax·FC + bx·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.
+#[inline]
+#[must_use]
+pub fn free_forced_eval(
+    model: &ModelParams,
+    beta: &FreeDampedFrequency,
+    homogeneous: &FreeHomogeneous,
+    basis: &FreeBasis,
+    forcing: &FreeForcing,
+    forced: &ForcedBasis,
+) -> ForcedFreeState {
+    let nu = model.nu;
+    let ex = model.ex;
+    let ey = model.ey;
+    let beta_sq = beta.beta_sq;
+    let xh = homogeneous.xh;
+    let px = homogeneous.px;
+    let yh = homogeneous.yh;
+    let py = homogeneous.py;
+    let ec = basis.ec;
+    let es = basis.es;
+    let ax = forcing.ax;
+    let bx = forcing.bx;
+    let ay = forcing.ay;
+    let by = forcing.by;
+    let fc = forced.fc;
+    let fs = forced.fs;
+    let dfc = forced.dfc;
+    let dfs = forced.dfs;
+    let t0 = ec * xh;
+    let t1 = es * px;
+    let t2 = fc * ax;
+    let t3 = fs * bx;
+    let t4 = ec * yh;
+    let t5 = es * py;
+    let t6 = fc * ay;
+    let t7 = fs * by;
+    let t8 = nu * ec + es * beta_sq;
+    let t9 = ec - nu * es;
+    let t10 = t9 * px + dfc * ax + dfs * bx - t8 * xh;
+    let t11 = t9 * py + dfc * ay + dfs * by - t8 * yh;
+    let t12 = t0 + t1 + t2 + t3 - ex;
+    let t13 = t4 + t5 + t6 + t7 - ey;
+    ForcedFreeState {
         x: t0 + t1 + t2 + t3,
         y: t4 + t5 + t6 + t7,
         vx: t10,

@@ -1,48 +1,45 @@
-//! The free-flight segment (`model.md` §4): exact closed form in local time.
+//! The free-flight segment (`docs/MODEL.md` §4, §11): exact closed form in local time, in one of
+//! two forms chosen per parameter set.
+//!
+//! * Steady-state form (§4): x = xp(θ) + X·EC + P·ES, the harmonic steady state plus the
+//!   homogeneous transient that matches the start state. Accurate away from resonance.
+//! * Resonance-stable form (§11), within [`super::forced::RESONANT_BAND`] of resonance: x = X·EC + P·ES +
+//!   ax·FC + bx·FS, the homogeneous response to the start state plus the zero-state response to
+//!   the forcing ([`super::forced`]). Near resonance the steady state ~F/|1 − η² + 2iνη| and the
+//!   transient nearly cancel in the first form; the second has no such cancellation and stays
+//!   valid at ν = 0, η = 1 exactly (secular growth).
+//!
+//! # The free-flight bound
+//! One bound serves the analytic search ([`Segment::bounds`]) and the stepper's transition:
+//! [`FreeReach::bounds`]. Each form writes r − ε = X·EC + P·ES + M·b(s) − ε with constant
+//! vectors X = (X, Y), P = (P, Q), a constant real 2×2 matrix M and a vector b of scalar
+//! functions: b = (cos θ, sin θ) for the steady state (M = [[c11, c22], [c33, c44]]) and
+//! b = (FC, FS) for the forced form (M = [[ax, bx], [ay, by]]). So on [lo, hi]
+//! |r − ε| ≤ |X|·max|EC| + |P|·max|ES| + σ(M)·max|b| + |ε|, and likewise for r' and r'' with the
+//! derivative bounds of EC, ES ([`BasisBound`]) and of b: |b| = 1, |b'| = η, |b''| = η² for the
+//! phasor; max|K|, max|K'| ≤ κ and max|K''| ≤ κ + 1 for the forced basis (`super::forced`).
+//! σ(M) is the largest singular value ([`harmonic_amplitude`]), the tightest constant with
+//! |M·b| ≤ σ|b| (the Frobenius norm it replaces is larger by up to √2). Where both forms are
+//! available, each bound is the smaller of the two (both bound the same trajectory).
 
 use super::basis::{free_basis, free_basis_bound};
+use super::forced::Resonance;
 use super::segment::{Bounds, Point, Segment};
 use crate::coefficients::{
-    self as coef, FreeBasis, FreeDampedFrequency, FreeHomogeneous, FreeParticular, ModelParams,
-    Phasor,
+    self as coef, FreeBasis, FreeDampedFrequency, FreeForcing, FreeHomogeneous, FreeParticular,
+    ModelParams, Phasor,
 };
 use crate::math;
 use crate::params::{Params, State};
 
-/// Free flight from a state at time τ0, valid for all s = τ − τ0 ≥ 0 until contact.
-#[derive(Clone, Copy, Debug)]
-pub struct FreeSegment {
-    nu: f64,
-    eta: f64,
-    beta_sq: f64,
-    offset: (f64, f64),
-    phase0: (f64, f64),
-    particular: FreeParticular,
-    homogeneous: FreeHomogeneous,
-    /// Constants of [`Segment::bounds`]: |X|, |P| of the homogeneous part, the particular
-    /// amplitude and |ε|.
-    reach: Reach,
-}
-
-/// The amplitudes [`FreeSegment::bounds`] combines, computed once per segment.
-#[derive(Clone, Copy, Debug)]
-struct Reach {
-    pos: f64,
-    vel: f64,
-    amp: f64,
-    off: f64,
-}
-
 /// The largest |(c11 cos θ + c22 sin θ, c33 cos θ + c44 sin θ)| over θ: the largest singular
 /// value of [[c11, c22], [c33, c44]] (σ² = (S + √(S² − 4 det²))/2, S the sum of squares), with a
-/// relative margin for rounding. The particular velocity and acceleration are η and η² times the
-/// same matrix applied to a unit vector.
+/// relative margin for rounding, never above the Frobenius norm √S.
 pub(crate) fn harmonic_amplitude(c11: f64, c22: f64, c33: f64, c44: f64) -> f64 {
     let sum = c11 * c11 + c22 * c22 + c33 * c33 + c44 * c44;
     let det = c11 * c44 - c22 * c33;
     let disc = (sum * sum - 4.0 * det * det).max(0.0);
     let sigma = math::sqrt(0.5 * (sum + math::sqrt(disc)));
-    // Never above the Frobenius norm (the bound used before), never below it by rounding.
     (sigma * (1.0 + 1e-12)).min(math::sqrt(sum))
 }
 
@@ -51,101 +48,271 @@ pub(crate) fn harmonic_amplitude(c11: f64, c22: f64, c33: f64, c44: f64) -> f64 
 pub struct FreeConstants {
     /// β² = 1 − ν².
     pub beta_sq: f64,
-    /// Steady-state harmonic response.
+    /// Steady-state harmonic response (not finite at ν = 0, η = 1).
     pub particular: FreeParticular,
+    /// σ of the steady-state response, when finite.
+    steady_amplitude: Option<f64>,
+    /// The forced basis, within [`super::forced::RESONANT_BAND`] of resonance.
+    resonance: Option<Resonance>,
+    /// ν, η, F (and ε̂, replaced per segment) for the generated formulas.
+    model: ModelParams,
 }
 
 impl FreeConstants {
     /// Derived constants for `params`.
     pub fn new(params: &Params) -> Self {
+        let model = ModelParams::of(params);
+        let beta_sq = coef::free_damped_frequency_sq(&model).beta_sq;
+        let p = coef::free_particular(&model);
+        let amp = harmonic_amplitude(p.c11, p.c22, p.c33, p.c44);
         FreeConstants {
-            beta_sq: coef::free_damped_frequency_sq(&ModelParams::of(params)).beta_sq,
-            particular: coef::free_particular(&ModelParams::of(params)),
+            beta_sq,
+            particular: p,
+            steady_amplitude: amp.is_finite().then_some(amp),
+            resonance: Resonance::near(model.nu, beta_sq, model.eta),
+            model,
         }
     }
+
+    /// Whether free flight uses the resonance-stable form (`docs/MODEL.md` §11).
+    pub fn resonant(&self) -> bool {
+        self.resonance.is_some()
+    }
+}
+
+/// Bounds of the scalar basis functions and their derivatives on one interval.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BasisBound {
+    /// max |EC|, |ES|, |EC'|, |ES'|, |EC''|, |ES''|.
+    e: [f64; 6],
+    /// κ ≥ max(|FC + iFS|, |FC' + iFS'|) (forced form only).
+    kappa: f64,
+    eta: f64,
+}
+
+impl BasisBound {
+    /// The bounds on s ∈ [lo, hi] (`hi` may be infinite).
+    pub(crate) fn on(constants: &FreeConstants, lo: f64, hi: f64) -> Self {
+        let (nu, b2) = (constants.model.nu, math::abs(constants.beta_sq));
+        let (ec, es) = free_basis_bound(nu, constants.beta_sq, lo, hi);
+        // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
+        let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
+        let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
+        BasisBound {
+            e: [ec, es, dec, des, ddec, ddes],
+            kappa: constants.resonance.map_or(0.0, |r| r.bound(hi)),
+            eta: constants.model.eta,
+        }
+    }
+}
+
+/// |X|, |P| and σ(M) of one form (module docs).
+#[derive(Clone, Copy, Debug)]
+struct Amplitudes {
+    pos: f64,
+    vel: f64,
+    drive: f64,
+}
+
+impl Amplitudes {
+    /// Radius, speed and acceleration bounds for drive-function bounds `b` (value, first and
+    /// second derivative).
+    fn bounds(&self, e: &[f64; 6], b: [f64; 3], off: f64) -> Bounds {
+        let [ec, es, dec, des, ddec, ddes] = *e;
+        Bounds {
+            radius: self.pos * ec + self.vel * es + self.drive * b[0] + off,
+            speed: self.pos * dec + self.vel * des + self.drive * b[1],
+            accel: self.pos * ddec + self.vel * ddes + self.drive * b[2],
+        }
+    }
+}
+
+/// The amplitudes of one free segment that [`FreeReach::bounds`] combines with interval bounds of
+/// the basis: the one free-flight bound (module docs).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FreeReach {
+    steady: Option<Amplitudes>,
+    forced: Option<Amplitudes>,
+    off: f64,
+}
+
+impl FreeReach {
+    /// Bounds on the interval `basis` was computed for.
+    #[inline]
+    pub(crate) fn bounds(&self, basis: &BasisBound) -> Bounds {
+        let eta = basis.eta;
+        let steady = self
+            .steady
+            .map(|a| a.bounds(&basis.e, [1.0, eta, eta * eta], self.off));
+        let forced = self.forced.map(|a| {
+            let k = basis.kappa;
+            a.bounds(&basis.e, [k, k, k + 1.0], self.off)
+        });
+        match (steady, forced) {
+            (Some(s), Some(f)) => Bounds {
+                radius: s.radius.min(f.radius),
+                speed: s.speed.min(f.speed),
+                accel: s.accel.min(f.accel),
+            },
+            (Some(b), None) | (None, Some(b)) => b,
+            (None, None) => Bounds {
+                radius: f64::INFINITY,
+                speed: f64::INFINITY,
+                accel: f64::INFINITY,
+            },
+        }
+    }
+}
+
+/// The constants of the closed form in use.
+#[derive(Clone, Copy, Debug)]
+enum Form {
+    Steady(FreeHomogeneous),
+    Forced {
+        start: FreeHomogeneous,
+        forcing: FreeForcing,
+        resonance: Resonance,
+    },
+}
+
+/// Free flight from a state at time τ0, valid for all s = τ − τ0 ≥ 0 until contact.
+#[derive(Clone, Copy, Debug)]
+pub struct FreeSegment {
+    constants: FreeConstants,
+    /// The parameters with this segment's offset.
+    model: ModelParams,
+    phase0: (f64, f64),
+    form: Form,
+    reach: FreeReach,
 }
 
 impl FreeSegment {
     /// The free segment through `state` at absolute time `t0`.
     pub fn new(params: &Params, constants: &FreeConstants, t0: f64, state: State) -> Self {
         let (st, ct) = math::sin_cos(math::wrap_angle(params.speed_ratio * t0 + params.phase));
-        let p = constants.particular;
-        let model = ModelParams::of(params);
-        let homogeneous = coef::free_homogeneous(&model, &state.into(), &Phasor { ct, st }, &p);
-        let reach = Reach {
-            pos: math::hypot(homogeneous.xh, homogeneous.yh),
-            vel: math::hypot(homogeneous.px, homogeneous.py),
-            amp: harmonic_amplitude(p.c11, p.c22, p.c33, p.c44),
-            off: math::hypot(params.offset_x, params.offset_y),
+        Self::with_phasor(
+            constants,
+            (params.offset_x, params.offset_y),
+            (ct, st),
+            state,
+        )
+    }
+
+    /// The free segment through `state` with forcing phasor `phasor` = (cos θ0, sin θ0) at its
+    /// start and stator offset `offset` (the stepper's transition uses unit inputs and no offset).
+    pub(crate) fn with_phasor(
+        constants: &FreeConstants,
+        offset: (f64, f64),
+        phasor: (f64, f64),
+        state: State,
+    ) -> Self {
+        let c = constants;
+        let model = ModelParams {
+            ex: offset.0,
+            ey: offset.1,
+            ..c.model
+        };
+        let (ct, st) = phasor;
+        let start = state.into();
+        let steady_homogeneous =
+            || coef::free_homogeneous(&model, &start, &Phasor { ct, st }, &c.particular);
+        let amplitudes = |h: &FreeHomogeneous, drive: f64| Amplitudes {
+            pos: math::hypot(h.xh, h.yh),
+            vel: math::hypot(h.px, h.py),
+            drive,
+        };
+        let off = math::hypot(offset.0, offset.1);
+        let (form, reach) = match c.resonance {
+            None => {
+                let h = steady_homogeneous();
+                let steady = c.steady_amplitude.map(|amp| amplitudes(&h, amp));
+                let reach = FreeReach {
+                    steady,
+                    forced: None,
+                    off,
+                };
+                (Form::Steady(h), reach)
+            }
+            Some(resonance) => {
+                let start = coef::free_start(&model, &start);
+                let forcing = coef::free_forcing(&model, &Phasor { ct, st });
+                let reach = FreeReach {
+                    steady: c
+                        .steady_amplitude
+                        .map(|amp| amplitudes(&steady_homogeneous(), amp)),
+                    forced: Some(Amplitudes {
+                        pos: math::hypot(start.xh, start.yh),
+                        vel: math::hypot(start.px, start.py),
+                        drive: harmonic_amplitude(forcing.ax, forcing.bx, forcing.ay, forcing.by),
+                    }),
+                    off,
+                };
+                let form = Form::Forced {
+                    start,
+                    forcing,
+                    resonance,
+                };
+                (form, reach)
+            }
         };
         FreeSegment {
-            nu: params.damping_ratio,
-            eta: params.speed_ratio,
-            beta_sq: constants.beta_sq,
-            offset: (params.offset_x, params.offset_y),
-            phase0: (ct, st),
-            particular: p,
-            homogeneous,
+            constants: *constants,
+            model,
+            phase0: phasor,
+            form,
             reach,
         }
     }
 
-    /// Forcing phasor (cos θ, sin θ) at local time s by angle addition from the segment start.
-    fn phasor(&self, s: f64) -> (f64, f64) {
-        let (sd, cd) = math::sin_cos(self.eta * s);
-        let (c0, s0) = self.phase0;
-        (c0 * cd - s0 * sd, s0 * cd + c0 * sd)
+    /// The segment's bound amplitudes (shared with the stepper's transition).
+    pub(crate) fn reach(&self) -> &FreeReach {
+        &self.reach
     }
 
     /// Upper bound of |r − ε| for all s ≥ `lo`: the steady orbit's reach plus the decaying
     /// transient. Below 1 means no contact can ever happen again after `lo`.
     pub fn reach_after(&self, lo: f64) -> f64 {
-        let b = self.bounds(lo, f64::INFINITY);
-        b.radius
+        self.bounds(lo, f64::INFINITY).radius
     }
 }
 
 impl Segment for FreeSegment {
     fn point(&self, s: f64) -> Point {
-        let (ec, es) = free_basis(self.nu, self.beta_sq, s);
-        let (ct, st) = self.phasor(s);
-        let (h, p) = (&self.homogeneous, &self.particular);
-        let model = ModelParams {
-            nu: self.nu,
-            eta: self.eta,
-            ex: self.offset.0,
-            ey: self.offset.1,
-            ..ModelParams::default()
+        let c = &self.constants;
+        let model = &self.model;
+        let (ec, es) = free_basis(model.nu, c.beta_sq, s);
+        let (sd, cd) = math::sin_cos(model.eta * s);
+        let basis = FreeBasis { ec, es };
+        let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
+        let (x, y, vx, vy, h, dh) = match &self.form {
+            Form::Steady(homogeneous) => {
+                // The forcing phasor at s by angle addition from the segment start.
+                let (c0, s0) = self.phase0;
+                let phasor = Phasor {
+                    ct: c0 * cd - s0 * sd,
+                    st: s0 * cd + c0 * sd,
+                };
+                let r = coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &basis);
+                (r.x, r.y, r.vx, r.vy, r.h, r.dh)
+            }
+            Form::Forced {
+                start,
+                forcing,
+                resonance,
+            } => {
+                let forced = resonance.basis(s, ec, es, (cd, sd));
+                let r = coef::free_forced_eval(model, &beta, start, &basis, forcing, &forced);
+                (r.x, r.y, r.vx, r.vy, r.h, r.dh)
+            }
         };
-        let beta = FreeDampedFrequency {
-            beta_sq: self.beta_sq,
-        };
-        let r = coef::free_eval(
-            &model,
-            &Phasor { ct, st },
-            p,
-            &beta,
-            h,
-            &FreeBasis { ec, es },
-        );
         Point {
-            state: State::new(r.x, r.y, r.vx, r.vy),
-            h: r.h,
-            dh: r.dh,
+            state: State::new(x, y, vx, vy),
+            h,
+            dh,
         }
     }
 
     fn bounds(&self, lo: f64, hi: f64) -> Bounds {
-        let (ec, es) = free_basis_bound(self.nu, self.beta_sq, lo, hi);
-        let Reach { pos, vel, amp, off } = self.reach;
-        let (nu, b2) = (self.nu, math::abs(self.beta_sq));
-        // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
-        let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
-        let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
-        Bounds {
-            radius: pos * ec + vel * es + amp + off,
-            speed: pos * dec + vel * des + self.eta * amp,
-            accel: pos * ddec + vel * ddes + self.eta * self.eta * amp,
-        }
+        self.reach.bounds(&BasisBound::on(&self.constants, lo, hi))
     }
 }

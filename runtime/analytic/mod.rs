@@ -6,6 +6,7 @@
 //! [`propagator`] (the state machine).
 
 pub mod basis;
+pub mod forced;
 pub mod free;
 pub mod free_flight;
 pub mod linear;

@@ -1,19 +1,17 @@
 //! Free flight over one fixed step as a precomputed affine map, and the bound that proves a free
 //! step contact-free.
 //!
-//! The free equations (`model.md` §4) are linear with a harmonic forcing, so over a step of
+//! The free equations (`docs/MODEL.md` §4) are linear with a harmonic forcing, so over a step of
 //! length `dt` the end state is w(dt) = Φ(dt)·w(0) + G(dt)·(cos θ0, sin θ0): Φ is the 4×4
-//! transition matrix of the homogeneous system and G carries the particular solution across the
-//! step (its columns are the particular state at θ0 = 0 and θ0 = π/2 rotated by η·dt, minus
-//! their homogeneous propagation). Both are built by evaluating the *generated* free formulas
-//! (`coefficients::free_homogeneous`, `coefficients::free_eval` with the basis of
-//! [`free_basis`]) on unit inputs: the map is linear in (w, cos θ0, sin θ0), so its columns are
-//! its values at the unit vectors. No closed form is typed here.
+//! transition matrix of the homogeneous system and G the zero-state response to the forcing over
+//! the step. Both are the free segment ([`FreeSegment`], in the resonance-stable form near
+//! resonance, §11) evaluated at `dt` on unit inputs: the map is linear in (w, cos θ0, sin θ0), so
+//! its columns are its values at the unit vectors. No closed form is typed here, and the switch
+//! bound is the free segment's own (`analytic::free`).
 
 use super::search::local_curvature;
-use crate::analytic::basis::{free_basis, free_basis_bound};
-use crate::analytic::free::FreeConstants;
-use crate::coefficients::{self as coef, FreeBasis, FreeDampedFrequency, ModelParams, Phasor};
+use crate::analytic::free::{BasisBound, FreeConstants, FreeSegment};
+use crate::analytic::segment::Segment;
 use crate::math;
 use crate::params::{Params, State};
 
@@ -31,72 +29,50 @@ pub struct FreeTransition {
     g: [[f64; 2]; 4],
     /// (cos η·dt, sin η·dt): the forcing phasor's rotation over one step.
     rotation: (f64, f64),
-    eta: f64,
-    /// ν and η for the generated formulas.
-    model: ModelParams,
-    particular: coef::FreeParticular,
-    /// Bounds of |EC|, |ES| and of their first and second derivatives on [0, dt].
-    basis: [f64; 6],
-    /// sqrt(c11² + c22² + c33² + c44²): bound of the particular solution's amplitude.
-    amplitude: f64,
-    /// |ε̂|.
-    offset: f64,
+    constants: FreeConstants,
+    /// Bounds of the basis functions on [0, dt].
+    basis: BasisBound,
+    /// (ε̂x, ε̂y).
+    offset: (f64, f64),
 }
 
 impl FreeTransition {
     /// The map over `dt` (> 0) for `params`, with their free constants.
     pub fn new(params: &Params, constants: &FreeConstants, dt: f64) -> Self {
-        let nu = params.damping_ratio;
-        let eta = params.speed_ratio;
-        let beta_sq = constants.beta_sq;
-        let p = constants.particular;
-        let (ec, es) = free_basis(nu, beta_sq, dt);
-        let (sd, cd) = math::sin_cos(eta * dt);
-        // The generated free step from start state `w` and start phasor (ct, st), offsets zero.
-        let model = ModelParams {
-            nu,
-            eta,
-            ..ModelParams::default()
-        };
-        let (beta, basis) = (FreeDampedFrequency { beta_sq }, FreeBasis { ec, es });
-        let map = |w: [f64; 4], ct: f64, st: f64| -> [f64; 4] {
-            let start = State::from_array(w).into();
-            let h = coef::free_homogeneous(&model, &start, &Phasor { ct, st }, &p);
-            let (ce, se) = (ct * cd - st * sd, st * cd + ct * sd);
-            let phasor = Phasor { ct: ce, st: se };
-            let r = coef::free_eval(&model, &phasor, &p, &beta, &h, &basis);
-            [r.x, r.y, r.vx, r.vy]
+        let (sd, cd) = math::sin_cos(params.speed_ratio * dt);
+        // The free step from start state `w` and start phasor (ct, st), offsets zero.
+        let map = |w: [f64; 4], phasor: (f64, f64)| -> [f64; 4] {
+            FreeSegment::with_phasor(constants, (0.0, 0.0), phasor, State::from_array(w))
+                .point(dt)
+                .state
+                .to_array()
         };
         let mut phi = [[0.0; 4]; 4];
         for j in 0..4 {
             let mut unit = [0.0; 4];
-            unit[j] = 1.0;
-            let column = map(unit, 0.0, 0.0);
+            if let Some(u) = unit.get_mut(j) {
+                *u = 1.0;
+            }
+            let column = map(unit, (0.0, 0.0));
             for (row, value) in phi.iter_mut().zip(column) {
-                row[j] = value;
+                if let Some(r) = row.get_mut(j) {
+                    *r = value;
+                }
             }
         }
-        let (gc, gs) = (map([0.0; 4], 1.0, 0.0), map([0.0; 4], 0.0, 1.0));
+        let (gc, gs) = (map([0.0; 4], (1.0, 0.0)), map([0.0; 4], (0.0, 1.0)));
         let mut g = [[0.0; 2]; 4];
-        for i in 0..4 {
-            g[i] = [gc[i], gs[i]];
+        for (row, (c, s)) in g.iter_mut().zip(gc.into_iter().zip(gs)) {
+            *row = [c, s];
         }
-        // Derivative bounds exactly as `FreeSegment::bounds`: EC' = −νEC − β²ES, ES' = EC − νES.
-        let (ecb, esb) = free_basis_bound(nu, beta_sq, 0.0, dt);
-        let b2 = math::abs(beta_sq);
-        let (dec, des) = (nu * ecb + b2 * esb, ecb + nu * esb);
-        let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
         FreeTransition {
             dt,
             phi,
             g,
             rotation: (cd, sd),
-            eta,
-            model,
-            particular: p,
-            basis: [ecb, esb, dec, des, ddec, ddes],
-            amplitude: math::sqrt(p.c11 * p.c11 + p.c22 * p.c22 + p.c33 * p.c33 + p.c44 * p.c44),
-            offset: math::hypot(params.offset_x, params.offset_y),
+            constants: *constants,
+            basis: BasisBound::on(constants, 0.0, dt),
+            offset: (params.offset_x, params.offset_y),
         }
     }
 
@@ -131,22 +107,14 @@ impl FreeTransition {
     }
 
     /// A rigorous upper bound of |h''| (h = z² − 1) over the free step from `w` with forcing
-    /// phasor `phasor` at the start, where |r − ε| = `r0`: the bounds of `FreeSegment::bounds`
-    /// on [0, dt] (homogeneous constants from the generated `free_homogeneous`), with radius
-    /// and speed tightened around the start as in [`super::search::curvature`] (about 50
-    /// flops, 4 `sqrt`).
+    /// phasor `phasor` at the start, where |r − ε| = `r0`: the free-flight bound
+    /// ([`crate::analytic::free`]) on [0, dt], with radius and speed tightened around the start as
+    /// in [`super::search::curvature`].
     #[inline]
     pub fn curvature_bound(&self, w: &State, phasor: (f64, f64), r0: f64) -> f64 {
-        let p = &self.particular;
-        let (ct, st) = phasor;
-        let h = coef::free_homogeneous(&self.model, &(*w).into(), &Phasor { ct, st }, p);
-        let pos = math::sqrt(h.xh * h.xh + h.yh * h.yh);
-        let vel = math::sqrt(h.px * h.px + h.py * h.py);
-        let [ec, es, dec, des, ddec, ddes] = self.basis;
-        let radius = pos * ec + vel * es + self.amplitude + self.offset;
-        let speed = pos * dec + vel * des + self.eta * self.amplitude;
-        let accel = pos * ddec + vel * ddes + self.eta * self.eta * self.amplitude;
-        let v0 = math::sqrt(w.vx * w.vx + w.vy * w.vy);
-        local_curvature(r0, v0, radius, speed, accel, self.dt)
+        let segment = FreeSegment::with_phasor(&self.constants, self.offset, phasor, *w);
+        let b = segment.reach().bounds(&self.basis);
+        let v0 = math::hypot(w.vx, w.vy);
+        local_curvature(r0, v0, b.radius, b.speed, b.accel, self.dt)
     }
 }

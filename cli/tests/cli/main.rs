@@ -4,5 +4,6 @@ mod analyses;
 mod common;
 mod errors;
 mod fig2;
+mod resonance;
 mod simulate;
 mod sweep;

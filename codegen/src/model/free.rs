@@ -9,6 +9,9 @@ pub(super) fn derive(m: &mut Model) {
     damped_frequency(m);
     free_homogeneous(m);
     free_eval(m);
+    free_forcing(m);
+    free_start(m);
+    free_forced_eval(m);
 }
 
 /// c11 … c44: the harmonic ansatz substituted into the free equations; coefficients of cos θ and
@@ -197,6 +200,125 @@ fn free_eval(m: &mut Model) {
         "model.md §4, eq. (10)",
         "the trajectory X·EC + P·ES + xp and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, (cos θ)' = −η sin θ, (sin θ)' = η cos θ.",
         "FreeState",
+        vec![
+            ("x", "x", q[0]),
+            ("y", "y", q[1]),
+            ("vx", "x'", vx),
+            ("vy", "y'", vy),
+            ("h", "h = z² − 1", h),
+            ("dh", "h' = dh/dτ", dh),
+        ],
+    );
+}
+
+/// The forcing over a free segment as a_x cos ηs + b_x sin ηs (and y alike): the model's forcing
+/// at θ = θ0 + ηs, the phasor rotated by angle addition, coefficients of cos ηs and sin ηs.
+fn free_forcing(m: &mut Model) {
+    let [ct, st, ce, se] = ["ct", "st", "ce", "se"].map(|n| m.var(n));
+    let g = &mut m.graph;
+    let c = {
+        let a = g.mul(ct, ce);
+        let b = g.mul(st, se);
+        g.sub(a, b)
+    };
+    let s = {
+        let a = g.mul(st, ce);
+        let b = g.mul(ct, se);
+        g.add(a, b)
+    };
+    let forcing = m.unbalance([c, s]);
+    let x = m.coefficients(forcing[0], &[ce, se]);
+    let y = m.coefficients(forcing[1], &[ce, se]);
+    m.add_formula(
+        "free_forcing",
+        "Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = ax cos ηs + bx sin ηs, fy = ay cos ηs + by sin ηs.",
+        "model.md §1, §11",
+        "the forcing at θ = θ0 + ηs with the phasor rotated by angle addition; coefficients of cos ηs and sin ηs by partial differentiation.",
+        "FreeForcing",
+        vec![
+            ("ax", "cos ηs coefficient of the x forcing", x[0]),
+            ("bx", "sin ηs coefficient of the x forcing", x[1]),
+            ("ay", "cos ηs coefficient of the y forcing", y[0]),
+            ("by", "sin ηs coefficient of the y forcing", y[1]),
+        ],
+    );
+}
+
+/// The resonance-stable free trajectory: homogeneous part from the start state plus the
+/// zero-state forced response, x = X·EC + P·ES + ax·FC + bx·FS (and y alike), where FC, FS
+/// (derivatives FC', FS', both zero at s = 0) answer cos ηs and sin ηs.
+fn forced_trajectory(m: &mut Model, rates: &mut Rates) -> [crate::expr::ExprId; 2] {
+    let [ec, es] = damped_basis(m, rates, "ec", "es", "beta_sq");
+    let [fc, fs, dfc, dfs] = ["fc", "fs", "dfc", "dfs"].map(|n| m.var(n));
+    let (fc_sym, fs_sym) = (m.sym("fc"), m.sym("fs"));
+    rates.insert(fc_sym, dfc);
+    rates.insert(fs_sym, dfs);
+    let [xh, yh, px, py] = ["xh", "yh", "px", "py"].map(|n| m.var(n));
+    let [ax, bx, ay, by] = ["ax", "bx", "ay", "by"].map(|n| m.var(n));
+    let g = &mut m.graph;
+    let mut component = |h: [crate::expr::ExprId; 2], f: [crate::expr::ExprId; 2]| {
+        let terms = [
+            g.mul(h[0], ec),
+            g.mul(h[1], es),
+            g.mul(f[0], fc),
+            g.mul(f[1], fs),
+        ];
+        g.sum(&terms)
+    };
+    [component([xh, px], [ax, bx]), component([yh, py], [ay, by])]
+}
+
+/// X, P, Y, Q of the resonance-stable form from the start state (the forced part starts at rest).
+fn free_start(m: &mut Model) {
+    let mut rates = Rates::new();
+    let q = forced_trajectory(m, &mut rates);
+    let (one, zero) = (m.graph.constant(1.0), m.graph.constant(0.0));
+    let at_start: Vec<(&str, crate::expr::ExprId)> = vec![
+        ("ec", one),
+        ("es", zero),
+        ("fc", zero),
+        ("fs", zero),
+        ("dfc", zero),
+        ("dfs", zero),
+    ];
+    let eqs = m.initial_conditions(q, &rates, &at_start, [("x0", "vx0"), ("y0", "vy0")]);
+    let c = m.solve(&eqs, &["xh", "px", "yh", "py"]);
+    m.add_formula(
+        "free_start",
+        "Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + ax·FC + bx·FS from the start state (the forced part FC, FS starts at rest).",
+        "model.md §4, §11",
+        "initial conditions of the trajectory at s = 0 (EC = 1, ES = FC = FS = FC' = FS' = 0) solved for X, P, Y, Q.",
+        "FreeHomogeneous",
+        vec![
+            ("xh", "X = x0", c[0]),
+            ("px", "P = x0' + ν x0", c[1]),
+            ("yh", "Y = y0", c[2]),
+            ("py", "Q = y0' + ν y0", c[3]),
+        ],
+    );
+}
+
+/// State and switching function of the resonance-stable free form.
+fn free_forced_eval(m: &mut Model) {
+    let mut rates = Rates::new();
+    let q = forced_trajectory(m, &mut rates);
+    let (ex, ey) = (m.var("ex"), m.var("ey"));
+    let g = &mut m.graph;
+    let vx = derivative(g, q[0], &rates);
+    let vy = derivative(g, q[1], &rates);
+    let u = g.sub(q[0], ex);
+    let v = g.sub(q[1], ey);
+    let uu = g.mul(u, u);
+    let vv = g.mul(v, v);
+    let m1 = g.constant(-1.0);
+    let h = g.sum(&[uu, vv, m1]);
+    let dh = derivative(g, h, &rates);
+    m.add_formula(
+        "free_forced_eval",
+        "State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.",
+        "model.md §4, §11, eq. (10)",
+        "the trajectory X·EC + P·ES + ax·FC + bx·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.",
+        "ForcedFreeState",
         vec![
             ("x", "x", q[0]),
             ("y", "y", q[1]),

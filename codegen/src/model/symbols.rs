@@ -272,6 +272,28 @@ pub const GROUPS: &[Group] = &[
         doc: "The free-flight basis EC = e^{−νs} cos βs, ES = e^{−νs} sin(βs)/β at s.",
         fields: &[("ec", "ec", "EC(s)"), ("es", "es", "ES(s)")],
     },
+    Group {
+        ty: "FreeForcing",
+        arg: "forcing",
+        doc: "The forcing over a free segment as a_x cos ηs + b_x sin ηs, a_y cos ηs + b_y sin ηs (`docs/MODEL.md` §11).",
+        fields: &[
+            ("ax", "ax", "cos ηs coefficient of the x forcing"),
+            ("bx", "bx", "sin ηs coefficient of the x forcing"),
+            ("ay", "ay", "cos ηs coefficient of the y forcing"),
+            ("by", "by", "sin ηs coefficient of the y forcing"),
+        ],
+    },
+    Group {
+        ty: "ForcedBasis",
+        arg: "forced",
+        doc: "The forced basis at s: zero-state responses FC, FS of the free oscillator to cos ηs, sin ηs and their derivatives (`docs/MODEL.md` §11).",
+        fields: &[
+            ("fc", "fc", "FC(s)"),
+            ("fs", "fs", "FS(s)"),
+            ("dfc", "dfc", "FC'(s)"),
+            ("dfs", "dfs", "FS'(s)"),
+        ],
+    },
 ];
 
 /// Symbols that only live inside derivations (unknowns, variables substituted away).
@@ -291,6 +313,14 @@ pub const INTERNAL: &[(&str, &str)] = &[
         "b, the unknown squared frequency of the damped-frequency ansatz",
     ),
     ("s_ratio", "s, the unknown mode ratio y/x"),
+    (
+        "ce",
+        "cos ηs, the forcing rotation over a free segment (coefficients taken)",
+    ),
+    (
+        "se",
+        "sin ηs, the forcing rotation over a free segment (coefficients taken)",
+    ),
     ("c1", "c1, unknown of the paper's modal constants"),
     ("c2", "c2, unknown of the paper's modal constants"),
     ("c3", "c3, unknown of the paper's modal constants"),

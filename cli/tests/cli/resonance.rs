@@ -1,0 +1,47 @@
+//! Issue 13's near-resonance example through the binary: hybrid free flight is exact and
+//! resonance-stable, so its switches and final state match DOP853 at tol 1e-13.
+
+use crate::common::bin;
+
+/// The switch count and final state printed by `simulate` for `method` (and its tolerance).
+fn simulate(method: &str, tol: Option<&str>) -> (usize, [f64; 4]) {
+    let mut cmd = bin();
+    cmd.args(["simulate", "--method", method, "--t-end", "30"])
+        .args(["--set", "speed_ratio=1", "--set", "damping_ratio=1e-9"]);
+    if let Some(tol) = tol {
+        cmd.args(["--tol", tol]);
+    }
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let line = |prefix: &str| {
+        stdout
+            .lines()
+            .find_map(|l| l.strip_prefix(prefix))
+            .unwrap_or_else(|| panic!("no {prefix:?} in {stdout}"))
+            .to_owned()
+    };
+    let switches = line("switches: ");
+    let count = switches.split_whitespace().next().unwrap().parse().unwrap();
+    let state = line("final state: ");
+    let mut values = state
+        .split(", ")
+        .map(|kv| kv.split(" = ").nth(1).unwrap().split(' ').next().unwrap());
+    let mut next = || values.next().unwrap().parse::<f64>().unwrap();
+    (count, [next(), next(), next(), next()])
+}
+
+#[test]
+fn hybrid_near_resonance_matches_dop853() {
+    // Before: hybrid 6151 switches against 35.
+    let (n_ref, s_ref) = simulate("dop853", Some("1e-13"));
+    let (n, s) = simulate("hybrid", None);
+    assert_eq!(n, n_ref, "switch count");
+    for (a, b) in s.iter().zip(&s_ref) {
+        assert!((a - b).abs() < 1e-7, "final state {s:?} vs {s_ref:?}");
+    }
+}
