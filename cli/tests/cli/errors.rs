@@ -80,16 +80,6 @@ fn out_of_range_values_use_the_library_rule() {
     );
     fails(
         &[
-            "simulate",
-            "--set",
-            "damping_ratio=0",
-            "--set",
-            "speed_ratio=1",
-        ],
-        &["damping_ratio", "resonant"],
-    );
-    fails(
-        &[
             "sweep",
             "--param",
             "damping_ratio",

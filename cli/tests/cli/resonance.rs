@@ -45,3 +45,28 @@ fn hybrid_near_resonance_matches_dop853() {
         assert!((a - b).abs() < 1e-7, "final state {s:?} vs {s_ref:?}");
     }
 }
+
+/// ν = 0 at η = 1 exactly is a valid problem (free flight grows secularly); the analytic
+/// method's linearized contact at z = 1 is exactly resonant there and says so with a typed error.
+#[test]
+fn exact_resonance_is_accepted() {
+    let args = ["simulate", "--t-end", "30", "--set", "damping_ratio=0"];
+    let out = bin()
+        .args(args)
+        .args(["--set", "speed_ratio=1", "--method", "hybrid"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = bin()
+        .args(args)
+        .args(["--set", "speed_ratio=1", "--method", "analytic"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("singular or resonant"), "{stderr}");
+}
