@@ -25,7 +25,11 @@ fn problems() -> [(&'static str, Problem); 3] {
 }
 
 fn option_sets() -> Vec<Options> {
-    let mut all: Vec<Options> = Method::ALL.into_iter().map(Options::with_method).collect();
+    let mut all: Vec<Options> = Method::ALL
+        .iter()
+        .copied()
+        .map(Options::with_method)
+        .collect();
     all.push(Options {
         contact_scheme: ContactScheme::Exprb2,
         ..Options::default()
