@@ -16,9 +16,9 @@ use crate::math;
 use crate::params::{Params, State};
 
 /// The exact free-flight map over one step of fixed length, with the constants of the switch
-/// bound on that step. Computing it costs one `exp`, two `sin_cos`, the basis bounds (`exp`)
-/// and six evaluations of the generated free formulas (≈ 0.1 µs with `set_params`'s other
-/// work), paid once per step length and parameter set.
+/// bound on that step. Computing it costs six free-segment evaluations at `dt` (each one `exp`
+/// and two `sin_cos`, plus an `expm1` and a `sin_cos` in the resonance-stable form) and the basis
+/// bounds, paid once per step length and parameter set.
 #[derive(Clone, Copy, Debug)]
 pub struct FreeTransition {
     dt: f64,
