@@ -199,3 +199,40 @@ fn analytic_matches_the_reference_near_resonance() {
     regression(Method::Analytic, COMPARE_ETA, 0.0, compare_end(), 1e-6);
     regression(Method::Analytic, 1.0, 1e-9, 30.0, 1e-6);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The one free-flight bound stays rigorous in the resonance-stable form: on random intervals,
+    /// |r − ε|, |r'| and |r''| (central differences of r') at sampled times stay below
+    /// `Segment::bounds` (the switch search's proof rests on it).
+    #[test]
+    fn free_bounds_hold_near_resonance(
+        nu in damping(),
+        detune in near_one(),
+        start in prop::array::uniform4(-0.3f64..0.3),
+        phase in 0.0f64..std::f64::consts::TAU,
+        offset in prop::array::uniform2(-0.3f64..0.3),
+        lo in 0.0f64..30.0,
+        len in 1e-3f64..5.0,
+    ) {
+        let mut problem = free_problem(nu, 1.0 + detune, start, phase);
+        problem.params.offset_x = offset[0];
+        problem.params.offset_y = offset[1];
+        let params = problem.params;
+        let segment = FreeSegment::new(&params, &FreeConstants::new(&params), 0.0, problem.initial);
+        let b = segment.bounds(lo, lo + len);
+        let h = 1e-5;
+        for k in 0..=64 {
+            let s = lo + len * f64::from(k) / 64.0;
+            let st = segment.point(s).state;
+            let r = (st.x - offset[0]).hypot(st.y - offset[1]);
+            prop_assert!(r <= b.radius, "radius {r} > {}", b.radius);
+            prop_assert!(st.vx.hypot(st.vy) <= b.speed, "speed > {}", b.speed);
+            let (p, m) = (segment.point(s + h).state, segment.point((s - h).max(0.0)).state);
+            let span = s + h - (s - h).max(0.0);
+            let accel = ((p.vx - m.vx) / span).hypot((p.vy - m.vy) / span);
+            prop_assert!(accel <= b.accel * (1.0 + 1e-6) + 1e-8, "accel {accel} > {}", b.accel);
+        }
+    }
+}
