@@ -226,9 +226,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
 
     /// Light damping *at* resonance: ν ∈ [0, 1e-3] and η ∈ 1 ± 1e-3 together, where the free
-    /// closed form's particular and homogeneous parts cancel (issue 13 item 1).
+    /// closed form's particular and homogeneous parts cancel without the resonance-stable form
+    /// (issue 13 item 1, `docs/MODEL.md` §11).
     #[test]
-    #[ignore = "near-resonance free flight: re-enable when the resonance-stable form lands"]
     fn methods_agree_with_dop853_at_resonance_with_light_damping(
         problem in base(),
         nu in 0.0f64..1e-3,
