@@ -255,3 +255,67 @@ impl TimeArgs {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser, Debug)]
+    struct SurveyCommand {
+        #[command(flatten)]
+        method: MethodArgs<Survey>,
+    }
+
+    #[derive(Parser, Debug)]
+    struct Single {
+        #[command(flatten)]
+        method: MethodArgs<SingleRun>,
+    }
+
+    #[test]
+    fn each_command_kind_has_its_default_method() {
+        let survey = SurveyCommand::try_parse_from(["x"]).unwrap();
+        assert_eq!(survey.method.method, Method::Hybrid);
+        let single = Single::try_parse_from(["x"]).unwrap();
+        assert_eq!(single.method.method, Method::Analytic);
+        let chosen = SurveyCommand::try_parse_from(["x", "--method", "rk45"]).unwrap();
+        assert_eq!(chosen.method.method, Method::Rk45);
+    }
+
+    #[test]
+    fn out_of_range_tolerances_and_steps_are_input_errors() {
+        let args = |tol, step| SchemeArgs {
+            tol,
+            contact_scheme: None,
+            step,
+        };
+        for &m in Method::ALL {
+            let e = args(Some(10.0), None).options(m).unwrap_err();
+            assert_eq!(e.code, crate::error::EXIT_INPUT, "{m:?}");
+            let range = m.tolerance_range();
+            assert!(e.message.contains("1e1"), "{}", e.message);
+            assert!(e.message.contains(&range.to_string()), "{}", e.message);
+            assert!(args(Some(range.max), None).options(m).is_ok());
+        }
+        for step in [1e-300, 1e300] {
+            let e = args(None, Some(step))
+                .options(Method::Analytic)
+                .unwrap_err();
+            assert_eq!(e.code, crate::error::EXIT_INPUT);
+            assert!(e.message.contains(&format!("{step:e}")), "{}", e.message);
+        }
+    }
+
+    #[test]
+    fn help_lists_every_registered_method() {
+        let help = method_help();
+        for &m in Method::ALL {
+            assert!(help.contains(m.name()) && help.contains(m.description()));
+        }
+        assert!(parse_reference("analytic").is_err());
+        for name in ["dop853", "rk45"] {
+            assert!(parse_reference(name).is_ok());
+        }
+    }
+}

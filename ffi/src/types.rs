@@ -53,6 +53,9 @@ pub const ROTOR_RUB_EVENT_CAPACITY: usize = 4;
 pub const ROTOR_RUB_STEPPER_WORDS: usize = 128;
 
 const _: () = assert!(ROTOR_RUB_EVENT_CAPACITY == EVENT_CAPACITY);
+// The scheme codes are the library's (`ContactScheme::code`, the scheme registry).
+const _: () = assert!(ROTOR_RUB_SCHEME_EXPRB2 == ContactScheme::Exprb2.code());
+const _: () = assert!(ROTOR_RUB_SCHEME_EXPRB43 == ContactScheme::Exprb43.code());
 
 /// Model parameters (dimensionless, as in the paper; see the Rust `Params` for each rule).
 #[repr(C)]
@@ -214,10 +217,7 @@ impl From<StepperConfig> for RotorRubConfig {
     fn from(c: StepperConfig) -> Self {
         RotorRubConfig {
             dt: c.dt,
-            scheme: match c.scheme {
-                ContactScheme::Exprb2 => ROTOR_RUB_SCHEME_EXPRB2,
-                ContactScheme::Exprb43 => ROTOR_RUB_SCHEME_EXPRB43,
-            },
+            scheme: c.scheme.code(),
             contact_substeps: c.contact_substeps,
             max_substeps: c.max_substeps,
         }
@@ -229,11 +229,7 @@ impl TryFrom<RotorRubConfig> for StepperConfig {
 
     /// Fails with `ROTOR_RUB_ERR_INVALID_CONFIG` for an unknown scheme.
     fn try_from(c: RotorRubConfig) -> Result<Self, i32> {
-        let scheme = match c.scheme {
-            ROTOR_RUB_SCHEME_EXPRB2 => ContactScheme::Exprb2,
-            ROTOR_RUB_SCHEME_EXPRB43 => ContactScheme::Exprb43,
-            _ => return Err(ROTOR_RUB_ERR_INVALID_CONFIG),
-        };
+        let scheme = ContactScheme::from_code(c.scheme).ok_or(ROTOR_RUB_ERR_INVALID_CONFIG)?;
         Ok(StepperConfig {
             dt: c.dt,
             scheme,
