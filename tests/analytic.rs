@@ -506,3 +506,51 @@ fn the_analytic_method_and_the_stepper_share_the_switch_kernel() {
     assert_eq!((s, point), analytic);
     assert!((s - entry.time).abs() <= 1e-12, "{s} vs {}", entry.time);
 }
+
+/// A tangential start on z = 1 (z' = 0 up to rounding) takes the regime z'' points into, not
+/// the one the rounding of z' happens to point into — in `field::regime_of`, the stepper and the
+/// event-driven propagators — and no zero-length regime follows the start (`docs/MODEL.md` §6
+/// case 14). z'' is computed here from the free equations of motion.
+#[test]
+fn tangential_start_on_boundary_takes_the_regime_of_its_curvature() {
+    let mut problem = Preset::Paper.problem();
+    (problem.params.offset_x, problem.params.offset_y) = (-0.16036198459594503, 0.0);
+    let q = problem.params;
+    let (f, nu) = (q.forcing_amplitude(), q.damping_ratio);
+    let mut disagreed = 0;
+    for i in 0..256 {
+        let (s, c) = (f64::from(i) * std::f64::consts::TAU / 256.0 + 0.01).sin_cos();
+        let speed = 0.2 + 1.5 * f64::from(i % 7) / 7.0;
+        let x = State::new(q.offset_x + c, q.offset_y + s, -speed * s, speed * c);
+        problem.initial = x;
+        // h''/2 = |r'|² + (r − ε)·r'' with the free r'' = −2ν r' − r + F(cos φ, sin φ).
+        let (ct, st) = (q.phase.cos(), q.phase.sin());
+        let (ax, ay) = (
+            -2.0 * nu * x.vx - x.x + f * ct,
+            -2.0 * nu * x.vy - x.y + f * st,
+        );
+        let (u, v) = (x.x - q.offset_x, x.y - q.offset_y);
+        let curvature = x.vx * x.vx + x.vy * x.vy + u * ax + v * ay;
+        let expected = if curvature > 0.0 {
+            Regime::Contact
+        } else {
+            Regime::Free
+        };
+        let radial = u * x.vx + v * x.vy;
+        disagreed += usize::from((radial > 0.0) != (curvature > 0.0) && radial != 0.0);
+        assert_eq!(
+            rotor_rub::field::regime_of(&q, 0.0, &x),
+            expected,
+            "start {i}: z' = {radial:e}"
+        );
+        let stepper = rotor_rub::Stepper::new(&problem, Default::default()).unwrap();
+        assert_eq!(stepper.regime(), expected, "stepper, start {i}");
+        let mut p = Propagator::new(&problem, &Options::default()).unwrap();
+        assert_eq!(p.regime(), expected, "start {i}: z' = {radial:e}");
+        if let Some(ev) = p.advance(5.0).unwrap() {
+            assert!(ev.time > 1e-6, "start {i}: {:?} at {}", ev.kind, ev.time);
+        }
+    }
+    // The rounding of z' pointed the other way for some of the starts.
+    assert!(disagreed > 0);
+}
