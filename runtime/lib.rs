@@ -22,7 +22,7 @@ pub mod stepper;
 pub mod strategies;
 
 pub use method::{ContactScheme, Method, Options, Propagator};
-pub use params::{Field, ParamError, Params, Preset, Problem, State};
+pub use params::{ParamError, Parameter, Params, Preset, Problem, State};
 pub use propagate::{
     Event, EventKind, Propagate, PropagationError, Regime, Sample, advance_to, events, poincare,
     poincare_times, samples,

@@ -5,7 +5,7 @@
 use proptest::prelude::*;
 use rotor_rub::stepper::{EVENT_CAPACITY, MAX_STEP};
 use rotor_rub::{
-    ContactScheme, Event, EventKind, Field, Options, ParamError, Params, Preset, Problem,
+    ContactScheme, Event, EventKind, Options, ParamError, Parameter, Params, Preset, Problem,
     Propagate, PropagationError, Propagator, Regime, State, Stepper, StepperConfig, StepperError,
     advance_to,
 };
@@ -197,8 +197,8 @@ fn invalid_inputs_give_typed_errors() {
     assert!(matches!(
         Stepper::new(&bad, StepperConfig::default()),
         Err(StepperError::Propagation(PropagationError::InvalidProblem(
-            ParamError::NotPositive {
-                field: Field::SpeedRatio,
+            ParamError::OutOfRange {
+                parameter: Parameter::SpeedRatio,
                 ..
             }
         )))

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use rayon::prelude::*;
-use rotor_rub::{Event, Field, Method, Options, Problem, Sample, State};
+use rotor_rub::{Event, Method, Options, Parameter, Problem, Sample, State};
 
 use crate::analysis::classify::{Response, classify, distinct_points};
 use crate::analysis::lyapunov::largest_exponent;
@@ -234,7 +234,7 @@ pub fn run(args: &Args) -> Result<()> {
             .iter()
             .map(|&eta| {
                 let mut problem = base;
-                Field::SpeedRatio.set(&mut problem, eta);
+                Parameter::SpeedRatio.set(&mut problem, eta);
                 problem.validate().map(|()| problem).map_err(|e| {
                     CliError::input(format!("invalid parameters at --speeds {eta}: {e}"))
                 })

@@ -8,6 +8,7 @@ mod fig2;
 mod merge;
 mod options;
 mod output;
+mod params;
 mod plot;
 mod poincare;
 mod presets;
@@ -84,6 +85,9 @@ enum Command {
     /// List the presets with every value
     #[command(after_help = UNITS)]
     Presets,
+    /// List every parameter: name, symbol, default, valid range and meaning
+    #[command(after_help = UNITS)]
+    Params,
 }
 
 /// A clap usage error as one line: its first line plus any value list or tip.
@@ -117,6 +121,10 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Presets) => {
             presets::run();
+            Ok(())
+        }
+        Some(Command::Params) => {
+            params::run();
             Ok(())
         }
     }

@@ -1,8 +1,9 @@
 //! `rotor-rub presets`: every preset with every value.
 
 use rotor_rub::Preset;
+use rotor_rub::params::Number;
 
-use crate::problem::{meaning, settable_fields};
+use crate::problem::settable;
 
 /// List the presets.
 pub fn run() {
@@ -12,13 +13,15 @@ pub fn run() {
         }
         println!("{}: {}", preset.name(), preset.description());
         let problem = preset.problem();
-        for field in settable_fields() {
+        for parameter in settable() {
+            let info = parameter.info();
             println!(
-                "  {:<20} = {:<8}  {}; {}",
-                field.name(),
-                field.get(&problem),
-                meaning(field),
-                field.rule()
+                "  {:<20} = {:<8}  {} {}; valid range {}",
+                info.name,
+                Number(parameter.get(&problem)).to_string(),
+                info.symbol,
+                info.doc,
+                info.range
             );
         }
     }

@@ -1,12 +1,17 @@
 //! Building the problem from a preset, a TOML config file and `--set` overrides, in that order of
-//! precedence (later wins).
+//! precedence (later wins). Names, ranges and messages come from the parameter table
+//! (`rotor_rub::Parameter`).
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use rotor_rub::{Field, ParamError, Preset, Problem};
+use rotor_rub::{Parameter, Preset, Problem};
 
 use crate::error::{CliError, Result};
+
+/// Largest config file read (1 MiB): a parameter file is a few hundred bytes.
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// Where a problem comes from: preset < config < --set.
 #[derive(Args, Debug, Clone, Default)]
@@ -16,52 +21,33 @@ pub struct ProblemArgs {
     #[arg(long, value_name = "NAME", value_parser = parse_preset)]
     pub preset: Option<Preset>,
 
-    /// TOML file of parameter values: keys are the --set names, plus an optional
-    /// `preset = "NAME"`; its values override the preset's
+    /// TOML file of parameter values (a regular file of at most 1 MiB): keys are the --set
+    /// names, plus an optional `preset = "NAME"`; its values override the preset's
     #[arg(long, value_name = "FILE.toml")]
     pub config: Option<PathBuf>,
 
-    /// Override one value (repeatable; overrides preset and config). Names: speed_ratio (η =
-    /// Ω/ω_n, must be > 0), damping_ratio (ν, must be >= 0), mass_ratio (η_m, must be > 0),
-    /// eccentricity_ratio (ρ̂, unbalance eccentricity over the clearance, must be > 0), phase
-    /// (φ0, rad), k_xx, k_xy, k_yx, k_yy (stator stiffness over rotor stiffness; k_xx and k_yy
-    /// must be >= 0), offset_x, offset_y (stator offset, in clearances), x0, y0 (initial
-    /// position, in clearances), vx0, vy0 (initial velocity, in clearances per unit τ)
+    /// Override one value (repeatable; overrides preset and config). `rotor-rub params` lists
+    /// every name with its default, valid range and meaning
     #[arg(long = "set", value_name = "NAME=VALUE", value_parser = parse_set)]
-    pub set: Vec<(Field, f64)>,
+    pub set: Vec<(Parameter, f64)>,
 }
 
-/// The fields a user may set: every [`Field`] except the start time (runs start at τ = 0).
-pub fn settable_fields() -> impl Iterator<Item = Field> {
-    Field::ALL.into_iter().filter(|&f| f != Field::StartTime)
+/// The parameters a user may set: every table entry except the start time (runs start at τ = 0).
+pub fn settable() -> impl Iterator<Item = Parameter> {
+    Parameter::ALL
+        .into_iter()
+        .filter(|&p| p != Parameter::StartTime)
 }
 
-/// What a field is, with its symbol and unit, for listings.
-pub fn meaning(field: Field) -> &'static str {
-    match field {
-        Field::SpeedRatio => "η = Ω/ω_n, running speed over natural frequency",
-        Field::DampingRatio => "ν, viscous damping ratio",
-        Field::MassRatio => "η_m, unbalance mass over disk mass",
-        Field::EccentricityRatio => "ρ̂, unbalance eccentricity in clearances",
-        Field::Phase => "φ0, unbalance phase at τ = 0, rad",
-        Field::KXx | Field::KXy | Field::KYx | Field::KYy => {
-            "stator support stiffness over rotor stiffness"
-        }
-        Field::OffsetX | Field::OffsetY => "stator centre offset, clearances",
-        Field::X0 | Field::Y0 => "initial position, clearances",
-        Field::Vx0 | Field::Vy0 => "initial velocity, clearances per unit τ",
-        Field::StartTime => "start time τ0",
-    }
-}
-
-/// A settable field by name, or a message listing the valid names.
-pub fn parse_field(name: &str) -> Result<Field, String> {
-    match Field::from_name(name) {
-        Some(f) if f != Field::StartTime => Ok(f),
+/// A settable parameter by name, or a message listing the valid names.
+pub fn parse_parameter(name: &str) -> Result<Parameter, String> {
+    match Parameter::from_name(name) {
+        Some(p) if p != Parameter::StartTime => Ok(p),
         _ => Err(format!(
-            "unknown parameter '{name}': expected one of {}",
-            settable_fields()
-                .map(Field::name)
+            "unknown parameter '{}': expected one of {}",
+            name.escape_debug(),
+            settable()
+                .map(Parameter::name)
                 .collect::<Vec<_>>()
                 .join(", ")
         )),
@@ -72,55 +58,45 @@ pub fn parse_field(name: &str) -> Result<Field, String> {
 pub fn parse_preset(name: &str) -> Result<Preset, String> {
     Preset::from_name(name).ok_or_else(|| {
         format!(
-            "unknown preset '{name}': expected one of {}",
+            "unknown preset '{}': expected one of {}",
+            name.escape_debug(),
             Preset::ALL.map(Preset::name).join(", ")
         )
     })
 }
 
-/// A finite or non-finite number (range checks are `Problem::validate`'s job).
-fn parse_number(field: Field, text: &str) -> Result<f64, String> {
-    text.trim()
-        .parse::<f64>()
-        .map_err(|_| format!("{field}: '{text}' is not a number"))
-}
-
-/// `NAME=VALUE` for `--set`.
-pub fn parse_set(arg: &str) -> Result<(Field, f64), String> {
+/// `NAME=VALUE` for `--set`: a known name and a number (ranges are checked once every layer
+/// is applied, so a later layer may correct an earlier one).
+pub fn parse_set(arg: &str) -> Result<(Parameter, f64), String> {
     let (name, value) = arg
         .split_once('=')
-        .ok_or_else(|| format!("'{arg}' is not of the form NAME=VALUE"))?;
-    let field = parse_field(name.trim())?;
-    Ok((field, parse_number(field, value)?))
-}
-
-/// Which layer set a field, for error messages.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Source {
-    Preset(Preset),
-    Config,
-    Set,
+        .ok_or_else(|| format!("'{}' is not of the form NAME=VALUE", arg.escape_debug()))?;
+    let parameter = parse_parameter(name.trim())?;
+    let number = value
+        .trim()
+        .parse::<f64>()
+        .map_err(|_| format!("{parameter}: '{}' is not a number", value.escape_debug()))?;
+    Ok((parameter, number))
 }
 
 /// A config file's contents: the preset it names and its values.
-struct Config {
-    preset: Option<Preset>,
-    values: Vec<(Field, f64)>,
+#[derive(Debug, PartialEq)]
+pub struct Config {
+    /// The preset named by `preset = "NAME"`, if any.
+    pub preset: Option<Preset>,
+    /// The values (not yet range-checked).
+    pub values: Vec<(Parameter, f64)>,
 }
 
-fn read_config(path: &Path) -> Result<Config> {
-    let shown = path.display();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::input(format!("--config {shown}: cannot read the file: {e}")))?;
-    let table: toml::Table = toml::from_str(&text).map_err(|e| {
-        let line = e
-            .span()
-            .map(|s| text[..s.start.min(text.len())].lines().count().max(1));
+/// Parse a config file's text; the message says what is wrong and on which line.
+pub fn parse_config(text: &str) -> Result<Config, String> {
+    let table: toml::Table = toml::from_str(text).map_err(|e| {
+        let line = e.span().map(|s| {
+            text.get(..s.start.min(text.len()))
+                .map_or(1, |head| head.lines().count().max(1))
+        });
         let at = line.map(|l| format!(" (line {l})")).unwrap_or_default();
-        CliError::input(format!(
-            "--config {shown}: not valid TOML{at}: {}",
-            e.message().trim()
-        ))
+        format!("not valid TOML{at}: {}", e.message().trim())
     })?;
     let mut config = Config {
         preset: None,
@@ -128,42 +104,68 @@ fn read_config(path: &Path) -> Result<Config> {
     };
     for (key, value) in &table {
         if key == "preset" {
-            let name = value.as_str().ok_or_else(|| {
-                CliError::input(format!(
-                    "--config {shown}: preset must be a string naming a preset"
-                ))
-            })?;
-            config.preset = Some(
-                parse_preset(name)
-                    .map_err(|m| CliError::input(format!("--config {shown}: {m}")))?,
-            );
+            let name = value
+                .as_str()
+                .ok_or("preset must be a string naming a preset")?;
+            config.preset = Some(parse_preset(name)?);
             continue;
         }
-        let field =
-            parse_field(key).map_err(|m| CliError::input(format!("--config {shown}: {m}")))?;
+        let parameter = parse_parameter(key)?;
         let number = match value {
             toml::Value::Float(x) => *x,
+            // Exact up to 2^53; larger integers are far outside every range anyway.
             toml::Value::Integer(i) => *i as f64,
             other => {
-                return Err(CliError::input(format!(
-                    "--config {shown}: {field} must be a number, not the {} {other}",
+                return Err(format!(
+                    "{parameter} must be a number, not the {} {other}",
                     other.type_str()
-                )));
+                ));
             }
         };
-        config.values.push((field, number));
+        config.values.push((parameter, number));
     }
     Ok(config)
 }
 
-fn error_field(e: &ParamError) -> Option<Field> {
-    match *e {
-        ParamError::NonFinite { field, .. }
-        | ParamError::NotPositive { field, .. }
-        | ParamError::Negative { field, .. }
-        | ParamError::TooLarge { field, .. } => Some(field),
-        ParamError::UndampedResonance => None,
+/// Read a config file: a regular file of at most [`MAX_CONFIG_BYTES`], UTF-8 text.
+fn read_capped(path: &Path) -> Result<String, String> {
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read the file: {e}"))?;
+    let meta = file
+        .metadata()
+        .map_err(|e| format!("cannot read the file: {e}"))?;
+    if !meta.is_file() {
+        return Err("not a regular file (a config must be a plain TOML file)".into());
     }
+    if meta.len() > MAX_CONFIG_BYTES {
+        return Err(format!(
+            "the file has {} bytes, more than the {MAX_CONFIG_BYTES} a config may have",
+            meta.len()
+        ));
+    }
+    // The cap holds even if the file grows while it is read.
+    let mut bytes = Vec::new();
+    file.take(MAX_CONFIG_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read the file: {e}"))?;
+    if bytes.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(format!(
+            "the file is larger than the {MAX_CONFIG_BYTES} bytes a config may have"
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text: {e}"))
+}
+
+fn read_config(path: &Path) -> Result<Config> {
+    let fail = |m: String| CliError::input(format!("--config {}: {m}", path.display()));
+    parse_config(&read_capped(path).map_err(fail)?).map_err(fail)
+}
+
+/// Which layer set a parameter, for error messages.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Source {
+    Preset(Preset),
+    Config,
+    Set,
 }
 
 impl ProblemArgs {
@@ -173,18 +175,20 @@ impl ProblemArgs {
     }
 
     /// As [`ProblemArgs::build`], with `extra` values applied last (e.g. a swept parameter).
-    pub fn build_with(&self, extra: &[(Field, f64)]) -> Result<Problem> {
+    pub fn build_with(&self, extra: &[(Parameter, f64)]) -> Result<Problem> {
         let config = self.config.as_deref().map(read_config).transpose()?;
         let preset = self
             .preset
             .or(config.as_ref().and_then(|c| c.preset))
             .unwrap_or(Preset::Paper);
         let mut problem = preset.problem();
-        let mut sources = [Source::Preset(preset); Field::ALL.len()];
-        let mut apply = |values: &[(Field, f64)], source: Source| {
-            for &(field, value) in values {
-                field.set(&mut problem, value);
-                sources[field as usize] = source;
+        let mut sources = [Source::Preset(preset); Parameter::COUNT];
+        let mut apply = |values: &[(Parameter, f64)], source: Source| {
+            for &(parameter, value) in values {
+                parameter.set(&mut problem, value);
+                if let Some(slot) = sources.get_mut(parameter as usize) {
+                    *slot = source;
+                }
             }
         };
         if let Some(c) = &config {
@@ -193,7 +197,8 @@ impl ProblemArgs {
         apply(&self.set, Source::Set);
         apply(extra, Source::Set);
         problem.validate().map_err(|e| {
-            let from = match error_field(&e).map(|f| sources[f as usize]) {
+            let source = e.parameter().and_then(|p| sources.get(p as usize));
+            let from = match source {
                 Some(Source::Set) => " (from --set)".to_string(),
                 Some(Source::Config) => format!(
                     " (from --config {})",
@@ -209,25 +214,5 @@ impl ProblemArgs {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn set_parses_and_rejects() {
-        assert_eq!(parse_set("k_xx=2"), Ok((Field::KXx, 2.0)));
-        assert!(parse_set("k_xx").unwrap_err().contains("NAME=VALUE"));
-        assert!(
-            parse_set("start_time=1")
-                .unwrap_err()
-                .contains("unknown parameter")
-        );
-        assert!(parse_set("phase=abc").unwrap_err().contains("phase"));
-    }
-
-    #[test]
-    fn field_indices_match_all_order() {
-        for (i, f) in Field::ALL.into_iter().enumerate() {
-            assert_eq!(f as usize, i);
-        }
-    }
-}
+#[path = "problem_tests.rs"]
+mod tests;

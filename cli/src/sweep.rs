@@ -6,13 +6,13 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
-use rotor_rub::{Field, Options, Problem, poincare};
+use rotor_rub::{Options, Parameter, Problem, poincare};
 
 use crate::error::{CliError, Result};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
 use crate::output::{CsvOut, ensure_dir};
 use crate::plot::{self, scatter::BifurcationFigure};
-use crate::problem::{ProblemArgs, parse_field};
+use crate::problem::{ProblemArgs, parse_parameter};
 use crate::trajectory;
 
 /// Header of sweep files.
@@ -46,8 +46,8 @@ pub struct Args {
     pub method: MethodArgs<Survey>,
 
     /// Parameter to sweep (a --set name)
-    #[arg(long, value_name = "NAME", default_value = "speed_ratio", value_parser = parse_field)]
-    pub param: Field,
+    #[arg(long, value_name = "NAME", default_value = "speed_ratio", value_parser = parse_parameter)]
+    pub param: Parameter,
 
     /// First value
     #[arg(long, value_name = "VALUE", default_value_t = 1.0, value_parser = parse_finite, allow_hyphen_values = true)]

@@ -218,12 +218,7 @@ impl Stepper {
     /// regime is re-decided from the current state (a changed offset can move the boundary);
     /// no event is reported for that. On error nothing changes.
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
-        Problem {
-            params: *params,
-            initial: self.state,
-            start_time: self.time,
-        }
-        .validate()?;
+        params.validate()?;
         self.params = *params;
         self.free = FreeConstants::new(params);
         self.transition = FreeTransition::new(params, &self.free, self.transition.dt());

@@ -64,15 +64,15 @@ fn non_numeric_values() {
 fn out_of_range_values_use_the_library_rule() {
     fails(
         &["simulate", "--set", "speed_ratio=-1"],
-        &["speed_ratio", "must be > 0", "--set"],
+        &["speed_ratio", "must be in [0.001, 100]", "--set"],
     );
     fails(
         &["simulate", "--set", "damping_ratio=-0.5"],
-        &["damping_ratio", "must be >= 0"],
+        &["damping_ratio", "must be in [0, 10]"],
     );
     fails(
         &["simulate", "--set", "k_xx=1e7"],
-        &["k_xx", "magnitude must be <= 1e6"],
+        &["k_xx", "1e7", "must be in [0, 100000]"],
     );
     fails(
         &["simulate", "--set", "x0=nan"],
@@ -90,7 +90,55 @@ fn out_of_range_values_use_the_library_rule() {
             "--steps",
             "3",
         ],
-        &["damping_ratio", "-1", "must be >= 0"],
+        &["damping_ratio", "-1", "must be in [0, 10]"],
+    );
+}
+
+/// Issue 13 point 8: values outside the physical ranges exit 2 naming value and range, where
+/// they used to fail in propagation (exit 1) or report a false divergence.
+#[test]
+fn physical_ranges_are_enforced() {
+    fails(
+        &["simulate", "--set", "speed_ratio=5e-324"],
+        &["speed_ratio", "5e-324", "must be in [0.001, 100]"],
+    );
+    for x0 in ["1e4", "-1e5", "1e6"] {
+        fails(
+            &["simulate", "--set", &format!("x0={x0}")],
+            &["x0", "must be in [-100, 100]"],
+        );
+    }
+    fails(
+        &["simulate", "--set", "y0=1e300"],
+        &["y0 = 1e300 is out of range"],
+    );
+    fails(
+        &["simulate", "--set", "mass_ratio=0"],
+        &["mass_ratio", "must be in (0, 1]"],
+    );
+}
+
+/// `rotor-rub params` lists every parameter with its default, range and meaning.
+#[test]
+fn params_lists_the_table() {
+    let out = bin().arg("params").output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for p in rotor_rub::Parameter::ALL {
+        if p == rotor_rub::Parameter::StartTime {
+            continue;
+        }
+        let info = p.info();
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(&format!("{} ", info.name)))
+            .unwrap_or_else(|| panic!("{} missing: {text}", info.name));
+        assert!(line.contains(&info.range.to_string()), "{line}");
+        assert!(line.contains(info.doc), "{line}");
+    }
+    assert!(
+        text.contains("damping_ratio = 0 needs speed_ratio != 1"),
+        "{text}"
     );
 }
 
@@ -192,7 +240,20 @@ fn bad_config_files() {
     let range = write("range.toml", "speed_ratio = -2\n");
     fails(
         &["simulate", "--config", &range],
-        &["speed_ratio", "must be > 0", "--config"],
+        &["speed_ratio", "must be in [0.001, 100]", "--config"],
+    );
+    // Issue 13 point 7: devices, directories and oversized files are refused before reading.
+    #[cfg(unix)]
+    fails(
+        &["simulate", "--config", "/dev/zero"],
+        &["/dev/zero", "not a regular file"],
+    );
+    let folder = dir.path().to_string_lossy().into_owned();
+    fails(&["simulate", "--config", &folder], &["not a regular file"]);
+    let big = write("big.toml", &"#".repeat((1 << 20) + 1));
+    fails(
+        &["simulate", "--config", &big],
+        &["big.toml", "1048577 bytes", "more than the 1048576"],
     );
     let preset = write("preset.toml", "preset = \"nope\"\n");
     fails(
@@ -259,7 +320,7 @@ fn existing_files_are_untouched_by_bad_input() {
         "--samples",
         "s.csv",
     ];
-    fails_in(dir.path(), &args, 2, &["k_yy", ">= 0"]);
+    fails_in(dir.path(), &args, 2, &["k_yy", "must be in [0, 100000]"]);
     fails_in(
         dir.path(),
         &["sweep", "--tol", "0", "--out", "sweep.csv"],

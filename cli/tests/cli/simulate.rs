@@ -5,7 +5,7 @@ use std::fs;
 use std::path::Path;
 
 use rotor_rub::{
-    Event, EventKind, Field, Method, Options, Preset, Propagate, Propagator, Regime, advance_to,
+    Event, EventKind, Method, Options, Parameter, Preset, Propagate, Propagator, Regime, advance_to,
 };
 
 use crate::common::{bin, num, read_csv};
@@ -229,7 +229,10 @@ fn presets_list_every_value() {
         assert!(text.contains(preset.name()), "{text}");
         assert!(text.contains(preset.description()), "{text}");
     }
-    for field in Field::ALL.iter().filter(|f| **f != Field::StartTime) {
+    for field in Parameter::ALL
+        .iter()
+        .filter(|f| **f != Parameter::StartTime)
+    {
         assert_eq!(
             text.matches(&format!("  {} ", field.name())).count(),
             Preset::ALL.len()

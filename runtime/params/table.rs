@@ -1,0 +1,145 @@
+//! The parameter table: every model parameter and initial-state value, stated once with its name,
+//! paper symbol, default, valid range and meaning (`docs/MODEL.md §9`). The [`Params`] struct, the
+//! [`Parameter`] enum, access by name, validation, presets, the CLI's `--set`/TOML/`params`
+//! listing and the C ABI's setters are all derived from it: adding a parameter is one entry.
+//!
+//! Why these ranges (the physics and the numerics; all values dimensionless):
+//! * η ∈ [1e-3, 1e2]: below, one forcing period (2π/η) exceeds 6e3 τ and the unbalance force
+//!   η_m ρ̂ η² vanishes, so no run is meaningful (η = 5e-324 overflowed the period); above, the
+//!   contact and forcing time scales differ by more than 1e2 K̂ and the phase η τ loses digits.
+//! * ν ∈ [0, 10]: 0 is the undamped rotor; ν = 10 already has a free decay rate ratio ≈ 4ν² = 400,
+//!   past which the free flight is a stiff relaxation no rub study uses.
+//! * η_m ∈ (0, 1]: the unbalance mass cannot exceed the disk's; ρ̂ ∈ (0, 1e3]: the unbalance
+//!   radius η_m ρ̂ (the supercritical orbit radius) stays a decade below the divergence radius
+//!   (1e4 clearances, `propagate::DIVERGENCE_RADIUS`), so a reported divergence is physical.
+//! * |K̂| ≤ 1e5 per entry: contact frequencies √(1 + K̂) ≤ 316; at this edge the analytic method
+//!   still meets 1e-6 against DOP853 even for a nearly singular K_s (`tests/degenerate.rs`), at
+//!   1e6 it errs by 1e-5; stiffer stators are rigid-wall limits outside this model.
+//! * |ε̂| ≤ 10 and |x0|, |y0| ≤ 1e2 clearances, |x0'|, |y0'| ≤ 1e2: the free amplitude
+//!   √(r0² + v0²) + η_m ρ̂ stays below the divergence radius, so a start inside the ranges is never
+//!   reported as diverged before it moves.
+//! * |φ0| ≤ 1e3 rad and |τ0| ≤ 1e6: the forcing phase η τ0 + φ0 keeps an absolute error ≤ 1e-8.
+
+use super::{Problem, Range};
+
+/// Declares the table: model parameters become [`Params`] fields, initial values name their
+/// place in [`Problem`]. Each entry: `Variant name "symbol" = default, range, "meaning";`.
+macro_rules! parameter_table {
+    (
+        model { $( $mvar:ident $mname:ident $msym:literal = $mdef:expr, $mrange:expr, $mdoc:literal; )* }
+        start { $( $svar:ident $sname:ident $ssym:literal = $sdef:expr, $srange:expr, $sdoc:literal,
+                   $($spath:ident).+; )* }
+    ) => {
+        /// Parameters of the rotor–stator model (`docs/MODEL.md §1`, ranges in `docs/MODEL.md §9`),
+        /// generated from the parameter table (`params/table.rs`).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Params {
+            $( #[doc = concat!($msym, ": ", $mdoc, ".")] pub $mname: f64, )*
+        }
+
+        /// One entry of the parameter table: a model parameter or an initial-state value. The
+        /// names are the public field names, the CLI's `--set` names and the C ABI's names.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Parameter {
+            $( #[doc = $mdoc] $mvar, )*
+            $( #[doc = $sdoc] $svar, )*
+        }
+
+        impl Parameter {
+            /// Every parameter in table order (the discriminants are the indices).
+            pub const ALL: [Parameter; Parameter::COUNT] =
+                [$(Parameter::$mvar,)* $(Parameter::$svar,)*];
+            /// The number of table entries.
+            pub const COUNT: usize = [$(stringify!($mvar),)* $(stringify!($svar),)*].len();
+            /// The number of model parameters (the leading entries, the fields of [`Params`]).
+            pub const MODEL_COUNT: usize = [$(stringify!($mvar),)*].len();
+
+            /// The parameter's table entry.
+            pub const fn info(self) -> Info {
+                match self {
+                    $( Parameter::$mvar => Info { name: stringify!($mname), symbol: $msym,
+                        default: $mdef, range: $mrange, doc: $mdoc }, )*
+                    $( Parameter::$svar => Info { name: stringify!($sname), symbol: $ssym,
+                        default: $sdef, range: $srange, doc: $sdoc }, )*
+                }
+            }
+
+            /// The parameter's value in a problem.
+            pub const fn get(self, p: &Problem) -> f64 {
+                match self {
+                    $( Parameter::$mvar => p.params.$mname, )*
+                    $( Parameter::$svar => p.$($spath).+, )*
+                }
+            }
+
+            /// Set the parameter's value in a problem (not validated: call [`Problem::validate`]).
+            pub const fn set(self, p: &mut Problem, value: f64) {
+                match self {
+                    $( Parameter::$mvar => p.params.$mname = value, )*
+                    $( Parameter::$svar => p.$($spath).+ = value, )*
+                }
+            }
+        }
+
+        impl Params {
+            /// The table's defaults (the `paper` preset).
+            pub const DEFAULT: Params = Params { $( $mname: $mdef, )* };
+        }
+    };
+}
+
+/// What the table says about one parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Info {
+    /// Public name, e.g. `speed_ratio`.
+    pub name: &'static str,
+    /// The paper's symbol, e.g. `η`.
+    pub symbol: &'static str,
+    /// Default value (the `paper` preset's).
+    pub default: f64,
+    /// Valid values.
+    pub range: Range,
+    /// One line saying what it is and in which unit.
+    pub doc: &'static str,
+}
+
+const STIFFNESS: f64 = 1.0e5;
+
+parameter_table! {
+    model {
+        SpeedRatio speed_ratio "η" = 1.5, Range::closed(1.0e-3, 1.0e2),
+            "running speed over the rotor's natural frequency, Ω/ω_n";
+        DampingRatio damping_ratio "ν" = 0.125, Range::closed(0.0, 10.0),
+            "viscous damping ratio of the rotor (ζ in the paper's Table 1; > 1 is over-damped)";
+        MassRatio mass_ratio "η_m" = 0.005, Range::above(0.0, 1.0),
+            "unbalance mass over disk mass";
+        EccentricityRatio eccentricity_ratio "ρ̂" = 70.0, Range::above(0.0, 1.0e3),
+            "unbalance eccentricity over the radial clearance";
+        Phase phase "φ0" = 0.0, Range::closed(-1.0e3, 1.0e3),
+            "phase of the unbalance at τ = 0, rad";
+        KXx k_xx "K̂xx" = 20.0, Range::closed(0.0, STIFFNESS),
+            "stator stiffness over rotor stiffness: x force per x displacement";
+        KXy k_xy "K̂xy" = 20.0, Range::closed(-STIFFNESS, STIFFNESS),
+            "stator stiffness over rotor stiffness: x force per y displacement (cross-coupling)";
+        KYx k_yx "K̂yx" = 20.0, Range::closed(-STIFFNESS, STIFFNESS),
+            "stator stiffness over rotor stiffness: y force per x displacement (cross-coupling)";
+        KYy k_yy "K̂yy" = 40.0, Range::closed(0.0, STIFFNESS),
+            "stator stiffness over rotor stiffness: y force per y displacement";
+        OffsetX offset_x "ε̂x" = 0.3, Range::closed(-10.0, 10.0),
+            "stator centre offset from the rotor's rest position, x, clearances";
+        OffsetY offset_y "ε̂y" = -0.2, Range::closed(-10.0, 10.0),
+            "stator centre offset from the rotor's rest position, y, clearances";
+    }
+    start {
+        X0 x0 "x̃0" = 0.1, Range::closed(-1.0e2, 1.0e2),
+            "initial position x, clearances", initial.x;
+        Y0 y0 "ỹ0" = 0.1, Range::closed(-1.0e2, 1.0e2),
+            "initial position y, clearances", initial.y;
+        Vx0 vx0 "x̃0'" = 0.0, Range::closed(-1.0e2, 1.0e2),
+            "initial velocity x', clearances per unit τ", initial.vx;
+        Vy0 vy0 "ỹ0'" = 0.0, Range::closed(-1.0e2, 1.0e2),
+            "initial velocity y', clearances per unit τ", initial.vy;
+        StartTime start_time "τ0" = 0.0, Range::closed(-1.0e6, 1.0e6),
+            "time of the initial state", start_time;
+    }
+}

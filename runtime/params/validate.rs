@@ -1,0 +1,197 @@
+//! Valid ranges and the validation of a problem against the parameter table, with typed errors
+//! that name the value and its valid range.
+
+use core::fmt;
+
+use super::{Parameter, Params, Problem};
+
+/// A closed interval `[min, max]`, or `(min, max]` when `min_open`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range {
+    /// Lower bound.
+    pub min: f64,
+    /// Upper bound (included).
+    pub max: f64,
+    /// Whether `min` itself is excluded.
+    pub min_open: bool,
+}
+
+impl Range {
+    /// `[min, max]`.
+    pub const fn closed(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            max,
+            min_open: false,
+        }
+    }
+
+    /// `(min, max]`.
+    pub const fn above(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            max,
+            min_open: true,
+        }
+    }
+
+    /// Whether `value` lies in the range (never for NaN).
+    pub fn contains(&self, value: f64) -> bool {
+        let low = if self.min_open {
+            value > self.min
+        } else {
+            value >= self.min
+        };
+        low && value <= self.max
+    }
+}
+
+impl fmt::Display for Range {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let open = if self.min_open { '(' } else { '[' };
+        write!(f, "{open}{}, {}]", Number(self.min), Number(self.max))
+    }
+}
+
+/// A number for messages: plain when short, `{:e}` otherwise (never 300 digits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Number(pub f64);
+
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = crate::math::abs(self.0);
+        if a == 0.0 || (1.0e-3..1.0e6).contains(&a) || !a.is_finite() {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
+/// Why a parameter set or initial state was rejected.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ParamError {
+    /// The value is NaN or infinite.
+    NonFinite {
+        /// The offending parameter.
+        parameter: Parameter,
+        /// Its value.
+        value: f64,
+    },
+    /// The value lies outside the parameter's valid range.
+    OutOfRange {
+        /// The offending parameter.
+        parameter: Parameter,
+        /// Its value.
+        value: f64,
+        /// The valid range (the table's).
+        range: Range,
+    },
+}
+
+impl ParamError {
+    /// The parameter the error is about, if it is about one.
+    pub const fn parameter(&self) -> Option<Parameter> {
+        match *self {
+            ParamError::NonFinite { parameter, .. } | ParamError::OutOfRange { parameter, .. } => {
+                Some(parameter)
+            }
+        }
+    }
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            ParamError::NonFinite { parameter, value } => {
+                write!(f, "{parameter} = {value} is not a finite number")
+            }
+            ParamError::OutOfRange {
+                parameter,
+                value,
+                range,
+            } => write!(
+                f,
+                "{parameter} = {} is out of range: it must be in {range}",
+                Number(value)
+            ),
+        }
+    }
+}
+
+impl core::error::Error for ParamError {}
+
+impl Parameter {
+    /// The parameter's public name, e.g. `speed_ratio`.
+    pub const fn name(self) -> &'static str {
+        self.info().name
+    }
+
+    /// The parameter with the given public name.
+    pub fn from_name(name: &str) -> Option<Parameter> {
+        Parameter::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// Whether the parameter is a model parameter (a field of [`Params`]) rather than a start value.
+    pub const fn is_model(self) -> bool {
+        (self as usize) < Parameter::MODEL_COUNT
+    }
+
+    /// Check one value against the parameter's own rule (finite, within its range).
+    pub fn check(self, value: f64) -> Result<(), ParamError> {
+        let range = self.info().range;
+        if !value.is_finite() {
+            Err(ParamError::NonFinite {
+                parameter: self,
+                value,
+            })
+        } else if !range.contains(value) {
+            Err(ParamError::OutOfRange {
+                parameter: self,
+                value,
+                range,
+            })
+        } else {
+            Ok(())
+        }
+    }
+}
+
+impl fmt::Display for Parameter {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Params {
+    /// Check every model parameter against the table, then the rules that tie parameters together
+    /// (`cross_checks`). Returns the first violation in table order.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let problem = Problem {
+            params: *self,
+            ..Problem::DEFAULT
+        };
+        for parameter in Parameter::ALL.into_iter().filter(|p| p.is_model()) {
+            parameter.check(parameter.get(&problem))?;
+        }
+        cross_checks(self)
+    }
+}
+
+/// Rules across parameters. None today: ν = 0 at η = 1 (exact resonance) is valid, its free
+/// flight grows secularly (`docs/MODEL.md §11`). Issue 12 adds here: μ > 0 needs a positive
+/// definite symmetric part of K_s (`docs/MODEL.md §10`), as a new `ParamError` variant.
+fn cross_checks(_: &Params) -> Result<(), ParamError> {
+    Ok(())
+}
+
+impl Problem {
+    /// Check every value against the table (finite, in range), then the cross-parameter rules.
+    /// Returns the first violation in [`Parameter::ALL`] order.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        for parameter in Parameter::ALL {
+            parameter.check(parameter.get(self))?;
+        }
+        cross_checks(&self.params)
+    }
+}
