@@ -8,6 +8,44 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* Parameter indices for rotor_rub_parameter_{info,get,set}, from the Rust parameter table. */
+/* speed_ratio (η): running speed over the rotor's natural frequency, Ω/ω_n; valid range [0.001, 100]. */
+#define ROTOR_RUB_PARAMETER_SPEED_RATIO 0
+/* damping_ratio (ν): viscous damping ratio of the rotor (ζ in the paper's Table 1; > 1 is over-damped); valid range [0, 10]. */
+#define ROTOR_RUB_PARAMETER_DAMPING_RATIO 1
+/* mass_ratio (η_m): unbalance mass over disk mass; valid range (0, 1]. */
+#define ROTOR_RUB_PARAMETER_MASS_RATIO 2
+/* eccentricity_ratio (ρ̂): unbalance eccentricity over the radial clearance; valid range (0, 1000]. */
+#define ROTOR_RUB_PARAMETER_ECCENTRICITY_RATIO 3
+/* phase (φ0): phase of the unbalance at τ = 0, rad; valid range [-1000, 1000]. */
+#define ROTOR_RUB_PARAMETER_PHASE 4
+/* k_xx (K̂xx): stator stiffness over rotor stiffness: x force per x displacement; valid range [0, 10000]. */
+#define ROTOR_RUB_PARAMETER_K_XX 5
+/* k_xy (K̂xy): stator stiffness over rotor stiffness: x force per y displacement (cross-coupling); valid range [-10000, 10000]. */
+#define ROTOR_RUB_PARAMETER_K_XY 6
+/* k_yx (K̂yx): stator stiffness over rotor stiffness: y force per x displacement (cross-coupling); valid range [-10000, 10000]. */
+#define ROTOR_RUB_PARAMETER_K_YX 7
+/* k_yy (K̂yy): stator stiffness over rotor stiffness: y force per y displacement; valid range [0, 10000]. */
+#define ROTOR_RUB_PARAMETER_K_YY 8
+/* offset_x (ε̂x): stator centre offset from the rotor's rest position, x, clearances; valid range [-10, 10]. */
+#define ROTOR_RUB_PARAMETER_OFFSET_X 9
+/* offset_y (ε̂y): stator centre offset from the rotor's rest position, y, clearances; valid range [-10, 10]. */
+#define ROTOR_RUB_PARAMETER_OFFSET_Y 10
+/* x0 (x̃0): initial position x, clearances; valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_X0 11
+/* y0 (ỹ0): initial position y, clearances; valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_Y0 12
+/* vx0 (x̃0'): initial velocity x', clearances per unit τ; valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_VX0 13
+/* vy0 (ỹ0'): initial velocity y', clearances per unit τ; valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_VY0 14
+/* start_time (τ0): time of the initial state; valid range [-1e6, 1e6]. */
+#define ROTOR_RUB_PARAMETER_START_TIME 15
+
+
+// Number of table entries: model parameters, initial state and start time.
+#define ROTOR_RUB_PARAMETER_COUNT 16
+
 // Success.
 #define ROTOR_RUB_OK 0
 
@@ -20,7 +58,8 @@
 // The stepper memory was not initialised by a successful `rotor_rub_stepper_init`.
 #define ROTOR_RUB_ERR_NOT_INITIALIZED 3
 
-// A parameter or initial-state value is invalid (not finite, out of range, wrong sign).
+// A parameter or initial-state value is invalid (not finite, outside its range, or a
+// cross-parameter rule broken).
 #define ROTOR_RUB_ERR_INVALID_PARAMS 4
 
 // A configuration value is invalid (scheme, sub-step counts).
@@ -71,25 +110,26 @@
 // Size of `RotorRubStepper` in 64-bit words.
 #define ROTOR_RUB_STEPPER_WORDS 128
 
-// Model parameters (dimensionless, as in the paper; see the Rust `Params` for each rule).
+// Model parameters (dimensionless, as in the paper). Valid ranges: `rotor_rub_parameter_info`
+// (the Rust parameter table, listed by `rotor-rub params`).
 typedef struct RotorRubParams {
-  // η: running speed over natural frequency, > 0.
+  // η: running speed over natural frequency.
   double speed_ratio;
-  // ν: damping ratio, >= 0.
+  // ν: damping ratio.
   double damping_ratio;
-  // η_m: unbalance mass ratio, > 0.
+  // η_m: unbalance mass ratio.
   double mass_ratio;
-  // ρ̂: unbalance eccentricity over clearance, > 0.
+  // ρ̂: unbalance eccentricity over clearance.
   double eccentricity_ratio;
   // φ0: unbalance phase at τ = 0 (radians).
   double phase;
-  // K̂xx, >= 0.
+  // K̂xx.
   double k_xx;
-  // K̂xy (any sign).
+  // K̂xy (cross-coupling).
   double k_xy;
-  // K̂yx (any sign).
+  // K̂yx (cross-coupling).
   double k_yx;
-  // K̂yy, >= 0.
+  // K̂yy.
   double k_yy;
   // ε̂x: stator offset, x.
   double offset_x;
@@ -181,6 +221,9 @@ size_t rotor_rub_stepper_align(void);
 // Fill `params` (required), `initial` and `start_time` (optional: null skips) from a preset
 // (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`).
 //
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `preset`;
+// `ROTOR_RUB_ERR_NULL` if `params` is null.
+//
 // # Safety
 // Each pointer is null or valid for writes of its type.
 int32_t rotor_rub_preset(int32_t preset,
@@ -190,13 +233,19 @@ int32_t rotor_rub_preset(int32_t preset,
 
 // Fill `config` with the defaults (dt = 1e-3, exprb43, 1 contact sub-step, cap 8).
 //
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `config` is null.
+//
 // # Safety
 // `config` is null or valid for writes.
 int32_t rotor_rub_config_default(struct RotorRubConfig *config);
 
 // Validate parameters and initial state: `ROTOR_RUB_OK` or `ROTOR_RUB_ERR_INVALID_PARAMS`.
 // When `message` is not null and `capacity` > 0, a NUL-terminated description is written
-// there (truncated to fit; "ok" when valid), e.g. "speed_ratio = -1 is invalid: it must be > 0".
+// there (truncated to fit; "ok" when valid), e.g. "speed_ratio = -1 is out of range: it must be in [0.001, 100]".
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `params` or `initial` is null;
+// `ROTOR_RUB_ERR_INVALID_PARAMS` if a value is not finite, outside its range or breaks a
+// cross-parameter rule.
 //
 // # Safety
 // `params` and `initial` are null or valid for reads; `message` is null or valid for writes
@@ -210,6 +259,12 @@ int32_t rotor_rub_problem_validate(const struct RotorRubParams *params,
 // Initialise a stepper in caller memory from parameters, initial state at `start_time` and a
 // configuration (`config` null: defaults). On failure the memory is marked uninitialised.
 //
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper`, `params` or `initial` is null;
+// `ROTOR_RUB_ERR_MISALIGNED` if `stepper` is not aligned to `rotor_rub_stepper_align()`;
+// `ROTOR_RUB_ERR_INVALID_CONFIG` for an invalid `config`; `ROTOR_RUB_ERR_INVALID_STEP` if
+// `config->dt` is not finite or not in (0, 1]; `ROTOR_RUB_ERR_INVALID_PARAMS` for invalid
+// parameters or initial state; `ROTOR_RUB_ERR_INTERNAL` on a caught bug.
+//
 // # Safety
 // `stepper` is null or valid for writes of a `RotorRubStepper`; the other pointers are null
 // or valid for reads.
@@ -222,6 +277,12 @@ int32_t rotor_rub_stepper_init(struct RotorRubStepper *stepper,
 // Advance exactly `dt` and write the result (`result` null: not written). On error the
 // stepper is unchanged and `result` is not written.
 //
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_STEP` if
+// `dt` is not finite, not in (0, 1] or too small to advance the time;
+// `ROTOR_RUB_ERR_DIVERGED` if the motion diverged (flutter); `ROTOR_RUB_ERR_SINGULAR_CONTACT`
+// if a contact system is singular or resonant; `ROTOR_RUB_ERR_INTERNAL` on a caught bug.
+//
 // # Safety
 // `stepper` is null or valid initialised stepper memory, not used concurrently; `result` is
 // null or valid for writes.
@@ -232,12 +293,20 @@ int32_t rotor_rub_stepper_step(struct RotorRubStepper *stepper,
 // Replace the parameters from the current time on (e.g. a speed ramp); costs a recomputation
 // of the precomputed free-flight map. On error nothing changes.
 //
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` or `params` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_PARAMS` if
+// a model parameter is not finite, outside its range or breaks a cross-parameter rule (the
+// current state and time are not checked against the start ranges).
+//
 // # Safety
 // `stepper` as for `rotor_rub_stepper_step`; `params` null or valid for reads.
 int32_t rotor_rub_stepper_set_params(struct RotorRubStepper *stepper,
                                      const struct RotorRubParams *params);
 
 // Read the current time, state and regime (each output optional: null skips it).
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`.
 //
 // # Safety
 // `stepper` is null or valid initialised stepper memory; outputs null or valid for writes.
@@ -248,10 +317,71 @@ int32_t rotor_rub_stepper_state(const struct RotorRubStepper *stepper,
 
 // Read the parameters in force.
 //
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` or `params` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`.
+//
 // # Safety
 // `stepper` is null or valid initialised stepper memory; `params` null or valid for writes.
 int32_t rotor_rub_stepper_params(const struct RotorRubStepper *stepper,
                                  struct RotorRubParams *params);
+
+// The table index of the parameter named `name` (e.g. "speed_ratio"), written to `index`.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `name` or `index` is null;
+// `ROTOR_RUB_ERR_INVALID_ARGUMENT` if no parameter has that name.
+//
+// # Safety
+// `name` is null or a NUL-terminated string; `index` is null or valid for writes.
+int32_t rotor_rub_parameter_index(const char *name, int32_t *index);
+
+// What the table says about parameter `index`: its name (NUL-terminated, truncated to
+// `capacity` bytes), default and valid range `[min, max]` (`min_open` 1 when `min` itself is
+// excluded). Every output is optional (null skips it).
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` if `index` is not in
+// `[0, ROTOR_RUB_PARAMETER_COUNT)`.
+//
+// # Safety
+// `name` is null or valid for writes of `capacity` bytes; the other outputs null or valid for
+// writes.
+int32_t rotor_rub_parameter_info(int32_t index,
+                                 char *name,
+                                 size_t capacity,
+                                 double *default_value,
+                                 double *min,
+                                 double *max,
+                                 int32_t *min_open);
+
+// Set parameter `index` to `value` in whichever of `params`, `initial` (x0, y0, vx0, vy0) or
+// `start_time` holds it; the other pointers may be null. The value is checked against the
+// parameter's range first (cross-parameter rules are checked by `rotor_rub_problem_validate`
+// and `rotor_rub_stepper_init`); on error nothing is written.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `index`;
+// `ROTOR_RUB_ERR_NULL` if the struct holding the parameter is null;
+// `ROTOR_RUB_ERR_INVALID_PARAMS` if `value` is not finite or outside the parameter's range.
+//
+// # Safety
+// Each pointer is null or valid for reads and writes of its type.
+int32_t rotor_rub_parameter_set(struct RotorRubParams *params,
+                                struct RotorRubState *initial,
+                                double *start_time,
+                                int32_t index,
+                                double value);
+
+// Read parameter `index` from whichever of `params`, `initial` or `start_time` holds it (the
+// other pointers may be null) into `value`.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `index`;
+// `ROTOR_RUB_ERR_NULL` if `value` or the struct holding the parameter is null.
+//
+// # Safety
+// Each input pointer is null or valid for reads; `value` is null or valid for writes.
+int32_t rotor_rub_parameter_get(const struct RotorRubParams *params,
+                                const struct RotorRubState *initial,
+                                const double *start_time,
+                                int32_t index,
+                                double *value);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -4,8 +4,11 @@
 //!   [`RotorRubStepper`] (an opaque block of [`ROTOR_RUB_STEPPER_WORDS`] 64-bit words, checked at
 //!   compile time to hold the Rust stepper), or any block of `rotor_rub_stepper_size()` bytes
 //!   aligned to `rotor_rub_stepper_align()`.
-//! * **Error codes**: every fallible call returns an `int32_t` (`ROTOR_RUB_OK` = 0);
-//!   `rotor_rub_error_message` gives a static message for each code.
+//! * **Error codes**: every fallible call returns an `int32_t` (`ROTOR_RUB_OK` = 0); each
+//!   function's doc lists the codes it can return (any may also return `ROTOR_RUB_ERR_INTERNAL`
+//!   for a caught bug); `rotor_rub_error_message` gives a static message for each code.
+//! * **Parameters by name**: `rotor_rub_parameter_index`, `_info`, `_get` and `_set` reach every
+//!   entry of the Rust parameter table (`ROTOR_RUB_PARAMETER_*` indices in the header).
 //! * **No unwinding across the boundary**: every pointer is null-checked, every value
 //!   validated; each entry point also catches any panic (none is expected) and returns
 //!   `ROTOR_RUB_ERR_INTERNAL`.
@@ -18,9 +21,11 @@
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
+mod parameters;
 mod raw;
 mod types;
 
+pub use parameters::*;
 pub use types::*;
 
 use core::ffi::c_char;
@@ -81,6 +86,9 @@ pub extern "C" fn rotor_rub_stepper_align() -> usize {
 /// Fill `params` (required), `initial` and `start_time` (optional: null skips) from a preset
 /// (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`).
 ///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `preset`;
+/// `ROTOR_RUB_ERR_NULL` if `params` is null.
+///
 /// # Safety
 /// Each pointer is null or valid for writes of its type.
 #[unsafe(no_mangle)]
@@ -112,6 +120,8 @@ pub unsafe extern "C" fn rotor_rub_preset(
 
 /// Fill `config` with the defaults (dt = 1e-3, exprb43, 1 contact sub-step, cap 8).
 ///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `config` is null.
+///
 /// # Safety
 /// `config` is null or valid for writes.
 #[unsafe(no_mangle)]
@@ -128,7 +138,11 @@ pub unsafe extern "C" fn rotor_rub_config_default(config: *mut RotorRubConfig) -
 
 /// Validate parameters and initial state: `ROTOR_RUB_OK` or `ROTOR_RUB_ERR_INVALID_PARAMS`.
 /// When `message` is not null and `capacity` > 0, a NUL-terminated description is written
-/// there (truncated to fit; "ok" when valid), e.g. "speed_ratio = -1 is invalid: it must be > 0".
+/// there (truncated to fit; "ok" when valid), e.g. "speed_ratio = -1 is out of range: it must be in [0.001, 100]".
+///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `params` or `initial` is null;
+/// `ROTOR_RUB_ERR_INVALID_PARAMS` if a value is not finite, outside its range or breaks a
+/// cross-parameter rule.
 ///
 /// # Safety
 /// `params` and `initial` are null or valid for reads; `message` is null or valid for writes
@@ -169,6 +183,12 @@ pub unsafe extern "C" fn rotor_rub_problem_validate(
 
 /// Initialise a stepper in caller memory from parameters, initial state at `start_time` and a
 /// configuration (`config` null: defaults). On failure the memory is marked uninitialised.
+///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper`, `params` or `initial` is null;
+/// `ROTOR_RUB_ERR_MISALIGNED` if `stepper` is not aligned to `rotor_rub_stepper_align()`;
+/// `ROTOR_RUB_ERR_INVALID_CONFIG` for an invalid `config`; `ROTOR_RUB_ERR_INVALID_STEP` if
+/// `config->dt` is not finite or not in (0, 1]; `ROTOR_RUB_ERR_INVALID_PARAMS` for invalid
+/// parameters or initial state; `ROTOR_RUB_ERR_INTERNAL` on a caught bug.
 ///
 /// # Safety
 /// `stepper` is null or valid for writes of a `RotorRubStepper`; the other pointers are null
@@ -219,6 +239,12 @@ pub unsafe extern "C" fn rotor_rub_stepper_init(
 /// Advance exactly `dt` and write the result (`result` null: not written). On error the
 /// stepper is unchanged and `result` is not written.
 ///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+/// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_STEP` if
+/// `dt` is not finite, not in (0, 1] or too small to advance the time;
+/// `ROTOR_RUB_ERR_DIVERGED` if the motion diverged (flutter); `ROTOR_RUB_ERR_SINGULAR_CONTACT`
+/// if a contact system is singular or resonant; `ROTOR_RUB_ERR_INTERNAL` on a caught bug.
+///
 /// # Safety
 /// `stepper` is null or valid initialised stepper memory, not used concurrently; `result` is
 /// null or valid for writes.
@@ -241,6 +267,11 @@ pub unsafe extern "C" fn rotor_rub_stepper_step(
 /// Replace the parameters from the current time on (e.g. a speed ramp); costs a recomputation
 /// of the precomputed free-flight map. On error nothing changes.
 ///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` or `params` is null;
+/// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_PARAMS` if
+/// a model parameter is not finite, outside its range or breaks a cross-parameter rule (the
+/// current state and time are not checked against the start ranges).
+///
 /// # Safety
 /// `stepper` as for `rotor_rub_stepper_step`; `params` null or valid for reads.
 #[unsafe(no_mangle)]
@@ -257,6 +288,9 @@ pub unsafe extern "C" fn rotor_rub_stepper_set_params(
 }
 
 /// Read the current time, state and regime (each output optional: null skips it).
+///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+/// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`.
 ///
 /// # Safety
 /// `stepper` is null or valid initialised stepper memory; outputs null or valid for writes.
@@ -282,6 +316,9 @@ pub unsafe extern "C" fn rotor_rub_stepper_state(
 }
 
 /// Read the parameters in force.
+///
+/// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` or `params` is null;
+/// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`.
 ///
 /// # Safety
 /// `stepper` is null or valid initialised stepper memory; `params` null or valid for writes.

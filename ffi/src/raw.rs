@@ -113,9 +113,10 @@ impl Write for Buffer<'_> {
     fn write_str(&mut self, s: &str) -> core::fmt::Result {
         let room = self.bytes.len().saturating_sub(1 + self.len);
         let n = s.len().min(room);
-        if let Some(dst) = self.bytes.get_mut(self.len..self.len + n) {
-            dst.copy_from_slice(&s.as_bytes()[..n]);
-            self.len += n;
+        let end = self.len.saturating_add(n);
+        if let (Some(dst), Some(src)) = (self.bytes.get_mut(self.len..end), s.as_bytes().get(..n)) {
+            dst.copy_from_slice(src);
+            self.len = end;
         }
         Ok(())
     }

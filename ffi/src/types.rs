@@ -12,7 +12,8 @@ pub const ROTOR_RUB_ERR_NULL: i32 = 1;
 pub const ROTOR_RUB_ERR_MISALIGNED: i32 = 2;
 /// The stepper memory was not initialised by a successful `rotor_rub_stepper_init`.
 pub const ROTOR_RUB_ERR_NOT_INITIALIZED: i32 = 3;
-/// A parameter or initial-state value is invalid (not finite, out of range, wrong sign).
+/// A parameter or initial-state value is invalid (not finite, outside its range, or a
+/// cross-parameter rule broken).
 pub const ROTOR_RUB_ERR_INVALID_PARAMS: i32 = 4;
 /// A configuration value is invalid (scheme, sub-step counts).
 pub const ROTOR_RUB_ERR_INVALID_CONFIG: i32 = 5;
@@ -56,28 +57,32 @@ const _: () = assert!(ROTOR_RUB_EVENT_CAPACITY == EVENT_CAPACITY);
 // The scheme codes are the library's (`ContactScheme::code`, the scheme registry).
 const _: () = assert!(ROTOR_RUB_SCHEME_EXPRB2 == ContactScheme::Exprb2.code());
 const _: () = assert!(ROTOR_RUB_SCHEME_EXPRB43 == ContactScheme::Exprb43.code());
+// One f64 per model parameter of the table: adding one to the table without adding it here
+// fails to compile.
+const _: () = assert!(size_of::<RotorRubParams>() == 8 * rotor_rub::Parameter::MODEL_COUNT);
 
-/// Model parameters (dimensionless, as in the paper; see the Rust `Params` for each rule).
+/// Model parameters (dimensionless, as in the paper). Valid ranges: `rotor_rub_parameter_info`
+/// (the Rust parameter table, listed by `rotor-rub params`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RotorRubParams {
-    /// η: running speed over natural frequency, > 0.
+    /// η: running speed over natural frequency.
     pub speed_ratio: f64,
-    /// ν: damping ratio, >= 0.
+    /// ν: damping ratio.
     pub damping_ratio: f64,
-    /// η_m: unbalance mass ratio, > 0.
+    /// η_m: unbalance mass ratio.
     pub mass_ratio: f64,
-    /// ρ̂: unbalance eccentricity over clearance, > 0.
+    /// ρ̂: unbalance eccentricity over clearance.
     pub eccentricity_ratio: f64,
     /// φ0: unbalance phase at τ = 0 (radians).
     pub phase: f64,
-    /// K̂xx, >= 0.
+    /// K̂xx.
     pub k_xx: f64,
-    /// K̂xy (any sign).
+    /// K̂xy (cross-coupling).
     pub k_xy: f64,
-    /// K̂yx (any sign).
+    /// K̂yx (cross-coupling).
     pub k_yx: f64,
-    /// K̂yy, >= 0.
+    /// K̂yy.
     pub k_yy: f64,
     /// ε̂x: stator offset, x.
     pub offset_x: f64,

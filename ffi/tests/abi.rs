@@ -182,7 +182,10 @@ fn misuse_gives_error_codes() {
             rotor_rub_problem_validate(&bad, &initial, t0, message.as_mut_ptr(), message.len());
         assert_eq!(rc, ROTOR_RUB_ERR_INVALID_PARAMS);
         let text = CStr::from_ptr(message.as_ptr()).to_str().unwrap();
-        assert!(text.starts_with("speed_ratio = -1 is invalid"), "{text}");
+        assert!(
+            text.starts_with("speed_ratio = -1 is out of range: it must be in [0.001, 100]"),
+            "{text}"
+        );
         let rc = rotor_rub_problem_validate(&bad, &initial, t0, message.as_mut_ptr(), 8);
         assert_eq!(rc, ROTOR_RUB_ERR_INVALID_PARAMS);
         assert_eq!(CStr::from_ptr(message.as_ptr()).to_bytes(), b"speed_r");
@@ -258,4 +261,163 @@ fn every_code_has_a_message_and_the_memory_fits() {
     assert!(rotor_rub_stepper_align() <= align_of::<RotorRubStepper>());
     let version = unsafe { CStr::from_ptr(rotor_rub_version()) };
     assert_eq!(version.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+}
+
+/// The parameter functions reach every table entry by index and by name, write only the
+/// struct holding the parameter, check the range, and agree with the Rust table (so the
+/// `RotorRubParams` mirror and its conversions list the fields in the table's meaning).
+#[test]
+fn parameters_by_index_and_name() {
+    use rotor_rub::{Parameter, Params, Problem};
+    assert_eq!(ROTOR_RUB_PARAMETER_COUNT, Parameter::COUNT);
+    let mut params = RotorRubParams::from(Params::DEFAULT);
+    let mut initial = RotorRubState::default();
+    let mut start_time = 0.0;
+    let mut name = [0 as std::ffi::c_char; 32];
+    let before = allocations();
+    for (i, p) in Parameter::ALL.into_iter().enumerate() {
+        let index = i32::try_from(i).unwrap();
+        let info = p.info();
+        let (mut default, mut min, mut max, mut open) = (0.0, 0.0, 0.0, 0);
+        // SAFETY: valid pointers and buffer sizes.
+        unsafe {
+            let rc = rotor_rub_parameter_info(
+                index,
+                name.as_mut_ptr(),
+                name.len(),
+                &mut default,
+                &mut min,
+                &mut max,
+                &mut open,
+            );
+            assert_eq!(rc, ROTOR_RUB_OK);
+            assert_eq!(CStr::from_ptr(name.as_ptr()).to_str(), Ok(info.name));
+            assert_eq!(
+                (default, min, max, open == 1),
+                (
+                    info.default,
+                    info.range.min,
+                    info.range.max,
+                    info.range.min_open
+                )
+            );
+            let mut found = -1;
+            assert_eq!(
+                rotor_rub_parameter_index(name.as_ptr(), &mut found),
+                ROTOR_RUB_OK
+            );
+            assert_eq!(found, index);
+            // A distinct in-range value lands where the Rust table says, nowhere else.
+            let value = if info.range.contains(0.5 + 0.125 * i as f64) {
+                0.5 + 0.125 * i as f64
+            } else {
+                info.range.max
+            };
+            let untouched = (params, initial, start_time);
+            let rc =
+                rotor_rub_parameter_set(&mut params, &mut initial, &mut start_time, index, value);
+            assert_eq!(rc, ROTOR_RUB_OK, "{p}");
+            let problem = Problem {
+                params: params.into(),
+                initial: initial.into(),
+                start_time,
+            };
+            assert_eq!(p.get(&problem), value, "{p}");
+            let mut back = f64::NAN;
+            let rc = rotor_rub_parameter_get(&params, &initial, &start_time, index, &mut back);
+            assert_eq!((rc, back), (ROTOR_RUB_OK, value), "{p}");
+            // Out of range or not finite: an error and nothing written.
+            let changed = (params, initial, start_time);
+            for bad in [info.range.max.next_up(), f64::NAN] {
+                let rc =
+                    rotor_rub_parameter_set(&mut params, &mut initial, &mut start_time, index, bad);
+                assert_eq!(rc, ROTOR_RUB_ERR_INVALID_PARAMS, "{p} = {bad}");
+            }
+            assert_eq!((params, initial, start_time), changed);
+            // Exactly one of the three holders changed.
+            let moved = [
+                params != untouched.0,
+                initial != untouched.1,
+                start_time != untouched.2,
+            ];
+            assert_eq!(moved.iter().filter(|&&m| m).count(), 1, "{p}");
+        }
+    }
+    assert_eq!(allocations(), before, "parameter calls allocate");
+    // SAFETY: valid or null pointers as each case says.
+    unsafe {
+        let mut found = 0;
+        for bad in [-1, 16, i32::MAX] {
+            assert_eq!(
+                rotor_rub_parameter_set(&mut params, &mut initial, &mut start_time, bad, 1.0),
+                ROTOR_RUB_ERR_INVALID_ARGUMENT
+            );
+            assert_eq!(
+                rotor_rub_parameter_info(
+                    bad,
+                    name.as_mut_ptr(),
+                    4,
+                    std::ptr::null_mut(),
+                    std::ptr::null_mut(),
+                    std::ptr::null_mut(),
+                    std::ptr::null_mut()
+                ),
+                ROTOR_RUB_ERR_INVALID_ARGUMENT
+            );
+        }
+        assert_eq!(
+            rotor_rub_parameter_index(c"omega".as_ptr(), &mut found),
+            ROTOR_RUB_ERR_INVALID_ARGUMENT
+        );
+        assert_eq!(
+            rotor_rub_parameter_index(c"\xff".as_ptr(), &mut found),
+            ROTOR_RUB_ERR_INVALID_ARGUMENT
+        );
+        assert_eq!(
+            rotor_rub_parameter_index(std::ptr::null(), &mut found),
+            ROTOR_RUB_ERR_NULL
+        );
+        // The holder of the parameter is required, the others are not.
+        assert_eq!(
+            rotor_rub_parameter_set(std::ptr::null_mut(), &mut initial, &mut start_time, 0, 2.0),
+            ROTOR_RUB_ERR_NULL
+        );
+        assert_eq!(
+            rotor_rub_parameter_set(
+                &mut params,
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                0,
+                2.0
+            ),
+            ROTOR_RUB_OK
+        );
+        assert_eq!(params.speed_ratio, 2.0);
+        let mut value = 0.0;
+        assert_eq!(
+            rotor_rub_parameter_get(&params, std::ptr::null(), std::ptr::null(), 11, &mut value),
+            ROTOR_RUB_ERR_NULL
+        );
+        assert_eq!(
+            rotor_rub_parameter_get(
+                &params,
+                std::ptr::null(),
+                std::ptr::null(),
+                0,
+                std::ptr::null_mut()
+            ),
+            ROTOR_RUB_ERR_NULL
+        );
+        // Truncated names stay NUL-terminated.
+        rotor_rub_parameter_info(
+            3,
+            name.as_mut_ptr(),
+            4,
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        );
+        assert_eq!(CStr::from_ptr(name.as_ptr()).to_bytes(), b"ecc");
+    }
 }
