@@ -19,13 +19,13 @@
 #define ROTOR_RUB_PARAMETER_ECCENTRICITY_RATIO 3
 /* phase (φ0): phase of the unbalance at τ = 0, rad; valid range [-1000, 1000]. */
 #define ROTOR_RUB_PARAMETER_PHASE 4
-/* k_xx (K̂xx): stator stiffness over rotor stiffness: x force per x displacement; valid range [0, 10000]. */
+/* k_xx (K̂xx): stator stiffness over rotor stiffness: x force per x displacement; valid range [0, 100000]. */
 #define ROTOR_RUB_PARAMETER_K_XX 5
-/* k_xy (K̂xy): stator stiffness over rotor stiffness: x force per y displacement (cross-coupling); valid range [-10000, 10000]. */
+/* k_xy (K̂xy): stator stiffness over rotor stiffness: x force per y displacement (cross-coupling); valid range [-100000, 100000]. */
 #define ROTOR_RUB_PARAMETER_K_XY 6
-/* k_yx (K̂yx): stator stiffness over rotor stiffness: y force per x displacement (cross-coupling); valid range [-10000, 10000]. */
+/* k_yx (K̂yx): stator stiffness over rotor stiffness: y force per x displacement (cross-coupling); valid range [-100000, 100000]. */
 #define ROTOR_RUB_PARAMETER_K_YX 7
-/* k_yy (K̂yy): stator stiffness over rotor stiffness: y force per y displacement; valid range [0, 10000]. */
+/* k_yy (K̂yy): stator stiffness over rotor stiffness: y force per y displacement; valid range [0, 100000]. */
 #define ROTOR_RUB_PARAMETER_K_YY 8
 /* offset_x (ε̂x): stator centre offset from the rotor's rest position, x, clearances; valid range [-10, 10]. */
 #define ROTOR_RUB_PARAMETER_OFFSET_X 9
