@@ -137,7 +137,7 @@ fn params_lists_the_table() {
         assert!(line.contains(info.doc), "{line}");
     }
     assert!(
-        text.contains("damping_ratio = 0 needs speed_ratio != 1"),
+        text.contains("out-of-range values exit with code 2"),
         "{text}"
     );
 }
