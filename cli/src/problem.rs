@@ -129,6 +129,11 @@ pub fn parse_config(text: &str) -> Result<Config, String> {
 
 /// Read a config file: a regular file of at most [`MAX_CONFIG_BYTES`], UTF-8 text.
 fn read_capped(path: &Path) -> Result<String, String> {
+    // Checked before opening: opening a FIFO would block until a writer appears.
+    let before = std::fs::metadata(path).map_err(|e| format!("cannot read the file: {e}"))?;
+    if !before.is_file() {
+        return Err("not a regular file (a config must be a plain TOML file)".into());
+    }
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read the file: {e}"))?;
     let meta = file
         .metadata()

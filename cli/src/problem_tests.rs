@@ -58,6 +58,15 @@ fn config_reads_only_small_regular_files() {
             .unwrap_err()
             .contains("regular file")
     );
+    // A FIFO is refused without opening it (opening would block until a writer appears).
+    #[cfg(unix)]
+    {
+        let fifo = dir.path().join("fifo.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            assert!(read_capped(&fifo).unwrap_err().contains("regular file"));
+        }
+    }
     let big = dir.path().join("big.toml");
     std::fs::write(&big, vec![b'#'; MAX_CONFIG_BYTES as usize + 1]).unwrap();
     assert!(read_capped(&big).unwrap_err().contains("more than"));
