@@ -1,38 +1,33 @@
-//! The full nonlinear piecewise equations of motion (`model.md` §1), stated directly.
+//! The full nonlinear piecewise field (`docs/MODEL.md` §1) that the numerical reference
+//! integrators and the hybrid method's contact phase integrate, with the switching function and
+//! the regime of a state.
 //!
-//! This is the *independent* statement of the model that the numerical reference integrators and
-//! the hybrid method's contact phase integrate. It deliberately shares nothing with the generated
-//! closed forms, so that comparing the two checks the generator.
+//! The equations themselves are generated from the model statement in `codegen/src/model`
+//! ([`coef::free_acceleration`], [`coef::contact_force`]); this module only feeds them and applies
+//! the contact force in the contact regime. Comparisons of methods stay independent because the test suites keep
+//! their own hand-written field (`tests/generated/field.rs`, `tests/reference`).
 
+use crate::coefficients::{self as coef, ModelParams, Phasor, Position, Velocity};
 use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::Regime;
 
-/// z = √((x − ε̂x)² + (y − ε̂y)²): the distance from the stator centre in clearances (`model.md`
+/// z = √((x − ε̂x)² + (y − ε̂y)²): the distance from the stator centre in clearances (`docs/MODEL.md`
 /// notation). Contact when z > 1.
 #[inline]
 pub fn radius(params: &Params, x: f64, y: f64) -> f64 {
     math::hypot(x - params.offset_x, y - params.offset_y)
 }
 
-/// The contact force K_s·g(u, v) with g = (1 − 1/z)(u, v) (`model.md` §1, restoring sign).
+/// The contact force K_s·g(u, v) with g = (1 − 1/z)(u, v) (`docs/MODEL.md` §1, restoring sign),
+/// generated from the model statement.
 #[inline]
 pub fn contact_force(params: &Params, x: f64, y: f64) -> (f64, f64) {
-    let u = x - params.offset_x;
-    let v = y - params.offset_y;
-    // √(u² + v²) rather than hypot: states are bounded by the divergence limit, so nothing
-    // overflows, and this is the hot path of the numerical methods in contact.
-    let z = math::sqrt(u * u + v * v);
-    let scale = if z > 0.0 { 1.0 - 1.0 / z } else { 0.0 };
-    let (gx, gy) = (scale * u, scale * v);
-    (
-        params.k_xx * gx + params.k_xy * gy,
-        params.k_yx * gx + params.k_yy * gy,
-    )
+    let f = coef::contact_force(&ModelParams::of(params), &Position { x, y });
+    (f.fx, f.fy)
 }
 
-/// Accelerations (x'', y'') of the regime's vector field at time τ (`model.md` §1):
-/// free: x'' = −2ν x' − x + F cos θ; contact adds −K_s g.
+/// Accelerations (x'', y'') of the regime's vector field at time τ (`docs/MODEL.md` §1).
 #[inline]
 pub fn acceleration(params: &Params, regime: Regime, tau: f64, s: &State) -> (f64, f64) {
     let (sin_t, cos_t) = math::sin_cos(params.speed_ratio * tau + params.phase);
@@ -40,7 +35,8 @@ pub fn acceleration(params: &Params, regime: Regime, tau: f64, s: &State) -> (f6
 }
 
 /// As [`acceleration`], with the forcing direction (cos θ, sin θ) supplied by the caller (for
-/// integrators that carry the forcing as a rotating phasor).
+/// integrators that carry the forcing as a rotating phasor). The hot path of DOP853 and the
+/// hybrid method: the generated functions inline to straight-line arithmetic.
 #[inline]
 pub fn acceleration_with_phasor(
     params: &Params,
@@ -49,16 +45,22 @@ pub fn acceleration_with_phasor(
     sin_theta: f64,
     s: &State,
 ) -> (f64, f64) {
-    let f = params.forcing_amplitude();
-    let nu2 = 2.0 * params.damping_ratio;
-    let mut ax = f * cos_theta - nu2 * s.vx - s.x;
-    let mut ay = f * sin_theta - nu2 * s.vy - s.y;
-    if regime == Regime::Contact {
-        let (fx, fy) = contact_force(params, s.x, s.y);
-        ax -= fx;
-        ay -= fy;
+    let model = ModelParams::of(params);
+    let at = Position { x: s.x, y: s.y };
+    let rate = Velocity { vx: s.vx, vy: s.vy };
+    let phasor = Phasor {
+        ct: cos_theta,
+        st: sin_theta,
+    };
+    let a = coef::free_acceleration(&model, &at, &rate, &phasor);
+    match regime {
+        Regime::Free => (a.ax, a.ay),
+        // The contact regime adds the contact force (every contact piece of the model).
+        Regime::Contact => {
+            let f = coef::contact_force(&model, &at);
+            (a.ax - f.fx, a.ay - f.fy)
+        }
     }
-    (ax, ay)
 }
 
 /// The regime's vector field s' = (x', y', x'', y'') at time τ.

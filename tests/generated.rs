@@ -28,5 +28,8 @@ mod segments;
 #[path = "generated/errata.rs"]
 mod errata;
 
+#[path = "generated/field.rs"]
+mod field;
+
 #[path = "generated/bits.rs"]
 mod bits;

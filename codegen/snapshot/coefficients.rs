@@ -42,6 +42,16 @@
 //                               after:    19 add    52 mul    1 div   0 sqrt   0 trans
 // polynomial_eval              before:    10 add    22 mul    0 div   0 sqrt   0 trans
 //                               after:    10 add    17 mul    0 div   0 sqrt   0 trans
+// contact_force                before:    30 add    16 mul    4 div   4 sqrt   0 trans
+//                               after:     6 add    10 mul    1 div   1 sqrt   0 trans
+// free_acceleration            before:     4 add     6 mul    0 div   0 sqrt   0 trans
+//                               after:     4 add     6 mul    0 div   0 sqrt   0 trans
+// contact_remainder            before:    38 add    20 mul    4 div   4 sqrt   0 trans
+//                               after:    14 add    14 mul    1 div   1 sqrt   0 trans
+// linear_acceleration          before:     6 add     8 mul    0 div   0 sqrt   0 trans
+//                               after:     6 add     8 mul    0 div   0 sqrt   0 trans
+// shifted_stiffness            before:     2 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     1 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
 /// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
@@ -73,6 +83,30 @@ pub struct Position {
     pub x: f64,
     /// y
     pub y: f64,
+}
+/// A rotor velocity (x', y').
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Velocity {
+    /// x'
+    pub vx: f64,
+    /// y'
+    pub vy: f64,
+}
+/// An extra force (per unit mass) on the rotor.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Force {
+    /// x component
+    pub fx: f64,
+    /// y component
+    pub fy: f64,
+}
+/// A rotor acceleration (x'', y'').
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Acceleration {
+    /// x''
+    pub ax: f64,
+    /// y''
+    pub ay: f64,
 }
 /// The state at a segment start.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -1023,5 +1057,150 @@ pub fn polynomial_eval(
         y: b0y + s * b1y + t0 * b2y + t1 * b3y,
         vx: b1x + 2.0 * s * b2x + 3.0 * t0 * b3x,
         vy: b1y + 2.0 * s * b2y + 3.0 * t0 * b3y,
+    }
+}
+/// The elastic contact force K_s·g(q), g = (1 − 1/z)(x − ε̂x, y − ε̂y), at a position (restoring sign).
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the model's `elastic_contact` piece.
+#[inline]
+#[must_use]
+pub fn contact_force(model: &ModelParams, at: &Position) -> Force {
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let x = at.x;
+    let y = at.y;
+    let t0 = x - ex;
+    let t1 = y - ey;
+    let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    Force {
+        fx: t0 * t2 * kxx + t1 * t2 * kxy,
+        fy: t0 * t2 * kyx + t1 * t2 * kyy,
+    }
+}
+/// Acceleration of free flight: q'' = F(cos θ, sin θ) − 2ν q' − q (in contact, minus `contact_force`).
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the model's pieces: unbalance − damping − restoring.
+#[inline]
+#[must_use]
+pub fn free_acceleration(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> Acceleration {
+    let nu = model.nu;
+    let f = model.f;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    Acceleration {
+        ax: ct * f - 2.0 * nu * vx - x,
+        ay: st * f - 2.0 * nu * vy - y,
+    }
+}
+/// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) of the Taylor-linearized contact field, as a force on the acceleration (zero at the linearization point).
+///
+/// Source: docs/MODEL.md §3, §8.
+/// Derivation: the linearized stiffness term minus the model's contact stiffness term.
+#[inline]
+#[must_use]
+pub fn contact_remainder(
+    model: &ModelParams,
+    at: &Position,
+    kl: &LinearizedContact,
+) -> Force {
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let x = at.x;
+    let y = at.y;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
+    let t0 = x - ex;
+    let t1 = y - ey;
+    let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    Force {
+        fx: fd1 + x * fa1 + y * fb1 - x - t0 * t2 * kxx - t1 * t2 * kxy,
+        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t2 * kyx - t1 * t2 * kyy,
+    }
+}
+/// Acceleration of the linearized contact equations under an extra force only: q'' = a − 2ν q' − Kl q (Fd and the unbalance are carried by the particular solution).
+///
+/// Source: docs/MODEL.md §3, §8.
+/// Derivation: the model's acceleration with the linearized stiffness term Kl q and the force a.
+#[inline]
+#[must_use]
+pub fn linear_acceleration(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    load: &Force,
+    kl: &LinearizedContact,
+) -> Acceleration {
+    let nu = model.nu;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let fx = load.fx;
+    let fy = load.fy;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    Acceleration {
+        ax: fx - 2.0 * nu * vx - x * fa1 - y * fb1,
+        ay: fy - 2.0 * nu * vy - x * fb2 - y * fa2,
+    }
+}
+/// Outputs of [`shifted_stiffness`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShiftedStiffness {
+    /// A[0][0]
+    pub a11: f64,
+    /// A[0][1]
+    pub a12: f64,
+    /// A[1][0]
+    pub a21: f64,
+    /// A[1][1]
+    pub a22: f64,
+}
+/// A = Kl − ν²I, the stiffness of the homogeneous contact equations after the substitution q = e^{−νs} p (p'' + A p = 0): its norm bounds the closed form's growth.
+///
+/// Source: docs/MODEL.md §5.
+/// Derivation: q = e^{−νs} p substituted into the homogeneous linearized equations; the coefficients of p at p' = p'' = 0.
+#[inline]
+#[must_use]
+pub fn shifted_stiffness(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+) -> ShiftedStiffness {
+    let nu = model.nu;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let t0 = -nu * nu;
+    ShiftedStiffness {
+        a11: t0 + fa1,
+        a12: fb1,
+        a21: fb2,
+        a22: t0 + fa2,
     }
 }

@@ -5,10 +5,11 @@
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
 use super::segment::{Bounds, Point, Segment, point_of};
+use super::series::{self, Coefficients, Recurrence, SERIES_TERMS, series_len};
 use crate::coefficients::{
-    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
-    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
-    Position,
+    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, Force,
+    HomogeneousInitial, HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor,
+    PolynomialParticular, Position, Velocity,
 };
 use crate::math;
 use crate::params::{Params, State};
@@ -28,10 +29,72 @@ pub struct Linearization {
     /// Frobenius norms of A = Kl − ν²I and of Kl (for bounds).
     norm_a: f64,
     norm_kl: f64,
+    /// |q''| ≤ gains.0·|q'| + gains.1·|q| on the homogeneous linearized equations.
+    gains: (f64, f64),
     /// Bounds of the harmonic particular part: its largest amplitude (singular value of the
     /// cos/sin coefficient matrix) and the distance of its centre from the stator's.
     harmonic_amplitude: f64,
     harmonic_shift: f64,
+}
+
+/// The Frobenius norm of a 2×2 matrix (rows), diagonal first.
+fn frobenius(m: [[f64; 2]; 2]) -> f64 {
+    let [[a, b], [c, d]] = m;
+    math::sqrt(a * a + d * d + b * b + c * c)
+}
+
+/// Gains of the homogeneous linearized contact acceleration q'' = −2ν q' − Kl q (the generated
+/// `linear_acceleration` with no extra force): |q''| ≤ g_v |q'| + g_q |q| with g_v, g_q the
+/// largest singular values of its Jacobians in q' and q, read off as its values at unit vectors
+/// (the map is linear).
+fn acceleration_gains(model: &ModelParams, kl: &LinearizedContact) -> (f64, f64) {
+    let acc = |q: [f64; 2], v: [f64; 2]| {
+        let a = coef::linear_acceleration(
+            model,
+            &Position { x: q[0], y: q[1] },
+            &Velocity { vx: v[0], vy: v[1] },
+            &Force::default(),
+            kl,
+        );
+        [a.ax, a.ay]
+    };
+    let norm = |c1: [f64; 2], c2: [f64; 2]| harmonic_amplitude(c1[0], c2[0], c1[1], c2[1]);
+    (
+        norm(acc([0.0; 2], [1.0, 0.0]), acc([0.0; 2], [0.0, 1.0])),
+        norm(acc([1.0, 0.0], [0.0; 2]), acc([0.0, 1.0], [0.0; 2])),
+    )
+}
+
+/// An upper bound of ‖Kl‖₂ over every linearization point with z ≥ 1: the square of the fastest
+/// contact frequency (the analytic propagator caps its contact step by its inverse root).
+///
+/// Argument, from the generated formulas only: Kl (`linearized_stiffness`) is affine in K_s,
+/// Kl = Kl₀ + K_s J with Kl₀ its value at K_s = 0 (the restoring spring), so
+/// ‖Kl‖₂ ≤ ‖Kl₀‖₂ + ‖K_s‖_F ‖J‖₂. The contact function g is rotation-equivariant about the stator
+/// centre (g(Rq) = R g(q)), so J(Rq) = R J(q) Rᵀ and ‖J‖₂ depends on z only: J is evaluated along
+/// (1, 0) (`taylor_terms`). J is affine in w = 1/z (checked in `tests/generated/field.rs`) and the
+/// norm is convex, so its supremum over w ∈ (0, 1] is at an end: J(1) at z = 1 and
+/// J(0) = 2 J(½) − J(1) from z = 2. (For the elastic law J = (1 − w) I + w n nᵀ: the bound is
+/// 1 + ‖K_s‖_F up to the singular-value margin.)
+pub fn max_contact_stiffness(params: &Params) -> f64 {
+    let mut model = ModelParams::of(params);
+    let ks = frobenius([[model.kxx, model.kxy], [model.kyx, model.kyy]]);
+    let jacobian = |z: f64| {
+        let at = Position {
+            x: model.ex + z,
+            y: model.ey,
+        };
+        let t = coef::taylor_terms(&model, &at);
+        [[t.a1, t.b1], [t.b2, t.a2]]
+    };
+    let (j1, j2) = (jacobian(1.0), jacobian(2.0));
+    let j0 = [0, 1].map(|i| [0, 1].map(|k| 2.0 * j2[i][k] - j1[i][k]));
+    let spectral = |m: [[f64; 2]; 2]| harmonic_amplitude(m[0][0], m[0][1], m[1][0], m[1][1]);
+    let j_norm = spectral(j1).max(spectral(j0));
+    (model.kxx, model.kxy, model.kyx, model.kyy) = (0.0, 0.0, 0.0, 0.0);
+    let t = coef::taylor_terms(&model, &Position { x: 1.0, y: 0.0 });
+    let k0 = coef::linearized_stiffness(&model, &t);
+    spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]]) + ks * j_norm
 }
 
 /// Why a linearization cannot be used.
@@ -69,15 +132,10 @@ impl Linearization {
             return Err(Singular);
         }
         let (st, ct) = math::sin_cos(math::wrap_angle(p.speed_ratio * t0 + p.phase));
-        let nn = nu * nu;
-        let norm_a = math::sqrt(
-            (kl.fa1 - nn) * (kl.fa1 - nn)
-                + (kl.fa2 - nn) * (kl.fa2 - nn)
-                + kl.fb1 * kl.fb1
-                + kl.fb2 * kl.fb2,
-        );
-        let norm_kl =
-            math::sqrt(kl.fa1 * kl.fa1 + kl.fa2 * kl.fa2 + kl.fb1 * kl.fb1 + kl.fb2 * kl.fb2);
+        let a = coef::shifted_stiffness(&model, &kl);
+        let norm_a = frobenius([[a.a11, a.a12], [a.a21, a.a22]]);
+        let norm_kl = frobenius([[kl.fa1, kl.fb1], [kl.fb2, kl.fa2]]);
+        let gains = acceleration_gains(&model, &kl);
         Ok(Linearization {
             kl,
             modes,
@@ -89,6 +147,7 @@ impl Linearization {
             offset: (p.offset_x, p.offset_y),
             norm_a,
             norm_kl,
+            gains,
             harmonic_amplitude: harmonic_amplitude(c.c11, c.c22, c.c33, c.c44),
             harmonic_shift: math::hypot(c.c55 - p.offset_x, c.c66 - p.offset_y),
         })
@@ -147,7 +206,7 @@ impl Linearization {
                 out.response = Response::Series([[0.0; 2]; SERIES_TERMS]);
             }
             if let Response::Series(c) = &mut out.response {
-                series_response_into(k, self.nu, &forcing, len, c);
+                self.recurrence(&forcing).coefficients_into(len, c);
             }
         } else {
             let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = forcing;
@@ -195,10 +254,24 @@ impl Linearization {
         }
         if self.norm_kl * horizon * horizon <= 1.0 {
             let len = series_len(self.norm_kl, self.nu, horizon);
-            let q = series_value(&self.kl, self.nu, forcing, len, s);
+            let q = self.recurrence(forcing).value(len, s);
             return Some(add_response(unforced, &q));
         }
         None
+    }
+
+    /// The model parameters in the generated code's form.
+    pub fn model(&self) -> &ModelParams {
+        &self.model
+    }
+
+    /// The series response's equation for the cubic `forcing`.
+    fn recurrence<'a>(&'a self, forcing: &'a [f64; 8]) -> Recurrence<'a> {
+        Recurrence {
+            model: &self.model,
+            kl: &self.kl,
+            forcing,
+        }
     }
 
     /// The matrix-function scalars and decay at local time `s` (shared by every segment of this
@@ -216,10 +289,6 @@ impl Linearization {
     }
 }
 
-/// Number of Taylor coefficients of the series response (degree `SERIES_TERMS − 1`); with
-/// ‖Kl‖h² ≤ 1 the first neglected term is below 1e-16 of the forcing's response.
-const SERIES_TERMS: usize = 20;
-
 /// How the response to the extra cubic forcing is represented.
 #[derive(Clone, Copy, Debug)]
 #[allow(
@@ -234,131 +303,7 @@ pub enum Response {
     /// The zero-state response as a Taylor polynomial Σ c_m s^m (x and y coefficients), from
     /// the equations of motion: c0 = c1 = 0 and
     /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`model.md` §3).
-    Series([[f64; 2]; SERIES_TERMS]),
-}
-
-/// 1/((m + 2)(m + 1)) for m = 0 … SERIES_TERMS − 3 (the recurrence's divisors).
-const SERIES_DIVISORS: [f64; SERIES_TERMS - 2] = {
-    let mut r = [0.0; SERIES_TERMS - 2];
-    let mut m = 0;
-    while m < SERIES_TERMS - 2 {
-        r[m] = 1.0 / (((m + 2) * (m + 1)) as f64);
-        m += 1;
-    }
-    r
-};
-
-/// How many Taylor coefficients the series response needs on s ∈ [0, horizon].
-///
-/// Beyond the forcing (m ≥ 4) the recurrence gives ‖c_m‖ ≤ B μ^m / m! with μ = ν + √(ν² + ‖Kl‖)
-/// (μ² = 2νμ + ‖Kl‖ turns the bound into an equality), so the terms from n on add at most
-/// (μh)^(n−5)·5!/n!·e^(μh) relative to the degree-5 term. The count is the smallest n ≥ 6 with
-/// (μh)^(n−5)·5!/n! ≤ 1e-19, at most [`SERIES_TERMS`] (where ‖Kl‖h² ≤ 1 keeps the bound below
-/// 1e-16, the fixed length's design).
-fn series_len(norm_kl: f64, nu: f64, horizon: f64) -> usize {
-    let mu_h = (nu + math::sqrt(nu * nu + norm_kl)) * horizon;
-    // term = (μh)^(n−5)·5!/n!, from n = 6.
-    let mut term = mu_h / 6.0;
-    let mut n = 6;
-    // (NaN runs to the full length.)
-    while n < SERIES_TERMS && (term > 1e-19 || term.is_nan()) {
-        n += 1;
-        term *= mu_h / n as f64;
-    }
-    n
-}
-
-/// The first `len` (6 … [`SERIES_TERMS`]) coefficients of the series response into `c`, the
-/// others zero.
-fn series_response_into(
-    k: &LinearizedContact,
-    nu: f64,
-    a: &[f64; 8],
-    len: usize,
-    c: &mut [[f64; 2]; SERIES_TERMS],
-) {
-    let len = len.clamp(6, SERIES_TERMS);
-    c[0] = [0.0; 2];
-    c[1] = [0.0; 2];
-    for m in 0..len - 2 {
-        let (f0, f1) = if m < 4 {
-            (a[2 * m], a[2 * m + 1])
-        } else {
-            (0.0, 0.0)
-        };
-        let r = SERIES_DIVISORS[m];
-        let damp = 2.0 * nu * (m + 1) as f64;
-        let [cx, cy] = c[m];
-        let [nx, ny] = c[m + 1];
-        c[m + 2] = [
-            (f0 - damp * nx - k.fa1 * cx - k.fb1 * cy) * r,
-            (f1 - damp * ny - k.fb2 * cx - k.fa2 * cy) * r,
-        ];
-    }
-    for t in &mut c[len..] {
-        *t = [0.0; 2];
-    }
-}
-
-/// The series response's position and velocity at `s` in one pass, without storing its
-/// coefficients: the recurrence of [`series_response_into`] summed forwards (the same value as
-/// [`series_eval`] of those coefficients up to rounding).
-fn series_value(k: &LinearizedContact, nu: f64, a: &[f64; 8], len: usize, s: f64) -> [f64; 4] {
-    let len = len.clamp(6, SERIES_TERMS);
-    // (c_m, c_{m+1}) with c0 = c1 = 0; the terms m = 0, 1 contribute nothing.
-    let (mut cm, mut cn) = ([0.0, 0.0], [0.0, 0.0]);
-    let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
-    // s^(m+1) and (m+2)·s^(m+1) for the term c_{m+2} s^(m+2).
-    let mut pow1 = s;
-    for m in 0..len - 2 {
-        let (f0, f1) = if m < 4 {
-            (a[2 * m], a[2 * m + 1])
-        } else {
-            (0.0, 0.0)
-        };
-        let r = SERIES_DIVISORS[m];
-        let damp = 2.0 * nu * (m + 1) as f64;
-        let next = [
-            (f0 - damp * cn[0] - k.fa1 * cm[0] - k.fb1 * cm[1]) * r,
-            (f1 - damp * cn[1] - k.fb2 * cm[0] - k.fa2 * cm[1]) * r,
-        ];
-        let pow2 = pow1 * s;
-        let d = (m + 2) as f64 * pow1;
-        x += next[0] * pow2;
-        y += next[1] * pow2;
-        vx += next[0] * d;
-        vy += next[1] * d;
-        (cm, cn, pow1) = (cn, next, pow2);
-    }
-    [x, y, vx, vy]
-}
-
-/// The number of coefficients up to the last non-zero one.
-#[inline]
-fn series_used(c: &[[f64; 2]; SERIES_TERMS]) -> usize {
-    c.iter()
-        .rposition(|t| t[0] != 0.0 || t[1] != 0.0)
-        .map_or(0, |i| i + 1)
-}
-
-/// Position and velocity of a Taylor polynomial at s (Horner).
-fn series_eval(c: &[[f64; 2]; SERIES_TERMS], s: f64) -> [f64; 4] {
-    series_eval_len(c, series_used(c), s)
-}
-
-/// [`series_eval`] of the first `len` coefficients.
-#[inline]
-fn series_eval_len(c: &[[f64; 2]; SERIES_TERMS], len: usize, s: f64) -> [f64; 4] {
-    let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
-    for m in (0..len.min(SERIES_TERMS)).rev() {
-        x = x * s + c[m][0];
-        y = y * s + c[m][1];
-        if m > 0 {
-            vx = vx * s + m as f64 * c[m][0];
-            vy = vy * s + m as f64 * c[m][1];
-        }
-    }
-    [x, y, vx, vy]
+    Series(Coefficients),
 }
 
 /// `unforced + q` componentwise (the last sum of [`LinearSegment::state_with`]).
@@ -392,7 +337,7 @@ impl LinearSegment {
                 let q = coef::polynomial_eval(&LocalTime { s }, b);
                 [q.x, q.y, q.vx, q.vy]
             }
-            Response::Series(c) => series_eval(c, s),
+            Response::Series(c) => series::eval(c, s),
         };
         State::new(
             h.x + p[0] + q[0],
@@ -408,7 +353,7 @@ impl LinearSegment {
     pub fn state_from_unforced(&self, s: f64, unforced: &State) -> Option<State> {
         match &self.response {
             Response::None => Some(*unforced),
-            Response::Series(c) => Some(add_response(unforced, &series_eval(c, s))),
+            Response::Series(c) => Some(add_response(unforced, &series::eval(c, s))),
             Response::Polynomial(_) => None,
         }
     }
@@ -428,6 +373,7 @@ impl LinearSegment {
                 offset: (0.0, 0.0),
                 norm_a: 0.0,
                 norm_kl: 0.0,
+                gains: (0.0, 0.0),
                 harmonic_amplitude: 0.0,
                 harmonic_shift: 0.0,
             },
@@ -476,7 +422,7 @@ impl Segment for LinearSegment {
         let w0 = math::sqrt(h.w0x * h.w0x + h.w0y * h.w0y);
         let rh = decay * ch * (q0 + hi * w0);
         let vh = l.nu * rh + decay * ch * (l.norm_a * hi * q0 + w0);
-        let ah = 2.0 * l.nu * vh + l.norm_kl * rh;
+        let ah = l.gains.0 * vh + l.gains.1 * rh;
         let (amp, shift) = (l.harmonic_amplitude, l.harmonic_shift);
         // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi (1-norms bound the
         // Euclidean ones).
@@ -488,7 +434,7 @@ impl Segment for LinearSegment {
                 polynomial_bounds(c.chunks_exact(2).map(norm), hi)
             }
             Response::Series(c) => {
-                polynomial_bounds(c[..series_used(c)].iter().map(|c| norm(c)), hi)
+                polynomial_bounds(c.iter().take(series::used(c)).map(|c| norm(c)), hi)
             }
         };
         Bounds {

@@ -13,6 +13,7 @@ pub mod linear;
 pub mod propagator;
 pub mod schemes;
 pub mod segment;
+pub mod series;
 pub mod switch;
 
 pub use propagator::{AnalyticPropagator, DEFAULT_EXPRB2_STEP};

@@ -4,6 +4,7 @@
 
 use super::free::FreeConstants;
 use super::free_flight::{FreeAdvance, FreeFlight};
+use super::linear::max_contact_stiffness;
 use super::schemes::{SubStep, exprb2_into, exprb43_into};
 use super::segment::{Point, Segment, point_of};
 use super::switch::{Direction, first_crossing_to};
@@ -98,12 +99,9 @@ pub struct ExprbContact {
 
 impl ExprbContact {
     fn new(params: &Params, scheme: ContactScheme, tol: f64, fixed_step: Option<f64>) -> Self {
-        // Fastest frequencies: forcing η, free 1, contact ≤ √(1 + ‖K_s‖_F) (‖J‖ ≤ 1 for z ≥ 1).
-        let k = params;
-        let k_norm =
-            math::sqrt(k.k_xx * k.k_xx + k.k_xy * k.k_xy + k.k_yx * k.k_yx + k.k_yy * k.k_yy);
+        // Fastest frequencies: forcing η, free 1, contact ≤ √(sup over z ≥ 1 of ‖Kl‖).
         let omega = params.speed_ratio.max(1.0 + params.damping_ratio);
-        let omega_contact = math::sqrt(1.0 + k_norm).max(omega);
+        let omega_contact = math::sqrt(max_contact_stiffness(params)).max(omega);
         ExprbContact {
             params: *params,
             scheme,

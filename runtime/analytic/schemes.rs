@@ -11,7 +11,7 @@
 //!   is the scheme's continuous extension used for exit location and sampling.
 
 use super::linear::{LinearSegment, Linearization, Singular};
-use crate::field;
+use crate::coefficients::{self as coef, Position};
 use crate::math;
 use crate::params::{Params, State};
 
@@ -29,14 +29,10 @@ pub struct SubStep {
 }
 
 /// n(q) = Kl q + Fd − q − K_s g(q): the nonlinear contact force minus its linearization, as a
-/// forcing on the acceleration (zero at the linearization point).
-fn remainder(params: &Params, lin: &Linearization, s: &State) -> (f64, f64) {
-    let k = &lin.kl;
-    let (fx, fy) = field::contact_force(params, s.x, s.y);
-    (
-        k.fa1 * s.x + k.fb1 * s.y + k.fd1 - s.x - fx,
-        k.fb2 * s.x + k.fa2 * s.y + k.fd2 - s.y - fy,
-    )
+/// forcing on the acceleration (zero at the linearization point; generated from the model).
+fn remainder(lin: &Linearization, s: &State) -> (f64, f64) {
+    let n = coef::contact_remainder(lin.model(), &Position { x: s.x, y: s.y }, &lin.kl);
+    (n.fx, n.fy)
 }
 
 impl SubStep {
@@ -104,7 +100,7 @@ pub fn exprb43_into(
     lin.segment_into(state, [0.0; 8], h, &mut out.segment);
     let free = &out.segment;
     let u2 = free.state_with(0.5 * h, &lin.scalars(0.5 * h));
-    let (n2x, n2y) = remainder(params, &lin, &u2);
+    let (n2x, n2y) = remainder(&lin, &u2);
     let at_h = lin.scalars(h);
     // The unforced segment at h: the stages share its homogeneous and harmonic parts whenever
     // their response to the extra forcing is a series (short steps), so only that response is
@@ -115,7 +111,7 @@ pub fn exprb43_into(
             .unwrap_or_else(|| lin.segment(state, forcing, h).state_with(h, &at_h))
     };
     let u3 = stage_state([n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
-    let (n3x, n3y) = remainder(params, &lin, &u3);
+    let (n3x, n3y) = remainder(&lin, &u3);
     let (h2, h3) = (h * h, h * h * h);
     let a2 = ((8.0 * n2x - n3x) / h2, (8.0 * n2y - n3y) / h2);
     let a3 = ((-8.0 * n2x + 2.0 * n3x) / h3, (-8.0 * n2y + 2.0 * n3y) / h3);

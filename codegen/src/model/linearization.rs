@@ -8,22 +8,12 @@ pub(super) fn derive(m: &mut Model) {
     linearized_stiffness(m);
 }
 
-/// A1 … D2: g(u, v) = (1 − 1/z)(u, v) expanded to first order about (x0, y0).
+/// A1 … D2: the model's contact function g (`Model::contact_function`) expanded to first order
+/// about (x0, y0).
 fn taylor_terms(m: &mut Model) {
     let (x, y) = (m.var("x"), m.var("y"));
-    let (ex, ey) = (m.var("ex"), m.var("ey"));
+    let [gx, gy] = m.contact_function([x, y]);
     let g = &mut m.graph;
-    let u = g.sub(x, ex);
-    let v = g.sub(y, ey);
-    let uu = g.mul(u, u);
-    let vv = g.mul(v, v);
-    let z2 = g.add(uu, vv);
-    let z = g.sqrt(z2);
-    let one = g.constant(1.0);
-    let inv_z = g.powi(z, -1);
-    let scale = g.sub(one, inv_z);
-    let gx = g.mul(scale, u);
-    let gy = g.mul(scale, v);
     let (sx, sy) = (g.symbol("x"), g.symbol("y"));
     let a1 = partial(g, gx, sx);
     let b1 = partial(g, gx, sy);
@@ -62,26 +52,27 @@ fn taylor_terms(m: &mut Model) {
     );
 }
 
-/// Kl = I + K_s J and Fd = K_s D, read off the linearized equations of motion.
+/// Kl = I + K_s J and Fd = K_s D, read off the linearized equations of motion: the model's
+/// stiffness term with the contact function g replaced by its Taylor form J q + D.
 fn linearized_stiffness(m: &mut Model) {
     let q = [m.var("x"), m.var("y")];
-    let ks = m.stator_stiffness();
+    // K_s's symbols first: the graph orders operands by creation, so this keeps the emitted
+    // operation order (and the runtime's bits) of the hand-assembled form this replaced.
+    m.stator_stiffness();
     let j = [[m.var("a1"), m.var("b1")], [m.var("b2"), m.var("a2")]];
     let d = [m.var("d1"), m.var("d2")];
-    let g = &mut m.graph;
-    // The stiffness part of the contact equations: q + K_s (J q + D).
     let mut lin = [q[0]; 2];
     for i in 0..2 {
+        let g = &mut m.graph;
         let jq = g.mul(j[i][0], q[0]);
         let jq2 = g.mul(j[i][1], q[1]);
         lin[i] = g.sum(&[jq, jq2, d[i]]);
     }
-    let mut term = [q[0]; 2];
-    for i in 0..2 {
-        let a = g.mul(ks[i][0], lin[0]);
-        let b = g.mul(ks[i][1], lin[1]);
-        term[i] = g.sum(&[q[i], a, b]);
-    }
+    // The stiffness part of the contact equations: q + K_s (J q + D).
+    let restoring = m.restoring(q);
+    let contact = m.stator_force(lin);
+    let g = &mut m.graph;
+    let term = [0, 1].map(|i| g.add(restoring[i], contact[i]));
     let (sx, sy) = (g.symbol("x"), g.symbol("y"));
     let kl = [
         [partial(g, term[0], sx), partial(g, term[0], sy)],

@@ -1,16 +1,27 @@
-//! The model, stated once (`model.md` §1), and the derivations of every formula from it.
+//! The model, stated once (`docs/MODEL.md` §1), and the derivations of every formula from it.
 //!
-//! The equations of motion are written in one place ([`Model::equations_of_motion`]):
+//! The equations of motion are a sum of named pieces, each written once below:
 //!
 //! ```text
-//! q'' + 2ν q' + q + K_s·G = F (cos θ, sin θ)
+//! q'' = F (cos θ, sin θ)  − 2ν q'   − q          − K_s·g(q)        [contact only]
+//!       [`unbalance`]      [`damping`] [`restoring`] [`elastic_contact`], g = [`contact_function`]
 //! ```
 //!
-//! with G = 0 in free flight, G = g(u, v) = (1 − 1/z)(u, v) in contact, and G = J q + D for the
-//! Taylor-linearized contact. Each derivation substitutes an ansatz into them and solves for the
-//! unknown constants with the engine's linear solver: nothing below types a closed form in.
+//! with g(q) = (1 − 1/z)(u, v), (u, v) = q − ε̂, z = |(u, v)|. [`Model::contact_pieces`] sums
+//! the forces that act only in contact, [`Model::acceleration`] assembles a regime's field and
+//! [`Model::equations_of_motion`] is its residual, which every derivation substitutes an ansatz
+//! into; the Taylor linearization replaces K_s·g(q) by K_s(J q + D). A new force is one more
+//! piece here, added to `contact_pieces` (friction) or to the forcing (an external input):
+//! every generated formula follows from it.
+//!
+//! [`unbalance`]: Model::unbalance
+//! [`damping`]: Model::damping
+//! [`restoring`]: Model::restoring
+//! [`elastic_contact`]: Model::elastic_contact
+//! [`contact_function`]: Model::contact_function
 
 mod contact;
+mod field;
 mod free;
 mod linearization;
 mod polynomial;
@@ -40,6 +51,7 @@ pub fn derive_all() -> Model {
     free::derive(&mut m);
     contact::derive(&mut m);
     polynomial::derive(&mut m);
+    field::derive(&mut m);
     m
 }
 
@@ -88,9 +100,85 @@ impl Model {
         [ct, st]
     }
 
-    /// The residual of the equations of motion (`model.md` §1) for a trajectory `q(τ)` whose
-    /// time dependence is given by `rates`, with stiffness term `stiffness` (q + K_s·G for the
-    /// regime) and forcing `forcing` on the right-hand side.
+    /// Viscous damping 2ν q' (per unit mass).
+    pub(crate) fn damping(&mut self, v: Vec2) -> Vec2 {
+        let nu = self.var("nu");
+        let g = &mut self.graph;
+        v.map(|vi| {
+            let t = g.mul(nu, vi);
+            g.scale(2.0, t)
+        })
+    }
+
+    /// The restoring force of the shaft's spring, q (stiffness 1 in the model's units).
+    pub(crate) fn restoring(&mut self, q: Vec2) -> Vec2 {
+        q
+    }
+
+    /// The contact function g(q) = (1 − 1/z)(u, v), (u, v) = q − ε̂, z = |(u, v)|: the stator's
+    /// deflection, the rotor's penetration beyond the clearance along the radius.
+    pub(crate) fn contact_function(&mut self, q: Vec2) -> Vec2 {
+        let (ex, ey) = (self.var("ex"), self.var("ey"));
+        let g = &mut self.graph;
+        let u = g.sub(q[0], ex);
+        let v = g.sub(q[1], ey);
+        let uu = g.mul(u, u);
+        let vv = g.mul(v, v);
+        let z2 = g.add(uu, vv);
+        let z = g.sqrt(z2);
+        let one = g.constant(1.0);
+        let inv_z = g.powi(z, -1);
+        let scale = g.sub(one, inv_z);
+        [g.mul(scale, u), g.mul(scale, v)]
+    }
+
+    /// K_s·w: the stator stiffness applied to a deflection.
+    pub(crate) fn stator_force(&mut self, w: Vec2) -> Vec2 {
+        let ks = self.stator_stiffness();
+        let g = &mut self.graph;
+        [0, 1].map(|i| {
+            let a = g.mul(ks[i][0], w[0]);
+            let b = g.mul(ks[i][1], w[1]);
+            g.add(a, b)
+        })
+    }
+
+    /// The elastic contact force K_s·g(q) (restoring sign: it enters the acceleration with −).
+    pub(crate) fn elastic_contact(&mut self, q: Vec2) -> Vec2 {
+        let w = self.contact_function(q);
+        self.stator_force(w)
+    }
+
+    /// Every force that acts only in contact, summed (restoring sign): the elastic K_s·g(q).
+    /// Friction (issue 12) and other contact laws are further terms of this sum.
+    pub(crate) fn contact_pieces(&mut self, q: Vec2) -> Vec2 {
+        self.elastic_contact(q)
+    }
+
+    /// The nonlinear stiffness term of a regime: q, plus the contact pieces in contact.
+    pub(crate) fn stiffness(&mut self, q: Vec2, contact: bool) -> Vec2 {
+        let r = self.restoring(q);
+        if !contact {
+            return r;
+        }
+        let c = self.contact_pieces(q);
+        [self.graph.add(r[0], c[0]), self.graph.add(r[1], c[1])]
+    }
+
+    /// The acceleration q'' = forcing − 2ν q' − stiffness of the equations of motion, for a
+    /// stiffness term (`stiffness`, `linear_stiffness_term`) and the forces on the right-hand side.
+    pub(crate) fn acceleration(&mut self, v: Vec2, stiffness: Vec2, forcing: Vec2) -> Vec2 {
+        let d = self.damping(v);
+        let g = &mut self.graph;
+        [0, 1].map(|i| {
+            let a = g.neg(d[i]);
+            let b = g.neg(stiffness[i]);
+            g.sum(&[forcing[i], a, b])
+        })
+    }
+
+    /// The residual q'' + 2ν q' + stiffness − forcing of the equations of motion
+    /// (`docs/MODEL.md` §1) for a trajectory `q(τ)` whose time dependence is given by `rates`.
     pub(crate) fn equations_of_motion(
         &mut self,
         q: Vec2,
@@ -98,16 +186,13 @@ impl Model {
         stiffness: Vec2,
         forcing: Vec2,
     ) -> Vec2 {
-        let nu = self.var("nu");
-        let g = &mut self.graph;
         let mut residual = [q[0]; 2];
         for i in 0..2 {
+            let g = &mut self.graph;
             let v = derivative(g, q[i], rates);
             let a = derivative(g, v, rates);
-            let damping = {
-                let t = g.mul(nu, v);
-                g.scale(2.0, t)
-            };
+            let damping = self.damping([v, v])[0];
+            let g = &mut self.graph;
             let rhs = g.neg(forcing[i]);
             residual[i] = g.sum(&[a, damping, stiffness[i], rhs]);
         }

@@ -57,6 +57,12 @@ pub const GROUPS: &[Group] = &[
         fields: &[("fx", "fx", "x component"), ("fy", "fy", "y component")],
     },
     Group {
+        ty: "Acceleration",
+        arg: "acceleration",
+        doc: "A rotor acceleration (x'', y'').",
+        fields: &[("ax", "ax", "x''"), ("ay", "ay", "y''")],
+    },
+    Group {
         ty: "StartState",
         arg: "start",
         doc: "The state at a segment start.",

@@ -1,0 +1,145 @@
+//! The series response of a linearized contact segment to an extra cubic forcing
+//! (`docs/MODEL.md` §3, §8): the zero-state solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² +
+//! a3 s³ as a Taylor polynomial Σ c_m s^m, for short horizons where the polynomial particular
+//! solution cancels badly (its coefficients grow like (‖Kl‖h²)⁻ᵏ while the response is O(h²)).
+//!
+//! The recurrence is the model's linear contact acceleration (`coefficients::linear_acceleration`,
+//! generated) evaluated at the Taylor coefficients: with c0 = c1 = 0,
+//! (m + 2)(m + 1) c_{m+2} = a_m − 2ν (m + 1) c_{m+1} − Kl c_m, since the coefficient of s^m in
+//! q'', q' and q is (m + 2)(m + 1) c_{m+2}, (m + 1) c_{m+1} and c_m.
+
+use crate::coefficients::{
+    self as coef, Force, LinearizedContact, ModelParams, Position, Velocity,
+};
+use crate::math;
+
+/// Number of Taylor coefficients of the series response (degree `SERIES_TERMS − 1`); with
+/// ‖Kl‖h² ≤ 1 the first neglected term is below 1e-16 of the forcing's response.
+pub const SERIES_TERMS: usize = 20;
+
+/// Taylor coefficients (x, y) of the series response, c_0 … c_{SERIES_TERMS − 1}.
+pub type Coefficients = [[f64; 2]; SERIES_TERMS];
+
+/// 1/((m + 2)(m + 1)) for m = 0 … SERIES_TERMS − 3 (the recurrence's divisors).
+const DIVISORS: [f64; SERIES_TERMS - 2] = {
+    let mut r = [0.0; SERIES_TERMS - 2];
+    let mut m = 0;
+    while m < SERIES_TERMS - 2 {
+        r[m] = 1.0 / (((m + 2) * (m + 1)) as f64);
+        m += 1;
+    }
+    r
+};
+
+/// How many Taylor coefficients the series response needs on s ∈ [0, horizon].
+///
+/// Beyond the forcing (m ≥ 4) the recurrence gives ‖c_m‖ ≤ B μ^m / m! with μ = ν + √(ν² + ‖Kl‖)
+/// (μ² = 2νμ + ‖Kl‖ turns the bound into an equality), so the terms from n on add at most
+/// (μh)^(n−5)·5!/n!·e^(μh) relative to the degree-5 term. The count is the smallest n ≥ 6 with
+/// (μh)^(n−5)·5!/n! ≤ 1e-19, at most [`SERIES_TERMS`] (where ‖Kl‖h² ≤ 1 keeps the bound below
+/// 1e-16, the fixed length's design).
+pub fn series_len(norm_kl: f64, nu: f64, horizon: f64) -> usize {
+    let mu_h = (nu + math::sqrt(nu * nu + norm_kl)) * horizon;
+    // term = (μh)^(n−5)·5!/n!, from n = 6.
+    let mut term = mu_h / 6.0;
+    let mut n = 6;
+    // (NaN runs to the full length.)
+    while n < SERIES_TERMS && (term > 1e-19 || term.is_nan()) {
+        n += 1;
+        term *= mu_h / n as f64;
+    }
+    n
+}
+
+/// The equation the series solves: the linearized contact acceleration and the cubic forcing.
+#[derive(Clone, Copy)]
+pub struct Recurrence<'a> {
+    /// ν (the other parameters are unused by the linear acceleration).
+    pub model: &'a ModelParams,
+    /// Kl.
+    pub kl: &'a LinearizedContact,
+    /// The cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`.
+    pub forcing: &'a [f64; 8],
+}
+
+impl Recurrence<'_> {
+    /// c_{m+2} from c_m and c_{m+1}: the generated linear acceleration at position c_m,
+    /// velocity (m + 1) c_{m+1} and force a_m, divided by (m + 2)(m + 1).
+    #[inline]
+    fn next(&self, m: usize, divisor: f64, cm: [f64; 2], cn: [f64; 2]) -> [f64; 2] {
+        let a = |i: usize| self.forcing.get(2 * m + i).copied().unwrap_or(0.0);
+        let k = (m + 1) as f64;
+        let acc = coef::linear_acceleration(
+            self.model,
+            &Position { x: cm[0], y: cm[1] },
+            &Velocity {
+                vx: k * cn[0],
+                vy: k * cn[1],
+            },
+            &Force { fx: a(0), fy: a(1) },
+            self.kl,
+        );
+        [acc.ax * divisor, acc.ay * divisor]
+    }
+
+    /// The first `len` (6 … [`SERIES_TERMS`]) coefficients into `c`, the others zero.
+    pub fn coefficients_into(&self, len: usize, c: &mut Coefficients) {
+        let len = len.clamp(6, SERIES_TERMS);
+        *c = [[0.0; 2]; SERIES_TERMS];
+        let (mut cm, mut cn) = ([0.0; 2], [0.0; 2]);
+        for ((m, &r), slot) in DIVISORS
+            .iter()
+            .enumerate()
+            .take(len - 2)
+            .zip(c.iter_mut().skip(2))
+        {
+            let next = self.next(m, r, cm, cn);
+            *slot = next;
+            (cm, cn) = (cn, next);
+        }
+    }
+
+    /// Position and velocity at `s` of the first `len` terms in one pass, without storing the
+    /// coefficients (the same value as [`eval`] of [`Self::coefficients_into`] up to rounding).
+    pub fn value(&self, len: usize, s: f64) -> [f64; 4] {
+        let len = len.clamp(6, SERIES_TERMS);
+        // (c_m, c_{m+1}) with c0 = c1 = 0; the terms m = 0, 1 contribute nothing.
+        let (mut cm, mut cn) = ([0.0; 2], [0.0; 2]);
+        let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
+        // s^(m+1) for the term c_{m+2} s^(m+2).
+        let mut pow1 = s;
+        for (m, &r) in DIVISORS.iter().enumerate().take(len - 2) {
+            let next = self.next(m, r, cm, cn);
+            let pow2 = pow1 * s;
+            let d = (m + 2) as f64 * pow1;
+            x += next[0] * pow2;
+            y += next[1] * pow2;
+            vx += next[0] * d;
+            vy += next[1] * d;
+            (cm, cn, pow1) = (cn, next, pow2);
+        }
+        [x, y, vx, vy]
+    }
+}
+
+/// The number of coefficients up to the last non-zero one.
+#[inline]
+pub fn used(c: &Coefficients) -> usize {
+    c.iter()
+        .rposition(|t| t[0] != 0.0 || t[1] != 0.0)
+        .map_or(0, |i| i + 1)
+}
+
+/// Position and velocity of a Taylor polynomial at s (Horner).
+pub fn eval(c: &Coefficients, s: f64) -> [f64; 4] {
+    let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
+    for (m, cm) in c.iter().enumerate().take(used(c)).rev() {
+        x = x * s + cm[0];
+        y = y * s + cm[1];
+        if m > 0 {
+            vx = vx * s + m as f64 * cm[0];
+            vy = vy * s + m as f64 * cm[1];
+        }
+    }
+    [x, y, vx, vy]
+}
