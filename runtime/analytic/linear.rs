@@ -5,12 +5,21 @@
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
 use super::segment::{Bounds, Point, Segment, point_of};
-use super::series::{self, Coefficients, Recurrence, SERIES_TERMS, series_len};
+use super::series::{
+    self, Coefficients, MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, len_for_rate, rate, series_len,
+};
 use crate::coefficients::{
     self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, Force,
     HomogeneousInitial, HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor,
     PolynomialParticular, Position, Velocity,
 };
+
+/// Gain of the harmonic particular solution (its amplitude over the forcing amplitude F) above
+/// which the linearization counts as near-resonant: the particular solution and the homogeneous
+/// part would cancel to the response's size, losing about log10(gain) digits, so the harmonic
+/// forcing is carried in the series response instead (`docs/MODEL.md` §11). Below it the loss is
+/// at most 1e3 ulps of the harmonic amplitude.
+pub const RESONANT_GAIN: f64 = 1e3;
 use crate::math;
 use crate::params::{Params, State};
 
@@ -35,6 +44,9 @@ pub struct Linearization {
     /// cos/sin coefficient matrix) and the distance of its centre from the stator's.
     harmonic_amplitude: f64,
     harmonic_shift: f64,
+    /// Near resonance ([`RESONANT_GAIN`]): the harmonic particular part is zero and every
+    /// segment carries the harmonic forcing in its series response.
+    resonant: bool,
 }
 
 /// The Frobenius norm of a 2×2 matrix (rows), diagonal first.
@@ -116,21 +128,27 @@ impl Linearization {
         if math::abs(modes.det) <= 1e-12 * scale * scale {
             return Err(Singular);
         }
-        let particular = coef::contact_particular(&model, &kl);
+        let mut particular = coef::contact_particular(&model, &kl);
         let c = &particular;
-        let all = [
-            c.c11,
-            c.c22,
-            c.c33,
-            c.c44,
-            c.c55,
-            c.c66,
-            modes.disc,
-            modes.omega_sq_mean,
-        ];
-        if all.iter().any(|v| !v.is_finite()) {
+        if [c.c55, c.c66, modes.disc, modes.omega_sq_mean]
+            .iter()
+            .any(|v| !v.is_finite())
+        {
             return Err(Singular);
         }
+        let mut amplitude = harmonic_amplitude(c.c11, c.c22, c.c33, c.c44);
+        // (NaN compares false: exact resonance is resonant.)
+        let resonant = !(amplitude <= RESONANT_GAIN * math::abs(model.f));
+        if resonant {
+            (
+                particular.c11,
+                particular.c22,
+                particular.c33,
+                particular.c44,
+            ) = (0.0, 0.0, 0.0, 0.0);
+            amplitude = 0.0;
+        }
+        let c = &particular;
         let (st, ct) = math::sin_cos(math::wrap_angle(p.speed_ratio * t0 + p.phase));
         let a = coef::shifted_stiffness(&model, &kl);
         let norm_a = frobenius([[a.a11, a.a12], [a.a21, a.a22]]);
@@ -148,9 +166,52 @@ impl Linearization {
             norm_a,
             norm_kl,
             gains,
-            harmonic_amplitude: harmonic_amplitude(c.c11, c.c22, c.c33, c.c44),
+            harmonic_amplitude: amplitude,
             harmonic_shift: math::hypot(c.c55 - p.offset_x, c.c66 - p.offset_y),
+            resonant,
         })
+    }
+
+    /// Whether segments of this linearization are exact over `horizon`: always, except near
+    /// resonance, where the series that carries the harmonic forcing needs
+    /// max(μ, η)·horizon ≤ [`MAX_RATE_HORIZON`] (μ of [`series::rate`]). The contact schemes'
+    /// step caps keep it (their steps are at most 1/√‖Kl‖ and 1/η); a longer fixed step is
+    /// reported as singular rather than answered inaccurately.
+    pub fn supports(&self, horizon: f64) -> bool {
+        !self.resonant || self.harmonic_rate() * horizon <= MAX_RATE_HORIZON
+    }
+
+    fn harmonic_rate(&self) -> f64 {
+        rate(self.norm_kl, self.nu).max(self.eta)
+    }
+
+    /// The Taylor coefficients in s of the harmonic forcing F (cos θ, sin θ) from the segment
+    /// start, `[a0x, a0y, a1x, a1y, …]`, added to `out`: a_m = F η^m/m! (cos, sin)(θ0 + mπ/2).
+    /// The force itself comes from the model (the generated free acceleration at rest).
+    fn add_harmonic_forcing(&self, out: &mut [f64; 2 * SERIES_TERMS]) {
+        let (c0, s0) = self.phase0;
+        let force = |ct: f64, st: f64| {
+            let a = coef::free_acceleration(
+                &self.model,
+                &Position::default(),
+                &Velocity::default(),
+                &Phasor { ct, st },
+            );
+            [a.ax, a.ay]
+        };
+        // d/ds turns (cos θ, sin θ) by a quarter turn: even orders use the force at θ0, odd
+        // ones at θ0 + π/2, with the sign (−1)^⌊m/2⌋.
+        let turns = [force(c0, s0), force(-s0, c0)];
+        let mut scale = 1.0;
+        for (m, a) in out.chunks_exact_mut(2).enumerate() {
+            let sign = if (m / 2) % 2 == 0 { scale } else { -scale };
+            let [fx, fy] = if m % 2 == 0 { turns[0] } else { turns[1] };
+            if let [ax, ay] = a {
+                *ax += sign * fx;
+                *ay += sign * fy;
+            }
+            scale *= self.eta / (m + 1) as f64;
+        }
     }
 
     /// The largest angular frequency present (for step-size caps): √‖A‖ and η.
@@ -198,7 +259,26 @@ impl Linearization {
     ) {
         let k = &self.kl;
         out.lin = *self;
-        if forcing.iter().all(|&a| a == 0.0) {
+        if self.resonant {
+            // The harmonic forcing and the extra cubic, as one series (`docs/MODEL.md` §11).
+            let mut all = [0.0; 2 * SERIES_TERMS];
+            for (a, f) in all.iter_mut().zip(forcing) {
+                *a = f;
+            }
+            self.add_harmonic_forcing(&mut all);
+            let len = len_for_rate(self.harmonic_rate() * horizon);
+            if !matches!(out.response, Response::Series(_)) {
+                out.response = Response::Series([[0.0; 2]; SERIES_TERMS]);
+            }
+            if let Response::Series(c) = &mut out.response {
+                Recurrence {
+                    model: &self.model,
+                    kl: &self.kl,
+                    forcing: &all,
+                }
+                .coefficients_into(len, c);
+            }
+        } else if forcing.iter().all(|&a| a == 0.0) {
             out.response = Response::None;
         } else if self.norm_kl * horizon * horizon <= 1.0 {
             let len = series_len(self.norm_kl, self.nu, horizon);
@@ -249,6 +329,10 @@ impl Linearization {
         horizon: f64,
         s: f64,
     ) -> Option<State> {
+        if self.resonant {
+            // The unforced segment's series holds the harmonic forcing: build the segment.
+            return None;
+        }
         if forcing.iter().all(|&a| a == 0.0) {
             return Some(*unforced);
         }
@@ -351,6 +435,9 @@ impl LinearSegment {
     /// from the same start (see [`Linearization::forced_state`]), when this segment's response
     /// shares its homogeneous part (a series or none); `None` for a polynomial response.
     pub fn state_from_unforced(&self, s: f64, unforced: &State) -> Option<State> {
+        if self.lin.resonant {
+            return None;
+        }
         match &self.response {
             Response::None => Some(*unforced),
             Response::Series(c) => Some(add_response(unforced, &series::eval(c, s))),
@@ -376,6 +463,7 @@ impl LinearSegment {
                 gains: (0.0, 0.0),
                 harmonic_amplitude: 0.0,
                 harmonic_shift: 0.0,
+                resonant: false,
             },
             response: Response::None,
             start: HomogeneousStart::default(),

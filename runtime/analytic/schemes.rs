@@ -63,6 +63,9 @@ pub fn exprb2_into(
     out: &mut SubStep,
 ) -> Result<(), Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
+    if !lin.supports(h) {
+        return Err(Singular);
+    }
     lin.segment_into(state, [0.0; 8], h, &mut out.segment);
     out.end = out.segment.state_with(h, &lin.scalars(h));
     out.h = h;
@@ -95,6 +98,9 @@ pub fn exprb43_into(
     out: &mut SubStep,
 ) -> Result<(), Singular> {
     let lin = Linearization::new(params, t, state.x, state.y)?;
+    if !lin.supports(h) {
+        return Err(Singular);
+    }
     // The unforced segment, built in the output slot and evaluated before the slot receives
     // the scheme's own segment.
     lin.segment_into(state, [0.0; 8], h, &mut out.segment);

@@ -1,7 +1,9 @@
-//! The series response of a linearized contact segment to an extra cubic forcing
-//! (`docs/MODEL.md` §3, §8): the zero-state solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² +
-//! a3 s³ as a Taylor polynomial Σ c_m s^m, for short horizons where the polynomial particular
-//! solution cancels badly (its coefficients grow like (‖Kl‖h²)⁻ᵏ while the response is O(h²)).
+//! The series response of a linearized contact segment to an extra forcing (`docs/MODEL.md` §3,
+//! §8, §11): the zero-state solution of q'' + 2νq' + Kl q = Σ a_m s^m as a Taylor polynomial
+//! Σ c_m s^m. Used for a cubic forcing over short horizons, where the polynomial particular
+//! solution cancels badly (its coefficients grow like (‖Kl‖h²)⁻ᵏ while the response is O(h²)),
+//! and for the harmonic forcing itself near resonance, where the harmonic particular solution
+//! and the homogeneous part cancel (the forcing's Taylor coefficients then run to every order).
 //!
 //! The recurrence is the model's linear contact acceleration (`coefficients::linear_acceleration`,
 //! generated) evaluated at the Taylor coefficients: with c0 = c1 = 0,
@@ -14,8 +16,11 @@ use crate::coefficients::{
 use crate::math;
 
 /// Number of Taylor coefficients of the series response (degree `SERIES_TERMS − 1`); with
-/// ‖Kl‖h² ≤ 1 the first neglected term is below 1e-16 of the forcing's response.
-pub const SERIES_TERMS: usize = 20;
+/// μh ≤ 2 (see [`series_len`]) the first neglected term is below 1e-19 of the degree-5 term.
+pub const SERIES_TERMS: usize = 28;
+
+/// Largest μh (see [`series_len`]) the fixed number of terms serves to rounding.
+pub const MAX_RATE_HORIZON: f64 = 2.0;
 
 /// Taylor coefficients (x, y) of the series response, c_0 … c_{SERIES_TERMS − 1}.
 pub type Coefficients = [[f64; 2]; SERIES_TERMS];
@@ -36,10 +41,26 @@ const DIVISORS: [f64; SERIES_TERMS - 2] = {
 /// Beyond the forcing (m ≥ 4) the recurrence gives ‖c_m‖ ≤ B μ^m / m! with μ = ν + √(ν² + ‖Kl‖)
 /// (μ² = 2νμ + ‖Kl‖ turns the bound into an equality), so the terms from n on add at most
 /// (μh)^(n−5)·5!/n!·e^(μh) relative to the degree-5 term. The count is the smallest n ≥ 6 with
-/// (μh)^(n−5)·5!/n! ≤ 1e-19, at most [`SERIES_TERMS`] (where ‖Kl‖h² ≤ 1 keeps the bound below
-/// 1e-16, the fixed length's design).
+/// (μh)^(n−5)·5!/n! ≤ 1e-19, at most [`SERIES_TERMS`] (reached only beyond
+/// [`MAX_RATE_HORIZON`], the fixed length's design).
 pub fn series_len(norm_kl: f64, nu: f64, horizon: f64) -> usize {
-    let mu_h = (nu + math::sqrt(nu * nu + norm_kl)) * horizon;
+    len_for_rate(rate(norm_kl, nu) * horizon).min(CUBIC_TERMS)
+}
+
+/// The most terms a cubic forcing's response uses: with ‖Kl‖h² ≤ 1 (where the series replaces
+/// the polynomial particular solution) the first neglected term is below 1e-16 of the response.
+const CUBIC_TERMS: usize = 20;
+
+/// μ = ν + √(ν² + ‖Kl‖), the growth rate of the recurrence's coefficients.
+#[inline]
+pub fn rate(norm_kl: f64, nu: f64) -> f64 {
+    nu + math::sqrt(nu * nu + norm_kl)
+}
+
+/// The number of terms for a given μh (see [`series_len`]). A forcing that goes on to every
+/// order with |a_m| ≤ A η^m/m! (the harmonic forcing) keeps the bound with μ replaced by
+/// max(μ, η), up to a factor growing linearly in m that the 1e-19 margin absorbs.
+pub fn len_for_rate(mu_h: f64) -> usize {
     // term = (μh)^(n−5)·5!/n!, from n = 6.
     let mut term = mu_h / 6.0;
     let mut n = 6;
@@ -51,15 +72,16 @@ pub fn series_len(norm_kl: f64, nu: f64, horizon: f64) -> usize {
     n
 }
 
-/// The equation the series solves: the linearized contact acceleration and the cubic forcing.
+/// The equation the series solves: the linearized contact acceleration and the forcing.
 #[derive(Clone, Copy)]
 pub struct Recurrence<'a> {
     /// ν (the other parameters are unused by the linear acceleration).
     pub model: &'a ModelParams,
     /// Kl.
     pub kl: &'a LinearizedContact,
-    /// The cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`.
-    pub forcing: &'a [f64; 8],
+    /// The forcing's Taylor coefficients `[a0x, a0y, a1x, a1y, …]` (a cubic has 8; missing
+    /// coefficients are zero).
+    pub forcing: &'a [f64],
 }
 
 impl Recurrence<'_> {
