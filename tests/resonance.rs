@@ -193,11 +193,11 @@ fn analytic_free_flight_finds_the_first_entry_near_resonance() {
 
 /// The analytic method over the whole examples, contact included.
 #[test]
-#[ignore = "the linearized contact closed form (analytic/linear.rs) has the same cancellation near \
-            resonance: at z = 1 the contact stiffness Kl = I + K_s·n·nᵀ always has the eigenvalue 1"]
 fn analytic_matches_the_reference_near_resonance() {
     regression(Method::Analytic, COMPARE_ETA, 0.0, compare_end(), 1e-6);
     regression(Method::Analytic, 1.0, 1e-9, 30.0, 1e-6);
+    // Exact resonance (ν = 0, η = 1): the linearized contact at z = 1 is exactly resonant.
+    regression(Method::Analytic, 1.0, 0.0, 30.0, 1e-6);
 }
 
 proptest! {

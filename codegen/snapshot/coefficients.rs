@@ -328,17 +328,17 @@ pub struct FreeBasis {
     /// ES(s)
     pub es: f64,
 }
-/// The forcing over a free segment as a_x cos ηs + b_x sin ηs, a_y cos ηs + b_y sin ηs (`docs/MODEL.md` §11).
+/// The forcing over a free segment as fxc cos ηs + fxs sin ηs, fyc cos ηs + fys sin ηs (`docs/MODEL.md` §11).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FreeForcing {
     /// cos ηs coefficient of the x forcing
-    pub ax: f64,
+    pub fxc: f64,
     /// sin ηs coefficient of the x forcing
-    pub bx: f64,
+    pub fxs: f64,
     /// cos ηs coefficient of the y forcing
-    pub ay: f64,
+    pub fyc: f64,
     /// sin ηs coefficient of the y forcing
-    pub by: f64,
+    pub fys: f64,
 }
 /// The forced basis at s: zero-state responses FC, FS of the free oscillator to cos ηs, sin ηs and their derivatives (`docs/MODEL.md` §11).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -571,7 +571,7 @@ pub fn free_eval(
         dh: 2.0 * t10 * t12 + 2.0 * t11 * t13,
     }
 }
-/// Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = ax cos ηs + bx sin ηs, fy = ay cos ηs + by sin ηs.
+/// Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = fxc cos ηs + fxs sin ηs, fy = fyc cos ηs + fys sin ηs.
 ///
 /// Source: model.md §1, §11.
 /// Derivation: the forcing at θ = θ0 + ηs with the phasor rotated by angle addition; coefficients of cos ηs and sin ηs by partial differentiation.
@@ -583,13 +583,13 @@ pub fn free_forcing(model: &ModelParams, phasor: &Phasor) -> FreeForcing {
     let st = phasor.st;
     let t0 = ct * f;
     FreeForcing {
-        ax: t0,
-        bx: -st * f,
-        ay: st * f,
-        by: t0,
+        fxc: t0,
+        fxs: -st * f,
+        fyc: st * f,
+        fys: t0,
     }
 }
-/// Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + ax·FC + bx·FS from the start state (the forced part FC, FS starts at rest).
+/// Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + fxc·FC + fxs·FS from the start state (the forced part FC, FS starts at rest).
 ///
 /// Source: model.md §4, §11.
 /// Derivation: initial conditions of the trajectory at s = 0 (EC = 1, ES = FC = FS = FC' = FS' = 0) solved for X, P, Y, Q.
@@ -627,7 +627,7 @@ pub struct ForcedFreeState {
 /// State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.
 ///
 /// Source: model.md §4, §11, eq. (10).
-/// Derivation: the trajectory X·EC + P·ES + ax·FC + bx·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.
+/// Derivation: the trajectory X·EC + P·ES + fxc·FC + fxs·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.
 #[inline]
 #[must_use]
 pub fn free_forced_eval(
@@ -648,26 +648,26 @@ pub fn free_forced_eval(
     let py = homogeneous.py;
     let ec = basis.ec;
     let es = basis.es;
-    let ax = forcing.ax;
-    let bx = forcing.bx;
-    let ay = forcing.ay;
-    let by = forcing.by;
+    let fxc = forcing.fxc;
+    let fxs = forcing.fxs;
+    let fyc = forcing.fyc;
+    let fys = forcing.fys;
     let fc = forced.fc;
     let fs = forced.fs;
     let dfc = forced.dfc;
     let dfs = forced.dfs;
     let t0 = ec * xh;
     let t1 = es * px;
-    let t2 = fc * ax;
-    let t3 = fs * bx;
+    let t2 = fc * fxc;
+    let t3 = fs * fxs;
     let t4 = ec * yh;
     let t5 = es * py;
-    let t6 = fc * ay;
-    let t7 = fs * by;
+    let t6 = fc * fyc;
+    let t7 = fs * fys;
     let t8 = nu * ec + es * beta_sq;
     let t9 = ec - nu * es;
-    let t10 = t9 * px + dfc * ax + dfs * bx - t8 * xh;
-    let t11 = t9 * py + dfc * ay + dfs * by - t8 * yh;
+    let t10 = t9 * px + dfc * fxc + dfs * fxs - t8 * xh;
+    let t11 = t9 * py + dfc * fyc + dfs * fys - t8 * yh;
     let t12 = t0 + t1 + t2 + t3 - ex;
     let t13 = t4 + t5 + t6 + t7 - ey;
     ForcedFreeState {

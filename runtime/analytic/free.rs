@@ -243,7 +243,12 @@ impl FreeSegment {
                     forced: Some(Amplitudes {
                         pos: math::hypot(start.xh, start.yh),
                         vel: math::hypot(start.px, start.py),
-                        drive: harmonic_amplitude(forcing.ax, forcing.bx, forcing.ay, forcing.by),
+                        drive: harmonic_amplitude(
+                            forcing.fxc,
+                            forcing.fxs,
+                            forcing.fyc,
+                            forcing.fys,
+                        ),
                     }),
                     off,
                 };

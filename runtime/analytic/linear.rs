@@ -109,6 +109,32 @@ pub fn max_contact_stiffness(params: &Params) -> f64 {
     spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]]) + ks * j_norm
 }
 
+/// The condition of the harmonic system (Kl − η² I + 2iνη I) Z = F (1, −i)ᵀ that gives the
+/// harmonic particular constants: the size of its determinant's terms over the determinant's
+/// modulus. Rounding in the generated Cramer formulas is amplified by it; near resonance it can
+/// leave finite but wrong constants whose amplitude looks harmless (at z0 = 1 with η = 1 the
+/// tangential eigenvalue of Kl is 1 exactly and the computed determinant is rounding noise), so
+/// the amplitude alone cannot detect resonance. The determinant comes from the generated
+/// `contact_modes` of the shifted stiffness Kl − η² I: det(M + iP I) = det M − P² + iP tr M.
+fn harmonic_condition(model: &ModelParams, kl: &LinearizedContact) -> f64 {
+    let eta_sq = model.eta * model.eta;
+    let shifted = LinearizedContact {
+        fa1: kl.fa1 - eta_sq,
+        fa2: kl.fa2 - eta_sq,
+        ..*kl
+    };
+    let det = coef::contact_modes(model, &shifted).det;
+    let p = 2.0 * model.nu * model.eta;
+    let trace = shifted.fa1 + shifted.fa2;
+    let modulus = math::hypot(det - p * p, p * trace);
+    let terms = math::abs(shifted.fa1 * shifted.fa2)
+        + math::abs(shifted.fb1 * shifted.fb2)
+        + p * p
+        + p * (math::abs(shifted.fa1) + math::abs(shifted.fa2));
+    // (0/0 at a zero system is not resonant: there is no harmonic forcing to amplify.)
+    if terms == 0.0 { 0.0 } else { terms / modulus }
+}
+
 /// Why a linearization cannot be used.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Singular;
@@ -138,7 +164,8 @@ impl Linearization {
         }
         let mut amplitude = harmonic_amplitude(c.c11, c.c22, c.c33, c.c44);
         // (NaN compares false: exact resonance is resonant.)
-        let resonant = !(amplitude <= RESONANT_GAIN * math::abs(model.f));
+        let resonant = !(amplitude <= RESONANT_GAIN * math::abs(model.f))
+            || harmonic_condition(&model, &kl) > RESONANT_GAIN;
         if resonant {
             (
                 particular.c11,

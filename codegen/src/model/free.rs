@@ -231,21 +231,21 @@ fn free_forcing(m: &mut Model) {
     let y = m.coefficients(forcing[1], &[ce, se]);
     m.add_formula(
         "free_forcing",
-        "Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = ax cos ηs + bx sin ηs, fy = ay cos ηs + by sin ηs.",
+        "Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = fxc cos ηs + fxs sin ηs, fy = fyc cos ηs + fys sin ηs.",
         "model.md §1, §11",
         "the forcing at θ = θ0 + ηs with the phasor rotated by angle addition; coefficients of cos ηs and sin ηs by partial differentiation.",
         "FreeForcing",
         vec![
-            ("ax", "cos ηs coefficient of the x forcing", x[0]),
-            ("bx", "sin ηs coefficient of the x forcing", x[1]),
-            ("ay", "cos ηs coefficient of the y forcing", y[0]),
-            ("by", "sin ηs coefficient of the y forcing", y[1]),
+            ("fxc", "cos ηs coefficient of the x forcing", x[0]),
+            ("fxs", "sin ηs coefficient of the x forcing", x[1]),
+            ("fyc", "cos ηs coefficient of the y forcing", y[0]),
+            ("fys", "sin ηs coefficient of the y forcing", y[1]),
         ],
     );
 }
 
 /// The resonance-stable free trajectory: homogeneous part from the start state plus the
-/// zero-state forced response, x = X·EC + P·ES + ax·FC + bx·FS (and y alike), where FC, FS
+/// zero-state forced response, x = X·EC + P·ES + fxc·FC + fxs·FS (and y alike), where FC, FS
 /// (derivatives FC', FS', both zero at s = 0) answer cos ηs and sin ηs.
 fn forced_trajectory(m: &mut Model, rates: &mut Rates) -> [crate::expr::ExprId; 2] {
     let [ec, es] = damped_basis(m, rates, "ec", "es", "beta_sq");
@@ -254,7 +254,7 @@ fn forced_trajectory(m: &mut Model, rates: &mut Rates) -> [crate::expr::ExprId; 
     rates.insert(fc_sym, dfc);
     rates.insert(fs_sym, dfs);
     let [xh, yh, px, py] = ["xh", "yh", "px", "py"].map(|n| m.var(n));
-    let [ax, bx, ay, by] = ["ax", "bx", "ay", "by"].map(|n| m.var(n));
+    let [ax, bx, ay, by] = ["fxc", "fxs", "fyc", "fys"].map(|n| m.var(n));
     let g = &mut m.graph;
     let mut component = |h: [crate::expr::ExprId; 2], f: [crate::expr::ExprId; 2]| {
         let terms = [
@@ -285,7 +285,7 @@ fn free_start(m: &mut Model) {
     let c = m.solve(&eqs, &["xh", "px", "yh", "py"]);
     m.add_formula(
         "free_start",
-        "Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + ax·FC + bx·FS from the start state (the forced part FC, FS starts at rest).",
+        "Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + fxc·FC + fxs·FS from the start state (the forced part FC, FS starts at rest).",
         "model.md §4, §11",
         "initial conditions of the trajectory at s = 0 (EC = 1, ES = FC = FS = FC' = FS' = 0) solved for X, P, Y, Q.",
         "FreeHomogeneous",
@@ -317,7 +317,7 @@ fn free_forced_eval(m: &mut Model) {
         "free_forced_eval",
         "State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.",
         "model.md §4, §11, eq. (10)",
-        "the trajectory X·EC + P·ES + ax·FC + bx·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.",
+        "the trajectory X·EC + P·ES + fxc·FC + fxs·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.",
         "ForcedFreeState",
         vec![
             ("x", "x", q[0]),

@@ -281,12 +281,12 @@ pub const GROUPS: &[Group] = &[
     Group {
         ty: "FreeForcing",
         arg: "forcing",
-        doc: "The forcing over a free segment as a_x cos ηs + b_x sin ηs, a_y cos ηs + b_y sin ηs (`docs/MODEL.md` §11).",
+        doc: "The forcing over a free segment as fxc cos ηs + fxs sin ηs, fyc cos ηs + fys sin ηs (`docs/MODEL.md` §11).",
         fields: &[
-            ("ax", "ax", "cos ηs coefficient of the x forcing"),
-            ("bx", "bx", "sin ηs coefficient of the x forcing"),
-            ("ay", "ay", "cos ηs coefficient of the y forcing"),
-            ("by", "by", "sin ηs coefficient of the y forcing"),
+            ("fxc", "fxc", "cos ηs coefficient of the x forcing"),
+            ("fxs", "fxs", "sin ηs coefficient of the x forcing"),
+            ("fyc", "fyc", "cos ηs coefficient of the y forcing"),
+            ("fys", "fys", "sin ηs coefficient of the y forcing"),
         ],
     },
     Group {
@@ -362,8 +362,29 @@ impl Symbols {
         })
     }
 
-    /// The declaration of `name`; the build fails naming the symbol and `formula` otherwise.
+    /// Every place `name` is declared: the structs declaring it, and `"internal"`.
+    pub fn declarations(name: &str) -> impl Iterator<Item = &'static str> + '_ {
+        let groups = GROUPS
+            .iter()
+            .filter(move |g| g.fields.iter().any(|f| f.0 == name))
+            .map(|g| g.ty);
+        let internal = INTERNAL
+            .iter()
+            .filter(move |f| f.0 == name)
+            .map(|_| "internal");
+        groups.chain(internal)
+    }
+
+    /// The declaration of `name`; the build fails naming the symbol and `formula` when it is
+    /// declared nowhere or more than once (two meanings of one name would silently merge).
     pub fn lookup(name: &str, formula: &str) -> Declared {
+        let places: Vec<&str> = Self::declarations(name).collect();
+        if places.len() > 1 {
+            panic!(
+                "formula `{formula}` uses the symbol `{name}`, declared more than once ({}): declare each symbol once in codegen/src/model/symbols.rs",
+                places.join(", ")
+            );
+        }
         Self::find(name).unwrap_or_else(|| {
             panic!(
                 "formula `{formula}` uses the undeclared symbol `{name}`: declare it once in codegen/src/model/symbols.rs (GROUPS or INTERNAL)"
