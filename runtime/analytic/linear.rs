@@ -163,8 +163,9 @@ impl Linearization {
             return Err(Singular);
         }
         let mut amplitude = harmonic_amplitude(c.c11, c.c22, c.c33, c.c44);
-        // (NaN compares false: exact resonance is resonant.)
-        let resonant = !(amplitude <= RESONANT_GAIN * math::abs(model.f))
+        // (Exact resonance gives NaN or infinite constants.)
+        let resonant = amplitude.is_nan()
+            || amplitude > RESONANT_GAIN * math::abs(model.f)
             || harmonic_condition(&model, &kl) > RESONANT_GAIN;
         if resonant {
             (

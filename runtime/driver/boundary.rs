@@ -13,7 +13,7 @@ use crate::propagate::Regime;
 /// vanishing on z = 1, so h0'' is the free field's), and the position moved radially to h =
 /// ±2·[`TOUCH_DEPTH`] on that side (z changes by about 3e-14, below every method's resolution),
 /// so that no solver sees a sign of h that is only rounding.
-pub(super) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, State) {
+pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, State) {
     let (h, dh) = field::switching_function(params, state);
     if math::abs(h) > TOUCH_DEPTH || h.is_nan() {
         return (field::regime_of(params, time, state), *state);

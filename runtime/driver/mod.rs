@@ -26,6 +26,7 @@
 mod boundary;
 mod piecewise;
 
+pub(crate) use boundary::start_side;
 pub use piecewise::Piecewise;
 
 use crate::params::State;

@@ -147,16 +147,19 @@ pub struct Stepper {
 
 impl Stepper {
     /// Validate `problem` and `config` and start at the problem's start time, with Φ precomputed
-    /// for `config.dt`. The initial regime is decided by `field::regime_of` (on z = 1, by the
-    /// radial velocity).
+    /// for `config.dt`. The initial regime is decided as by every propagation method
+    /// (`driver::start_side`): off z = 1 by the sign of z − 1; on it, by the side the motion takes,
+    /// with the start moved radially by about 3e-14 onto that side so that no rounding-level
+    /// switch is reported at the start (`docs/MODEL.md` §6 cases 14–15).
     pub fn new(problem: &Problem, config: StepperConfig) -> Result<Self, StepperError> {
         problem.validate()?;
         config.validate()?;
         check_dt(config.dt, problem.start_time)?;
         let params = problem.params;
         let free = FreeConstants::new(&params);
-        let (t0, state) = (problem.start_time, problem.initial);
-        check_bounded(t0, state)?;
+        let t0 = problem.start_time;
+        check_bounded(t0, problem.initial)?;
+        let (regime, state) = crate::driver::start_side(&params, t0, &problem.initial);
         Ok(Stepper {
             params,
             config,
@@ -166,7 +169,7 @@ impl Stepper {
             anchor_time: t0,
             anchor_steps: 0,
             state,
-            regime: field::regime_of(&params, t0, &state),
+            regime,
             phasor: phasor_at(&params, t0),
         })
     }
