@@ -20,6 +20,16 @@
 //! sync); `examples/paper.c` shows the whole cycle.
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
+// No panic paths in library code (tests may unwrap): checked by clippy in `.ci/run`.
+#![cfg_attr(
+    not(test),
+    deny(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing
+    )
+)]
 
 mod parameters;
 mod raw;

@@ -1,6 +1,6 @@
-//! The linearized contact segment (`model.md` §3, §5): exact solution of
+//! The linearized contact segment (`docs/MODEL.md` §3, §5): exact solution of
 //! q'' + 2νq' + Kl q = −Fd + F(cos θ, sin θ) + a0 + a1 s + a2 s² + a3 s³
-//! from a state, in local time, for every case of `model.md` §6 (matrix-function homogeneous part).
+//! from a state, in local time, for every case of `docs/MODEL.md` §6 (matrix-function homogeneous part).
 
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
@@ -100,7 +100,12 @@ pub fn max_contact_stiffness(params: &Params) -> f64 {
         [[t.a1, t.b1], [t.b2, t.a2]]
     };
     let (j1, j2) = (jacobian(1.0), jacobian(2.0));
-    let j0 = [0, 1].map(|i| [0, 1].map(|k| 2.0 * j2[i][k] - j1[i][k]));
+    let j0 = [[0, 1], [2, 3]].map(|row| {
+        row.map(|k| {
+            let (a, b) = (j2.as_flattened(), j1.as_flattened());
+            2.0 * a.get(k).copied().unwrap_or(0.0) - b.get(k).copied().unwrap_or(0.0)
+        })
+    });
     let spectral = |m: [[f64; 2]; 2]| harmonic_amplitude(m[0][0], m[0][1], m[1][0], m[1][1]);
     let j_norm = spectral(j1).max(spectral(j0));
     (model.kxx, model.kxy, model.kyx, model.kyy) = (0.0, 0.0, 0.0, 0.0);
@@ -141,7 +146,7 @@ pub struct Singular;
 
 impl Linearization {
     /// Linearize the contact force about position (x0, y0) for a segment starting at time `t0`
-    /// (`model.md` §2–3, §5). Fails when Kl is singular or the forcing resonant (§6 cases 9–10).
+    /// (`docs/MODEL.md` §2–3, §5). Fails when Kl is singular or the forcing resonant (§6 cases 9–10).
     pub fn new(params: &Params, t0: f64, x0: f64, y0: f64) -> Result<Self, Singular> {
         let p = params;
         let model = ModelParams::of(p);
@@ -414,7 +419,7 @@ pub enum Response {
     Polynomial(PolynomialParticular),
     /// The zero-state response as a Taylor polynomial Σ c_m s^m (x and y coefficients), from
     /// the equations of motion: c0 = c1 = 0 and
-    /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`model.md` §3).
+    /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`docs/MODEL.md` §3).
     Series(Coefficients),
 }
 
@@ -542,7 +547,7 @@ impl Segment for LinearSegment {
         let (amp, shift) = (l.harmonic_amplitude, l.harmonic_shift);
         // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi (1-norms bound the
         // Euclidean ones).
-        let norm = |c: &[f64]| math::abs(c[0]) + math::abs(c[1]);
+        let norm = |c: &[f64]| c.iter().take(2).map(|v| math::abs(*v)).sum::<f64>();
         let (pr, pv, pa) = match &self.response {
             Response::None => (0.0, 0.0, 0.0),
             Response::Polynomial(b) => {

@@ -1,4 +1,4 @@
-//! Contact schemes of the paper's family (`model.md` §8): the contact field is re-linearized at
+//! Contact schemes of the paper's family (`docs/MODEL.md` §8): the contact field is re-linearized at
 //! every sub-step start and the linearized system is solved in closed form.
 //!
 //! * exprb2: the paper's closed-form step repeated from each sub-step start (exponential
@@ -130,9 +130,9 @@ pub fn exprb43_into(
         .unwrap_or_else(|| segment.state_with(h, &at_h));
     let (e, y0, y1) = (embedded.to_array(), state.to_array(), end.to_array());
     let mut error: f64 = 0.0;
-    for i in 0..4 {
-        let scale = tol * (1.0 + math::abs(y0[i]).max(math::abs(y1[i])));
-        error = error.max(math::abs(y1[i] - e[i]) / scale);
+    for ((a, b), c) in y0.iter().zip(&y1).zip(&e) {
+        let scale = tol * (1.0 + math::abs(*a).max(math::abs(*b)));
+        error = error.max(math::abs(b - c) / scale);
     }
     if !error.is_finite() {
         error = f64::INFINITY;
