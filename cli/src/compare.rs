@@ -1,19 +1,21 @@
 //! `rotor-rub compare`: the analytic method against a numerical reference for one parameter set.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use rotor_rub::{Event, EventKind, Method, Options};
 
 use crate::analysis::switches::{MATCH_GAP, Matching};
-use crate::error::Result;
+use crate::error::{Result, num};
+use crate::limits::{LimitArgs, fits_memory};
 use crate::options::{
     SchemeArgs, TimeArgs, describe, parse_positive, parse_reference, reference_help,
 };
-use crate::output::{CsvOut, ensure_dir};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_dir, print};
 use crate::plot::orbit::{Orbit, OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, ENTER, EXIT, LegendMark, REFERENCE};
 use crate::problem::ProblemArgs;
-use crate::trajectory::{self, dense_times};
+use crate::trajectory::{self, dense_count, dense_times};
 
 /// Compare the analytic method with a numerical reference: switch table, largest differences,
 /// both orbits in one plot.
@@ -27,6 +29,9 @@ pub struct Args {
 
     #[command(flatten)]
     pub scheme: SchemeArgs,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference, help = reference_help())]
     pub reference: Method,
@@ -93,23 +98,55 @@ pub fn run(args: &Args) -> Result<()> {
         tol: args.reference_tol,
         ..Options::with_method(args.reference)
     };
-    let pa = trajectory::start(&problem, &analytic)?;
-    let pr = trajectory::start(&problem, &reference)?;
     let period = problem.params.forcing_period();
     let from = (args.plot_from * period).clamp(0.0, end);
-    let (run_a, samples_a) = trajectory::run_collect(pa, end, dense_times(from, end, period, 100))?;
-    let (run_r, samples_r) = trajectory::run_collect(pr, end, dense_times(from, end, period, 100))?;
+    let orbit_samples = dense_count(from, end, period, 100);
+    // Both runs keep their orbit samples; the plot holds them again.
+    fits_memory(
+        "orbit samples (100 per plotted forcing period, two runs)",
+        orbit_samples,
+        4 * std::mem::size_of::<rotor_rub::Sample>(),
+    )?;
+    let budget = args.limits.budget();
+    budget.plan("orbit samples (two runs)", orbit_samples.saturating_mul(2))?;
+    let csv_path = args.out_dir.join("compare.csv");
+    let [svg_path, png_path] = plot::beside(&csv_path);
+    check_distinct(
+        &[
+            ("--out-dir", csv_path.as_path()),
+            ("--out-dir", svg_path.as_path()),
+            ("--out-dir", png_path.as_path()),
+        ],
+        &[],
+    )?;
+    let pa = trajectory::start(&problem, &analytic)?;
+    let pr = trajectory::start(&problem, &reference)?;
+    let (run_a, samples_a) = trajectory::run_collect(
+        pa,
+        end,
+        dense_times(from, end, period, 100),
+        &mut budget.run(problem.start_time, end),
+    )?;
+    let (run_r, samples_r) = trajectory::run_collect(
+        pr,
+        end,
+        dense_times(from, end, period, 100),
+        &mut budget.run(problem.start_time, end),
+    )?;
     let matching = Matching::new(&run_a.events, &run_r.events, end);
 
     let (name_a, name_r) = ("analytic", args.reference.name());
-    println!(
+    let mut report = String::new();
+    let _ = writeln!(
+        report,
         "{:>5}  {:<5}  {:>22}  {:>22}  {:>10}  {:>10}",
         "#", "kind", name_a, name_r, "Δτ", "|Δstate|"
     );
     for (i, pair) in matching.pairs.iter().enumerate() {
         let kind = pair.a.or(pair.b).map_or("", |e| e.kind.name());
         let tau = |e: Option<Event>| e.map_or_else(|| "-".to_string(), |e| e.time.to_string());
-        println!(
+        let _ = writeln!(
+            report,
             "{:>5}  {:<5}  {:>22}  {:>22}  {:>10}  {:>10}",
             i + 1,
             kind,
@@ -121,26 +158,28 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let (fa, fr) = (run_a.last.state.to_array(), run_r.last.state.to_array());
     let final_diff = (0..4).map(|i| (fa[i] - fr[i]).abs()).fold(0.0, f64::max);
-    println!(
+    let _ = writeln!(
+        report,
         "switches: {name_a} {}, {name_r} {}; matched {} (same kind, less than {MATCH_GAP} apart), unmatched {}",
         run_a.events.len(),
         run_r.events.len(),
         matching.matched(),
         matching.unmatched()
     );
-    println!(
+    let _ = writeln!(
+        report,
         "largest differences: switch time {}, state at a switch {}, final state {final_diff:.3e}",
         fmt_opt(matching.max_dt()),
         fmt_opt(matching.max_dstate())
     );
-    println!(
+    let _ = writeln!(
+        report,
         "run time: {name_a} {:.3} ms, {name_r} {:.3} ms",
         run_a.elapsed.as_secs_f64() * 1e3,
         run_r.elapsed.as_secs_f64() * 1e3
     );
 
     ensure_dir(&args.out_dir)?;
-    let csv_path = args.out_dir.join("compare.csv");
     let mut csv = CsvOut::create(
         &csv_path,
         &["kind", "tau_analytic", "tau_reference", "dtau", "dstate"],
@@ -157,8 +196,10 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let figure = OrbitFigure {
         title: format!(
-            "{name_a} vs {name_r}: η = {}, τ from {from:.4} to {end:.4}",
-            problem.params.speed_ratio
+            "{name_a} vs {name_r}: η = {}, τ from {} to {}",
+            num(problem.params.speed_ratio),
+            num(from),
+            num(end)
         ),
         legend: legend(&analytic, &reference),
         panels: vec![Panel {
@@ -172,13 +213,14 @@ pub fn run(args: &Args) -> Result<()> {
         columns: 1,
         panel: (1100, 1000),
     };
-    let [svg, png] = plot::save_beside(&figure, &csv_path)?;
-    csv.commit()?;
-    println!(
+    let [svg_file, png_file] = plot::render(&figure, &svg_path, &png_path)?;
+    commit_all([csv.finish()?, svg_file, png_file])?;
+    let _ = writeln!(
+        report,
         "wrote {}, {}, {}",
         csv_path.display(),
-        svg.display(),
-        png.display()
+        svg_path.display(),
+        png_path.display()
     );
-    Ok(())
+    print(&report)
 }

@@ -9,6 +9,9 @@ use rotor_rub::PropagationError;
 pub const EXIT_INPUT: u8 = 2;
 /// Exit code for failures while running: propagation errors, I/O errors.
 pub const EXIT_FAILURE: u8 = 1;
+/// Exit code when stdout is a closed pipe: 128 + SIGPIPE, what a shell reports for a Unix tool
+/// killed by SIGPIPE (`cat file | head -1`); nothing is printed.
+pub const EXIT_PIPE: u8 = 141;
 
 /// A failed command: what to print on stderr and how to exit.
 #[derive(Debug)]
@@ -39,6 +42,14 @@ impl CliError {
         }
     }
 
+    /// Stdout is a closed pipe: exit quietly with [`EXIT_PIPE`].
+    pub fn broken_pipe() -> Self {
+        Self {
+            code: EXIT_PIPE,
+            message: String::new(),
+        }
+    }
+
     /// A propagation error, with `context` (e.g. the parameter value being run) in front.
     pub fn propagation(context: &str, e: PropagationError) -> Self {
         let code = match e {
@@ -66,16 +77,66 @@ impl CliError {
     }
 }
 
+/// A number for a message: shortest round-trip digits, in exponent form outside [1e-4, 1e15) so
+/// that no message carries hundreds of digits (`1e300`, not a 301-digit integer).
+pub fn num(x: f64) -> String {
+    let magnitude = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&magnitude) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `text` with every number written in more than 21 characters (more than any `u64`, so counts
+/// stay exact) (`1e300` printed in fixed point
+/// by a library or a parser) rewritten by [`num`]: a safety net under every message printed.
+pub fn short_numbers(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit()) {
+        let (before, from) = rest.split_at(start);
+        out.push_str(before);
+        let len = from
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(from.len());
+        let (token, after) = from.split_at(len);
+        match token.parse::<f64>() {
+            Ok(x) if token.len() > 21 => out.push_str(&num(x)),
+            _ => out.push_str(token),
+        }
+        rest = after;
+    }
+    out.push_str(rest);
+    out
+}
+
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         // Keep the message on one line whatever a library put in it.
         let one_line: Vec<&str> = self.message.lines().map(str::trim).collect();
-        f.write_str(&one_line.join(" "))
+        f.write_str(&short_numbers(&one_line.join(" ")))
     }
 }
 
 impl From<PropagationError> for CliError {
     fn from(e: PropagationError) -> Self {
         CliError::propagation("", e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_numbers_are_shortened() {
+        let long = format!("step = {} is invalid", 1e300);
+        assert_eq!(short_numbers(&long), "step = 1e300 is invalid");
+        let small = format!("tol {} and 2.5 and 12345", 1e-300);
+        assert_eq!(short_numbers(&small), "tol 1e-300 and 2.5 and 12345");
+        assert_eq!(num(1e-7), "1e-7");
+        assert_eq!(num(0.25), "0.25");
+        assert_eq!(num(1.8446744073709552e19), "1.8446744073709552e19");
     }
 }

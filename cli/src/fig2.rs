@@ -2,6 +2,7 @@
 //! for six speed ratios side by side, with a table of switch agreement, response class,
 //! largest Lyapunov exponent and run times.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -12,9 +13,10 @@ use crate::analysis::classify::{Response, classify, distinct_points};
 use crate::analysis::lyapunov::largest_exponent;
 use crate::analysis::switches::Matching;
 use crate::compare::{legend, orbit};
-use crate::error::{CliError, Result};
+use crate::error::{CliError, Result, num};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{SchemeArgs, describe, parse_positive, parse_reference, reference_help};
-use crate::output::ensure_dir;
+use crate::output::{check_distinct, ensure_dir, print};
 use crate::plot::orbit::{OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, REFERENCE};
 use crate::problem::ProblemArgs;
@@ -28,6 +30,9 @@ pub struct Args {
 
     #[command(flatten)]
     pub scheme: SchemeArgs,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     #[arg(long, value_name = "METHOD", default_value = "dop853", value_parser = parse_reference, help = reference_help())]
     pub reference: Method,
@@ -86,12 +91,19 @@ struct SpeedResult {
     matching: Matching,
 }
 
-fn run_method(problem: &Problem, options: &Options, args: &Args) -> Result<MethodResult> {
+fn run_method(
+    problem: &Problem,
+    options: &Options,
+    args: &Args,
+    budget: &Budget,
+) -> Result<MethodResult> {
     let eta = problem.params.speed_ratio;
     let context = format!("{} at η = {eta}", options.method.name());
     let wrap = |e: CliError| e.context(&context);
     let period = problem.params.forcing_period();
-    let end_period = args.plot_to.max(args.plot_from + args.section);
+    let end_period = args
+        .plot_to
+        .max(args.plot_from.saturating_add(args.section));
     let end = end_period as f64 * period;
     let (from, to) = (args.plot_from as f64 * period, args.plot_to as f64 * period);
     // Orbit samples and section points in one time-ordered list, tagged.
@@ -101,8 +113,10 @@ fn run_method(problem: &Problem, options: &Options, args: &Args) -> Result<Metho
         .collect();
     times.sort_by(|a, b| a.0.total_cmp(&b.0));
     let propagator = trajectory::start(problem, options).map_err(wrap)?;
+    let mut tracker = budget.run(problem.start_time, end);
     let (pass, samples) =
-        trajectory::run_collect(propagator, end, times.iter().map(|t| t.0)).map_err(wrap)?;
+        trajectory::run_collect(propagator, end, times.iter().map(|t| t.0), &mut tracker)
+            .map_err(wrap)?;
     let (mut orbit, mut section) = (Vec::new(), Vec::<State>::new());
     for (sample, &(_, is_section)) in samples.iter().zip(&times) {
         if is_section {
@@ -112,7 +126,7 @@ fn run_method(problem: &Problem, options: &Options, args: &Args) -> Result<Metho
         }
     }
     let start = Problem {
-        initial: section[0],
+        initial: section.first().copied().unwrap_or(problem.initial),
         start_time: from,
         ..*problem
     };
@@ -128,10 +142,15 @@ fn run_method(problem: &Problem, options: &Options, args: &Args) -> Result<Metho
     })
 }
 
-fn run_speed(problem: &Problem, args: &Args, options: [&Options; 2]) -> Result<SpeedResult> {
+fn run_speed(
+    problem: &Problem,
+    args: &Args,
+    options: [&Options; 2],
+    budget: &Budget,
+) -> Result<SpeedResult> {
     let eta = problem.params.speed_ratio;
-    let analytic = run_method(problem, options[0], args)?;
-    let reference = run_method(problem, options[1], args)?;
+    let analytic = run_method(problem, options[0], args, budget)?;
+    let reference = run_method(problem, options[1], args, budget)?;
     let window = args.match_periods as f64 * problem.params.forcing_period();
     let matching = Matching::new(&analytic.events, &reference.events, window);
     Ok(SpeedResult {
@@ -147,14 +166,18 @@ fn ms(d: Duration) -> String {
     format!("{:.1} ms", d.as_secs_f64() * 1e3)
 }
 
-fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) {
-    println!(
+fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) -> String {
+    let mut report = String::new();
+    let _ = writeln!(
+        report,
         "Fig. 2: A = {}, N = {}; {} forcing periods per run",
         describe(options[0]),
         describe(options[1]),
-        args.plot_to.max(args.plot_from + args.section)
+        args.plot_to
+            .max(args.plot_from.saturating_add(args.section))
     );
-    println!(
+    let _ = writeln!(
+        report,
         "switch times: matched switches over forcing periods 0-{}; class: Poincaré section over periods {}-{} (points = distinct points) and largest Lyapunov exponent λ per unit τ (Benettin, {} periods from period {}); times: propagation wall time (speeds run in parallel)",
         args.match_periods,
         args.plot_from,
@@ -162,8 +185,9 @@ fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) {
         args.lyapunov,
         args.plot_from
     );
-    let row = |cells: [&str; 12]| {
-        println!(
+    let mut row = |cells: [&str; 12]| {
+        let _ = writeln!(
+            report,
             "{:>5} | {:>11} | {:>9} | {:>9} | {:<22} {:>6} {:>8} | {:<22} {:>6} {:>8} | {:>10} {:>10}",
             cells[0],
             cells[1],
@@ -197,7 +221,7 @@ fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) {
         let m = &s.matching;
         let (a, n) = (&s.analytic, &s.reference);
         row([
-            &s.eta.to_string(),
+            &num(s.eta),
             &format!("{}/{}", a.events.len(), n.events.len()),
             &format!("{}/{}", m.matched(), m.pairs.len()),
             &m.max_dt()
@@ -212,6 +236,7 @@ fn print_table(results: &[SpeedResult], args: &Args, options: [&Options; 2]) {
             &ms(n.elapsed),
         ]);
     }
+    report
 }
 
 /// Run the main job.
@@ -222,6 +247,31 @@ pub fn run(args: &Args) -> Result<()> {
             args.plot_to, args.plot_from
         )));
     }
+    add_counts(("--plot-from", args.plot_from), ("--section", args.section))?;
+    add_counts(
+        ("--plot-from", args.plot_from),
+        ("--lyapunov", args.lyapunov),
+    )?;
+    let runs = 2 * args.speeds.len() as u64;
+    let orbit_samples = (args.plot_to - args.plot_from)
+        .saturating_mul(100)
+        .saturating_add(1);
+    let per_run = orbit_samples
+        .saturating_add(args.section)
+        .saturating_add(args.lyapunov);
+    fits_memory(
+        "orbit samples and section points (100 per plotted period, per speed and method)",
+        per_run.saturating_mul(runs),
+        2 * std::mem::size_of::<rotor_rub::Sample>(),
+    )?;
+    let budget = args.limits.budget();
+    budget.plan(
+        "--plot-from..--plot-to, --section and --lyapunov over all speeds",
+        per_run.saturating_mul(runs),
+    )?;
+    let svg = args.out_dir.join("fig2.svg");
+    let png = args.out_dir.join("fig2.png");
+    check_distinct(&[("--out-dir", &svg), ("--out-dir", &png)], &[])?;
     let base = args.problem.build()?;
     let analytic = args.scheme.options(Method::Analytic)?;
     let reference = Options {
@@ -229,25 +279,25 @@ pub fn run(args: &Args) -> Result<()> {
         ..Options::with_method(args.reference)
     };
     let options = [&analytic, &reference];
-    let problems =
-        args.speeds
-            .iter()
-            .map(|&eta| {
-                let mut problem = base;
-                Parameter::SpeedRatio.set(&mut problem, eta);
-                problem.validate().map(|()| problem).map_err(|e| {
-                    CliError::input(format!("invalid parameters at --speeds {eta}: {e}"))
-                })
+    let problems = args
+        .speeds
+        .iter()
+        .map(|&eta| {
+            let mut problem = base;
+            Parameter::SpeedRatio.set(&mut problem, eta);
+            problem.validate().map(|()| problem).map_err(|e| {
+                CliError::input(format!("invalid parameters at --speeds {}: {e}", num(eta)))
             })
-            .collect::<Result<Vec<Problem>>>()?;
+        })
+        .collect::<Result<Vec<Problem>>>()?;
     for options in options {
         trajectory::start(&base, options)?;
     }
     let results: Vec<SpeedResult> = problems
         .par_iter()
-        .map(|problem| run_speed(problem, args, options))
+        .map(|problem| run_speed(problem, args, options, &budget))
         .collect::<Result<_>>()?;
-    print_table(&results, args, options);
+    let mut report = print_table(&results, args, options);
 
     let letters = "abcdefghijklmnopqrstuvwxyz";
     let panels = results
@@ -260,7 +310,7 @@ pub fn run(args: &Args) -> Result<()> {
                 title: format!(
                     "({}) η = {}: {}",
                     letters.chars().nth(i % 26).unwrap_or('?'),
-                    s.eta,
+                    num(s.eta),
                     s.analytic.response
                 ),
                 offset: s.offset,
@@ -294,9 +344,12 @@ pub fn run(args: &Args) -> Result<()> {
         panel: (520, 520),
     };
     ensure_dir(&args.out_dir)?;
-    let svg = args.out_dir.join("fig2.svg");
-    let png = args.out_dir.join("fig2.png");
     plot::save(&figure, &svg, &png)?;
-    println!("figures written to {} and {}", svg.display(), png.display());
-    Ok(())
+    let _ = writeln!(
+        report,
+        "figures written to {} and {}",
+        svg.display(),
+        png.display()
+    );
+    print(&report)
 }

@@ -5,6 +5,7 @@ mod analysis;
 mod compare;
 mod error;
 mod fig2;
+mod limits;
 mod merge;
 mod options;
 mod output;
@@ -13,6 +14,7 @@ mod plot;
 mod poincare;
 mod presets;
 mod problem;
+mod shard;
 mod simulate;
 mod spectrum;
 mod sweep;
@@ -23,7 +25,7 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use crate::error::{CliError, EXIT_INPUT};
+use crate::error::{CliError, EXIT_INPUT, short_numbers};
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
 piecewise-analytical simulation and numerical comparison.";
@@ -130,7 +132,15 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
     }
 }
 
+/// An error line on stderr; a stderr that cannot be written changes nothing (the exit code says
+/// it all).
+fn report_error(message: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "error: {}", short_numbers(message));
+}
+
 fn main() -> ExitCode {
+    output::temps::install_handler();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => match e.kind() {
@@ -141,7 +151,7 @@ fn main() -> ExitCode {
                 return ExitCode::from(e.exit_code() as u8);
             }
             _ => {
-                eprintln!("error: {}", one_line(&e));
+                report_error(&one_line(&e));
                 return ExitCode::from(EXIT_INPUT);
             }
         },
@@ -149,7 +159,9 @@ fn main() -> ExitCode {
     match dispatch(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            if !e.message.is_empty() {
+                report_error(&e.to_string());
+            }
             ExitCode::from(e.code)
         }
     }

@@ -1,15 +1,17 @@
 //! `rotor-rub poincare`: the Poincaré section (the state once per forcing period) as CSV and a
 //! scatter plot, with the response class.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use rotor_rub::{Problem, State, poincare};
+use rotor_rub::{Problem, State};
 
 use crate::analysis::classify::{POINT_TOLERANCE, classify, distinct_points};
 use crate::analysis::lyapunov::largest_exponent;
-use crate::error::Result;
+use crate::error::{Result, num};
+use crate::limits::{LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe};
-use crate::output::{CsvOut, ensure_dir};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
 use crate::plot::{self, scatter::SectionFigure};
 use crate::problem::ProblemArgs;
 use crate::trajectory;
@@ -22,6 +24,9 @@ pub struct Args {
 
     #[command(flatten)]
     pub method: MethodArgs<Survey>,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     /// Forcing periods skipped as transient
     #[arg(long, value_name = "P", default_value_t = 200)]
@@ -45,71 +50,79 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
     let options = args.method.options()?;
+    let end_period = add_counts(("--transient", args.transient), ("--keep", args.keep))?;
+    let keep = fits_memory("--keep", args.keep, std::mem::size_of::<State>() * 2)?;
+    let budget = args.limits.budget();
+    let lyapunov_work = if args.lyapunov { args.keep } else { 0 };
+    budget.plan("--keep", args.keep.saturating_add(lyapunov_work))?;
+    let [svg, png] = plot::beside(&args.out);
+    check_distinct(
+        &[
+            ("--out", args.out.as_path()),
+            ("the plot", svg.as_path()),
+            ("the plot", png.as_path()),
+        ],
+        &[],
+    )?;
     let mut propagator = trajectory::start(&problem, &options)?;
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        ensure_dir(dir)?;
-    }
+    ensure_parent(&args.out)?;
     let mut out = CsvOut::create(&args.out, &["period", "x", "y", "vx", "vy"])?;
     let period = problem.params.forcing_period();
     let from = args.transient as f64 * period;
-    rotor_rub::advance_to(&mut propagator, from, |_| {})?;
-    let mut points: Vec<State> = Vec::new();
-    for (sample, k) in poincare(
+    let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
+    trajectory::advance_to(&mut propagator, from, &mut tracker, |_| Ok(()))?;
+    let section = trajectory::section(
         &mut propagator,
         problem.params.speed_ratio,
-        args.keep as usize,
-    )
-    .zip(args.transient..)
-    {
-        let s = sample?.state;
+        keep,
+        &mut tracker,
+    )?;
+    let points: Vec<State> = section.iter().map(|s| s.state).collect();
+    for (s, k) in points.iter().zip(args.transient..) {
         out.row((k, s.x, s.y, s.vx, s.vy))?;
-        points.push(s);
     }
-    let lyapunov = if args.lyapunov {
-        let start = Problem {
-            initial: points[0],
-            start_time: from,
-            ..problem
-        };
-        Some(largest_exponent(
-            &start,
-            &options,
-            period,
-            args.keep as usize,
-        )?)
-    } else {
-        None
+    let lyapunov = match (args.lyapunov, points.first()) {
+        (true, Some(&initial)) => {
+            let start = Problem {
+                initial,
+                start_time: from,
+                ..problem
+            };
+            Some(largest_exponent(&start, &options, period, keep)?)
+        }
+        _ => None,
     };
     let response = classify(&points, lyapunov);
     let figure = SectionFigure {
         title: format!(
-            "Poincaré section, η = {}, periods {}-{}: {response}",
-            problem.params.speed_ratio,
+            "Poincaré section, η = {}, periods {}-{end_period}: {response}",
+            num(problem.params.speed_ratio),
             args.transient,
-            args.transient + args.keep
         ),
         offset: (problem.params.offset_x, problem.params.offset_y),
         points: points.iter().map(|s| (s.x, s.y)).collect(),
     };
-    let [svg, png] = plot::save_beside(&figure, &args.out)?;
-    out.commit()?;
-    println!("method: {}", describe(&options));
-    println!(
-        "section: {} points over forcing periods {}-{}, {} distinct (tolerance {POINT_TOLERANCE:e})",
+    let [svg_file, png_file] = plot::render(&figure, &svg, &png)?;
+    commit_all([out.finish()?, svg_file, png_file])?;
+    let mut report = String::new();
+    let _ = writeln!(report, "method: {}", describe(&options));
+    let _ = writeln!(
+        report,
+        "section: {} points over forcing periods {}-{end_period}, {} distinct (tolerance {POINT_TOLERANCE:e})",
         points.len(),
         args.transient,
-        args.transient + args.keep,
         distinct_points(&points)
     );
     if let Some(l) = lyapunov {
-        println!("largest Lyapunov exponent: {l:.5} per unit τ");
+        let _ = writeln!(report, "largest Lyapunov exponent: {l:.5} per unit τ");
     }
-    println!("response: {response}");
-    println!(
+    let _ = writeln!(report, "response: {response}");
+    let _ = writeln!(
+        report,
         "wrote {}, {}, {}",
         args.out.display(),
         svg.display(),
         png.display()
     );
-    Ok(())
+    print(&report)
 }

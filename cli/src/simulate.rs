@@ -1,14 +1,16 @@
 //! `rotor-rub simulate`: one run, its switches and uniform samples as CSV, a summary on stdout.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use rotor_rub::Regime;
 
-use crate::error::Result;
+use crate::error::{CliError, Result, num};
+use crate::limits::LimitArgs;
 use crate::options::{MethodArgs, SingleRun, TimeArgs, describe};
-use crate::output::CsvOut;
+use crate::output::{CsvOut, check_distinct, commit_all, print};
 use crate::problem::ProblemArgs;
-use crate::trajectory::{self, contact_fraction, uniform_times};
+use crate::trajectory::{self, uniform_times};
 
 /// Header of the events file.
 pub const EVENTS_HEADER: [&str; 6] = ["tau", "kind", "x", "y", "vx", "vy"];
@@ -26,6 +28,9 @@ pub struct Args {
 
     #[command(flatten)]
     pub method: MethodArgs<SingleRun>,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     /// Write every contact switch, in order, as CSV with header tau,kind,x,y,vx,vy (kind is
     /// `enter` or `exit`)
@@ -47,6 +52,21 @@ pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
     let options = args.method.options()?;
     let end = args.time.end_time(&problem.params);
+    let mut outputs = Vec::new();
+    if let Some(p) = &args.events {
+        outputs.push(("--events", p.as_path()));
+    }
+    if let Some(p) = &args.samples {
+        outputs.push(("--samples", p.as_path()));
+    }
+    check_distinct(&outputs, &[])?;
+    let count = if args.samples.is_some() {
+        args.sample_count.unwrap_or(1001)
+    } else {
+        0
+    };
+    let budget = args.limits.budget();
+    budget.plan("--sample-count", count)?;
     let propagator = trajectory::start(&problem, &options)?;
     let mut events_out = args
         .events
@@ -58,15 +78,15 @@ pub fn run(args: &Args) -> Result<()> {
         .as_deref()
         .map(|p| CsvOut::create(p, &SAMPLES_HEADER))
         .transpose()?;
-    let count = if samples_out.is_some() {
-        args.sample_count.unwrap_or(1001) as usize
-    } else {
-        0
-    };
+    let count =
+        usize::try_from(count).map_err(|_| CliError::input("--sample-count is too large"))?;
+    let mut tracker = budget.run(problem.start_time, end);
     let pass = trajectory::run(
         propagator,
         end,
         uniform_times(problem.start_time, end, count),
+        &mut tracker,
+        false,
         |e| match &mut events_out {
             Some(out) => {
                 let s = e.state;
@@ -83,35 +103,33 @@ pub fn run(args: &Args) -> Result<()> {
             None => Ok(()),
         },
     )?;
-    if let Some(out) = events_out {
-        out.commit()?;
-    }
-    if let Some(out) = samples_out {
-        out.commit()?;
-    }
+    let files = [events_out, samples_out]
+        .into_iter()
+        .flatten()
+        .map(CsvOut::finish)
+        .collect::<Result<Vec<_>>>()?;
+    commit_all(files)?;
 
-    let enters = pass
-        .events
-        .iter()
-        .filter(|e| e.kind.regime_after() == Regime::Contact)
-        .count();
+    let mut report = String::new();
     let s = pass.last.state;
-    println!(
-        "method: {}; τ from {} to {end} ({} forcing periods)",
+    let _ = writeln!(
+        report,
+        "method: {}; τ from {} to {} ({} forcing periods)",
         describe(&options),
-        problem.start_time,
-        (end - problem.start_time) / problem.params.forcing_period()
+        num(problem.start_time),
+        num(end),
+        num((end - problem.start_time) / problem.params.forcing_period())
     );
-    println!(
-        "switches: {} ({enters} contact starts, {} contact ends)",
-        pass.events.len(),
-        pass.events.len() - enters
+    let _ = writeln!(
+        report,
+        "switches: {} ({} contact starts, {} contact ends)",
+        pass.switches,
+        pass.enters,
+        pass.switches - pass.enters
     );
-    println!(
-        "contact fraction: {}",
-        contact_fraction(pass.initial_regime, &pass.events, problem.start_time, end)
-    );
-    println!(
+    let _ = writeln!(report, "contact fraction: {}", pass.contact_fraction);
+    let _ = writeln!(
+        report,
         "final state: x = {}, y = {}, vx = {}, vy = {} ({})",
         s.x,
         s.y,
@@ -122,11 +140,15 @@ pub fn run(args: &Args) -> Result<()> {
             Regime::Free => "free flight",
         }
     );
-    println!("run time: {:.3} ms", pass.elapsed.as_secs_f64() * 1e3);
+    let _ = writeln!(
+        report,
+        "run time: {:.3} ms",
+        pass.elapsed.as_secs_f64() * 1e3
+    );
     for (path, what) in [(&args.events, "events"), (&args.samples, "samples")] {
         if let Some(p) = path {
-            println!("wrote {what}: {}", p.display());
+            let _ = writeln!(report, "wrote {what}: {}", p.display());
         }
     }
-    Ok(())
+    print(&report)
 }

@@ -1,14 +1,14 @@
 //! `rotor-rub spectrum`: amplitude spectra of x and y, or of the complex whirl x + i y, against
 //! frequency in multiples of the running speed.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use rotor_rub::samples;
-
 use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
-use crate::error::Result;
+use crate::error::{CliError, Result, num};
+use crate::limits::{LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe, parse_positive};
-use crate::output::{CsvOut, ensure_dir};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
 use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
 use crate::plot::{self, ANALYTIC};
 use crate::problem::ProblemArgs;
@@ -24,6 +24,9 @@ pub struct Args {
 
     #[command(flatten)]
     pub method: MethodArgs<Survey>,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     /// Forcing periods skipped as transient
     #[arg(long, value_name = "P", default_value_t = 100)]
@@ -57,10 +60,33 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
     let options = args.method.options()?;
+    let end_period = add_counts(("--transient", args.transient), ("--periods", args.periods))?;
+    let n = args
+        .periods
+        .checked_mul(args.samples_per_period)
+        .ok_or_else(|| {
+            CliError::input(format!(
+                "--periods {} × --samples-per-period {} is more than {} samples: use fewer",
+                args.periods,
+                args.samples_per_period,
+                u64::MAX
+            ))
+        })?;
+    // x and y, their transforms and the FFT's buffers: about 64 bytes per sample.
+    let n = fits_memory("--periods × --samples-per-period (samples)", n, 64)?;
+    let budget = args.limits.budget();
+    budget.plan("--periods × --samples-per-period", n as u64)?;
+    let [svg, png] = plot::beside(&args.out);
+    check_distinct(
+        &[
+            ("--out", args.out.as_path()),
+            ("the plot", svg.as_path()),
+            ("the plot", png.as_path()),
+        ],
+        &[],
+    )?;
     let mut propagator = trajectory::start(&problem, &options)?;
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        ensure_dir(dir)?;
-    }
+    ensure_parent(&args.out)?;
     let header: &[&str] = if args.whirl {
         &["order", "whirl"]
     } else {
@@ -68,13 +94,13 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let mut out = CsvOut::create(&args.out, header)?;
     let period = problem.params.forcing_period();
-    let n = (args.periods * args.samples_per_period) as usize;
     let start = args.transient as f64 * period;
     let dt = period / args.samples_per_period as f64;
-    let times = (0..n).map(|i| start + i as f64 * dt);
+    let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
     let (mut x, mut y) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    for sample in samples(&mut propagator, times) {
-        let s = sample?.state;
+    for i in 0..n {
+        let t = start + i as f64 * dt;
+        let s = trajectory::advance_to(&mut propagator, t, &mut tracker, |_| Ok(()))?.state;
         x.push(s.x);
         y.push(s.y);
     }
@@ -126,33 +152,34 @@ pub fn run(args: &Args) -> Result<()> {
     let lowest = if args.whirl { -args.max_order } else { 0.0 };
     let figure = SpectrumFigure {
         title: format!(
-            "{} spectrum, η = {}, periods {}-{}, Hann window",
+            "{} spectrum, η = {}, periods {}-{end_period}, Hann window",
             if args.whirl { "Whirl" } else { "Amplitude" },
-            problem.params.speed_ratio,
+            num(problem.params.speed_ratio),
             args.transient,
-            args.transient + args.periods
         ),
         curves,
         orders: lowest..args.max_order,
     };
-    let [svg, png] = plot::save_beside(&figure, &args.out)?;
-    out.commit()?;
-    println!("method: {}", describe(&options));
-    println!(
-        "{n} samples over forcing periods {}-{}, resolution {} orders",
+    let [svg_file, png_file] = plot::render(&figure, &svg, &png)?;
+    commit_all([out.finish()?, svg_file, png_file])?;
+    let mut report = String::new();
+    let _ = writeln!(report, "method: {}", describe(&options));
+    let _ = writeln!(
+        report,
+        "{n} samples over forcing periods {}-{end_period}, resolution {} orders",
         args.transient,
-        args.transient + args.periods,
-        1.0 / args.periods as f64
+        num(1.0 / args.periods as f64)
     );
-    println!("largest peaks (order, amplitude in clearances):");
+    let _ = writeln!(report, "largest peaks (order, amplitude in clearances):");
     for line in lines {
-        println!("  {line}");
+        let _ = writeln!(report, "  {line}");
     }
-    println!(
+    let _ = writeln!(
+        report,
         "wrote {}, {}, {}",
         args.out.display(),
         svg.display(),
         png.display()
     );
-    Ok(())
+    print(&report)
 }

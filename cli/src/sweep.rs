@@ -1,19 +1,21 @@
 //! `rotor-rub sweep`: a bifurcation diagram, Poincaré points over a range of one parameter, in
 //! parallel, optionally one shard of it.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
-use rotor_rub::{Options, Parameter, Problem, poincare};
+use rotor_rub::{Options, Parameter, Problem};
 
-use crate::error::{CliError, Result};
+use crate::error::{CliError, Result, num};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
-use crate::output::{CsvOut, ensure_dir};
+use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent, print, warn};
 use crate::plot::{self, scatter::BifurcationFigure};
 use crate::problem::{ProblemArgs, parse_parameter};
-use crate::trajectory;
+use crate::shard::{ShardInfo, checksum};
+use crate::trajectory::{self, uniform_at};
 
 /// Header of sweep files.
 pub const HEADER: [&str; 6] = ["value", "period", "x", "y", "vx", "vy"];
@@ -44,6 +46,9 @@ pub struct Args {
 
     #[command(flatten)]
     pub method: MethodArgs<Survey>,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
 
     /// Parameter to sweep (a --set name)
     #[arg(long, value_name = "NAME", default_value = "speed_ratio", value_parser = parse_parameter)]
@@ -77,7 +82,8 @@ pub struct Args {
 
     /// Run only shard I of N: the values whose index i (0-based, in --from..--to order) has
     /// i % N == I (round robin, so slow and fast regions spread over the shards). No plot is
-    /// drawn for a shard; join the shards with `rotor-rub merge`
+    /// drawn for a shard; join the shards with `rotor-rub merge`. A shard file starts with one
+    /// `# rotor-rub sweep shard I/N; …` metadata line (rows, checksum, the run) that merge checks
     #[arg(long, value_name = "I/N", value_parser = parse_shard, allow_hyphen_values = true)]
     pub shard: Option<(usize, usize)>,
 
@@ -90,29 +96,37 @@ pub struct Args {
     pub no_plot: bool,
 }
 
-/// The swept values.
-pub fn values(from: f64, to: f64, steps: usize) -> Vec<f64> {
-    crate::trajectory::uniform_times(from, to, steps).collect()
-}
-
 /// The Poincaré rows of one parameter value.
 fn section(
     problem: &Problem,
     options: &Options,
-    transient: u64,
-    keep: u64,
+    args: &Args,
+    budget: &Budget,
     value: f64,
 ) -> Result<Vec<Row>> {
     let mut propagator = trajectory::start(problem, options)?;
     let period = problem.params.forcing_period();
-    rotor_rub::advance_to(&mut propagator, transient as f64 * period, |_| {})?;
-    poincare(&mut propagator, problem.params.speed_ratio, keep as usize)
-        .zip(transient..)
+    let start = args.transient as f64 * period;
+    let mut tracker = budget.run(
+        problem.start_time,
+        (args.transient + args.keep) as f64 * period,
+    );
+    trajectory::advance_to(&mut propagator, start, &mut tracker, |_| Ok(()))?;
+    let keep = usize::try_from(args.keep).unwrap_or(usize::MAX);
+    let points = trajectory::section(
+        &mut propagator,
+        problem.params.speed_ratio,
+        keep,
+        &mut tracker,
+    )?;
+    Ok(points
+        .iter()
+        .zip(args.transient..)
         .map(|(sample, k)| {
-            let s = sample?.state;
-            Ok((value, k, s.x, s.y, s.vx, s.vy))
+            let s = sample.state;
+            (value, k, s.x, s.y, s.vx, s.vy)
         })
-        .collect()
+        .collect())
 }
 
 /// Sort rows into file order: value ascending, then period.
@@ -139,57 +153,93 @@ fn progress(len: usize) -> ProgressBar {
     bar
 }
 
-/// Draw the bifurcation diagram of `rows` next to `csv`.
+/// Draw the bifurcation diagram of `rows` next to `csv` (uncommitted).
 pub fn plot_rows(
     rows: &[Row],
     parameter: &str,
     subtitle: &str,
     csv: &Path,
-) -> Result<[PathBuf; 2]> {
+) -> Result<[AtomicFile; 2]> {
     let figure = BifurcationFigure {
         title: format!("Bifurcation diagram over {parameter}{subtitle}"),
         parameter: parameter.to_string(),
         points: rows.iter().map(|r| (r.0, r.2)).collect(),
     };
-    plot::save_beside(&figure, csv)
+    plot::render_beside(&figure, csv)
+}
+
+/// How many of `steps` values shard `shard` of `shards` runs (round robin).
+fn shard_len(steps: u64, shard: u64, shards: u64) -> u64 {
+    steps.saturating_sub(shard).div_ceil(shards)
+}
+
+/// The run every shard of this sweep shares, for the shard metadata.
+fn run_description(args: &Args, base: &Problem, options: &Options) -> String {
+    format!(
+        "rotor-rub {}; param {}; from {:e} to {:e}; steps {}; transient {}; keep {}; skip_errors {}; {:?}; {:?}",
+        env!("CARGO_PKG_VERSION"),
+        args.param,
+        args.from,
+        args.to,
+        args.steps,
+        args.transient,
+        args.keep,
+        args.skip_errors,
+        options,
+        base
+    )
 }
 
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
     let base = args.problem.build()?;
     let options = args.method.options()?;
-    let all = values(args.from, args.to, args.steps as usize);
+    add_counts(("--transient", args.transient), ("--keep", args.keep))?;
     let (shard, shards) = args.shard.unwrap_or((0, 1));
-    let mine: Vec<(usize, f64)> = all
-        .iter()
-        .copied()
-        .enumerate()
-        .filter(|(i, _)| i % shards == shard)
-        .collect();
+    let (shard, shards) = (shard as u64, shards as u64);
+    let count = shard_len(args.steps, shard, shards);
+    fits_memory(
+        "--steps (values run here)",
+        count,
+        std::mem::size_of::<Problem>(),
+    )?;
+    let rows_planned = count.saturating_mul(args.keep);
+    // Rows are kept, then written out (about 120 bytes of CSV each) before the file is replaced.
+    fits_memory(
+        "--steps × --keep (rows)",
+        rows_planned,
+        std::mem::size_of::<Row>() + 120,
+    )?;
+    let budget = args.limits.budget();
+    budget.plan("--steps × --keep", rows_planned)?;
+    let plot = args.shard.is_none() && !args.no_plot;
+    let [svg, png] = plot::beside(&args.out);
+    let mut outputs = vec![("--out", args.out.as_path())];
+    if plot {
+        outputs.extend([("the plot", svg.as_path()), ("the plot", png.as_path())]);
+    }
+    check_distinct(&outputs, &[])?;
     // Check every value before anything runs or any file is created.
-    let problems = mine
-        .iter()
-        .map(|&(_, v)| {
+    let problems = (0..count)
+        .map(|k| {
+            let v = uniform_at(args.from, args.to, args.steps, shard + k * shards);
             let mut p = base;
             args.param.set(&mut p, v);
-            p.validate()
-                .map(|()| p)
-                .map_err(|e| CliError::input(format!("--param {} = {v} (swept): {e}", args.param)))
+            p.validate().map(|()| (v, p)).map_err(|e| {
+                CliError::input(format!("--param {} = {} (swept): {e}", args.param, num(v)))
+            })
         })
-        .collect::<Result<Vec<Problem>>>()?;
+        .collect::<Result<Vec<(f64, Problem)>>>()?;
     trajectory::start(&base, &options)?;
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        ensure_dir(dir)?;
-    }
-    let mut out = CsvOut::create(&args.out, &HEADER)?;
+    ensure_parent(&args.out)?;
+    let mut file = AtomicFile::create(&args.out)?;
 
-    let bar = progress(mine.len());
-    let results: Vec<Result<Vec<Row>>> = mine
+    let bar = progress(problems.len());
+    let results: Vec<Result<Vec<Row>>> = problems
         .par_iter()
-        .zip(&problems)
-        .map(|(&(_, v), p)| {
-            let r = section(p, &options, args.transient, args.keep, v)
-                .map_err(|e| e.context(&format!("{} = {v}", args.param)));
+        .map(|(v, p)| {
+            let r = section(p, &options, args, &budget, *v)
+                .map_err(|e| e.context(&format!("{} = {}", args.param, num(*v))));
             bar.inc(1);
             r
         })
@@ -200,45 +250,67 @@ pub fn run(args: &Args) -> Result<()> {
     for r in results {
         match r {
             Ok(r) => rows.extend(r),
-            Err(e) if args.skip_errors => eprintln!("warning: skipped {e}"),
+            // A refused run (over --max-work) stops the sweep even with --skip-errors.
+            Err(e) if args.skip_errors && e.code != crate::error::EXIT_INPUT => {
+                warn(&format!("skipped {e}"));
+            }
             Err(e) => return Err(e),
         }
     }
     sort_rows(&mut rows, |r| (r.0, r.1));
-    for r in &rows {
-        out.row(r)?;
+    let body = csv_bytes(&rows)
+        .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
+    if args.shard.is_some() {
+        let info = ShardInfo {
+            index: shard,
+            count: shards,
+            rows: rows.len() as u64,
+            checksum: checksum(&body),
+            run: run_description(args, &base, &options),
+        };
+        file.write_all(info.line().as_bytes())
+            .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
     }
-    let plotted = if args.shard.is_none() && !args.no_plot {
+    file.write_all(&body)
+        .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
+    let mut files = vec![file];
+    if plot {
         let subtitle = format!(
             ", periods {}-{}, {}",
             args.transient,
             args.transient + args.keep,
             describe(&options)
         );
-        Some(plot_rows(&rows, args.param.name(), &subtitle, &args.out)?)
-    } else {
-        None
-    };
-    out.commit()?;
+        files.extend(plot_rows(&rows, args.param.name(), &subtitle, &args.out)?);
+    }
+    commit_all(files)?;
     let slice = if shards > 1 {
-        format!(
-            "shard {shard}/{shards}: {} of {} values",
-            mine.len(),
-            all.len()
-        )
+        format!("shard {shard}/{shards}: {count} of {} values", args.steps)
     } else {
-        format!("{} values", all.len())
+        format!("{} values", args.steps)
     };
-    println!(
-        "{slice} of {} from {} to {}, {} Poincaré points written to {}",
+    let mut report = format!(
+        "{slice} of {} from {} to {}, {} Poincaré points written to {}\n",
         args.param,
-        args.from,
-        args.to,
+        num(args.from),
+        num(args.to),
         rows.len(),
         args.out.display()
     );
-    if let Some([svg, png]) = plotted {
-        println!("plot written to {} and {}", svg.display(), png.display());
+    if plot {
+        report += &format!("plot written to {} and {}\n", svg.display(), png.display());
     }
-    Ok(())
+    print(&report)
+}
+
+/// The CSV text of a sweep file: header, then `rows`.
+pub fn csv_bytes(rows: &[Row]) -> std::result::Result<Vec<u8>, csv::Error> {
+    let mut writer = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    writer.write_record(HEADER)?;
+    for r in rows {
+        writer.serialize(r)?;
+    }
+    writer.into_inner().map_err(|e| e.into_error().into())
 }

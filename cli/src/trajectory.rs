@@ -1,19 +1,23 @@
-//! One pass over a trajectory: switches, samples at chosen times and the propagation time.
+//! One pass over a trajectory: switches, samples at chosen times and the propagation time, with
+//! every switch charged to the command's work budget.
 
 use std::time::{Duration, Instant};
 
-use rotor_rub::{
-    Event, Options, Problem, Propagate, PropagationError, Propagator, Regime, Sample, advance_to,
-};
+use rotor_rub::{Event, Options, Problem, Propagate, Propagator, Regime, Sample};
 
-use crate::error::CliError;
+use crate::error::{CliError, Result};
+use crate::limits::{Tracker, fits_memory, memory_limit};
 
 /// What a pass saw.
 pub struct Pass {
-    /// The regime at the start.
-    pub initial_regime: Regime,
-    /// Every switch, in order.
+    /// Every switch, in order (kept only when asked for).
     pub events: Vec<Event>,
+    /// Number of switches.
+    pub switches: u64,
+    /// Number of contact starts among them.
+    pub enters: u64,
+    /// Fraction of the run spent in contact.
+    pub contact_fraction: f64,
     /// The state at the end time.
     pub last: Sample,
     /// Time spent propagating (excludes what `on_sample` does).
@@ -21,71 +25,136 @@ pub struct Pass {
 }
 
 /// Build the propagator for `problem` (an invalid problem or option is an input error).
-pub fn start(problem: &Problem, options: &Options) -> Result<Propagator, CliError> {
+pub fn start(problem: &Problem, options: &Options) -> Result<Propagator> {
     Propagator::new(problem, options).map_err(|e| CliError::propagation("", e))
+}
+
+/// Advance to `time`, charging each switch to `tracker` and passing it to `on_event`, and return
+/// the sample there. Stops with the budget's error as soon as the run exceeds it.
+pub fn advance_to(
+    propagator: &mut Propagator,
+    time: f64,
+    tracker: &mut Tracker<'_>,
+    mut on_event: impl FnMut(&Event) -> Result<()>,
+) -> Result<Sample> {
+    while let Some(event) = propagator.advance(time)? {
+        tracker.switch(event.time)?;
+        on_event(&event)?;
+    }
+    Ok(Sample {
+        time: propagator.time(),
+        state: propagator.state(),
+        regime: propagator.regime(),
+    })
+}
+
+/// The Poincaré section: the states at the next `count` forcing-period boundaries.
+pub fn section(
+    propagator: &mut Propagator,
+    speed_ratio: f64,
+    count: usize,
+    tracker: &mut Tracker<'_>,
+) -> Result<Vec<Sample>> {
+    let times = rotor_rub::poincare_times(propagator.time(), speed_ratio, count);
+    times
+        .map(|t| advance_to(propagator, t, tracker, |_| Ok(())))
+        .collect()
 }
 
 /// Propagate from the propagator's time to `end`, handing the sample at each of `times`
 /// (non-decreasing, within the run) to `on_sample` and each switch to `on_event`, in time order
-/// (a switch at a sample time comes before the sample).
-pub fn run<E>(
+/// (a switch at a sample time comes before the sample). With `keep_events` the switches are also
+/// kept in [`Pass::events`], as many as half of the command's memory share holds.
+pub fn run(
     mut propagator: Propagator,
     end: f64,
     times: impl IntoIterator<Item = f64>,
-    mut on_event: impl FnMut(&Event) -> Result<(), E>,
-    mut on_sample: impl FnMut(&Sample) -> Result<(), E>,
-) -> Result<Pass, E>
-where
-    E: From<PropagationError>,
-{
-    let mut elapsed = Duration::ZERO;
+    tracker: &mut Tracker<'_>,
+    keep_events: bool,
+    mut on_event: impl FnMut(&Event) -> Result<()>,
+    mut on_sample: impl FnMut(&Sample) -> Result<()>,
+) -> Result<Pass> {
+    let start_time = propagator.time();
     let initial_regime = propagator.regime();
+    let max_kept = memory_limit() / 2 / std::mem::size_of::<Event>() as u64;
+    let mut elapsed = Duration::ZERO;
     let mut events = Vec::new();
-    let mut emitted = 0;
-    let mut step = |propagator: &mut Propagator, t: f64, events: &mut Vec<Event>| {
+    let (mut switches, mut enters, mut contact) = (0_u64, 0_u64, 0.0);
+    let (mut in_contact, mut since) = (initial_regime == Regime::Contact, start_time);
+    let mut step = |propagator: &mut Propagator, t: f64| {
         let started = Instant::now();
-        let sample = advance_to(propagator, t, |e| events.push(*e));
+        let sample = advance_to(propagator, t, tracker, |e| {
+            switches += 1;
+            if e.kind.regime_after() == Regime::Contact {
+                enters += 1;
+            } else {
+                contact += e.time - since;
+            }
+            (in_contact, since) = (e.kind.regime_after() == Regime::Contact, e.time);
+            if keep_events {
+                if switches > max_kept {
+                    fits_memory("switches kept", switches, std::mem::size_of::<Event>())?;
+                }
+                events.push(*e);
+            }
+            on_event(e)
+        });
         elapsed += started.elapsed();
         sample
     };
     for t in times {
-        let sample = step(&mut propagator, t.min(end), &mut events)?;
-        for e in &events[emitted..] {
-            on_event(e)?;
-        }
-        emitted = events.len();
+        let sample = step(&mut propagator, t.min(end))?;
         on_sample(&sample)?;
     }
-    let last = step(&mut propagator, end, &mut events)?;
-    for e in &events[emitted..] {
-        on_event(e)?;
+    let last = step(&mut propagator, end)?;
+    if in_contact {
+        contact += end - since;
     }
+    let contact_fraction = if end > start_time {
+        contact / (end - start_time)
+    } else {
+        f64::from(u8::from(initial_regime == Regime::Contact))
+    };
     Ok(Pass {
-        initial_regime,
         events,
+        switches,
+        enters,
+        contact_fraction,
         last,
         elapsed,
     })
 }
 
-/// [`run`] keeping every sample.
+/// [`run`] keeping every switch and every sample (`count` of them, checked against memory).
 pub fn run_collect(
     propagator: Propagator,
     end: f64,
     times: impl IntoIterator<Item = f64>,
-) -> Result<(Pass, Vec<Sample>), CliError> {
+    tracker: &mut Tracker<'_>,
+) -> Result<(Pass, Vec<Sample>)> {
     let mut samples = Vec::new();
     let pass = run(
         propagator,
         end,
         times,
+        tracker,
+        true,
         |_| Ok(()),
         |s: &Sample| {
             samples.push(*s);
-            Ok::<(), CliError>(())
+            Ok(())
         },
     )?;
     Ok((pass, samples))
+}
+
+/// Number of [`dense_times`]: `per_period` per forcing period from `start` to `end`, plus one
+/// (saturating: a count too large for memory is refused by the caller's check).
+pub fn dense_count(start: f64, end: f64, period: f64, per_period: u64) -> u64 {
+    let count = (((end - start) / period) * per_period as f64)
+        .ceil()
+        .max(1.0);
+    (count as u64).saturating_add(1)
 }
 
 /// `per_period` samples per forcing period from `start` to `end` inclusive.
@@ -93,61 +162,39 @@ pub fn dense_times(
     start: f64,
     end: f64,
     period: f64,
-    per_period: usize,
+    per_period: u64,
 ) -> impl Iterator<Item = f64> {
-    let count = (((end - start) / period) * per_period as f64)
-        .ceil()
-        .max(1.0) as usize
-        + 1;
-    uniform_times(start, end, count)
+    let count = dense_count(start, end, period, per_period);
+    uniform_times(start, end, usize::try_from(count).unwrap_or(usize::MAX))
 }
 
 /// `count` times spaced uniformly from `start` to `end` inclusive: t_i = start + (end − start)·i/(count − 1),
 /// the last exactly `end` (one time, `start`, when `count` is 1).
 pub fn uniform_times(start: f64, end: f64, count: usize) -> impl Iterator<Item = f64> {
-    let span = end - start;
+    (0..count).map(move |i| uniform_at(start, end, count as u64, i as u64))
+}
+
+/// The `i`-th of [`uniform_times`] (computed alone, for any count).
+pub fn uniform_at(start: f64, end: f64, count: u64, i: u64) -> f64 {
     let last = count.saturating_sub(1);
-    (0..count).map(move |i| {
-        if i == last && i > 0 {
-            end
-        } else if last == 0 {
-            start
-        } else {
-            start + span * i as f64 / last as f64
-        }
-    })
+    if i == last && i > 0 {
+        end
+    } else if last == 0 {
+        start
+    } else {
+        start + (end - start) * i as f64 / last as f64
+    }
 }
 
-/// The times `start + k·period` for k in `0..count`: forcing-period boundaries when `start` is one.
+/// The times `k·period` for `count` periods k from `first_period` on (saturating at u64::MAX:
+/// callers check the sum first).
 pub fn period_times(first_period: u64, period: f64, count: u64) -> impl Iterator<Item = f64> {
-    (first_period..first_period + count).map(move |k| k as f64 * period)
-}
-
-/// Fraction of [start, end] spent in contact, from the regime at `start` and the switches.
-pub fn contact_fraction(initial: Regime, events: &[Event], start: f64, end: f64) -> f64 {
-    if end <= start {
-        return if initial == Regime::Contact { 1.0 } else { 0.0 };
-    }
-    let mut in_contact = initial == Regime::Contact;
-    let mut since = start;
-    let mut total = 0.0;
-    for e in events {
-        if in_contact {
-            total += e.time - since;
-        }
-        in_contact = e.kind.regime_after() == Regime::Contact;
-        since = e.time;
-    }
-    if in_contact {
-        total += end - since;
-    }
-    total / (end - start)
+    (first_period..first_period.saturating_add(count)).map(move |k| k as f64 * period)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rotor_rub::{EventKind, State};
 
     #[test]
     fn uniform_times_hit_both_ends() {
@@ -156,18 +203,5 @@ mod tests {
         assert_eq!(t[0], 0.0);
         assert_eq!(t[3], 0.3);
         assert_eq!(t[1], 0.3 * 1.0 / 3.0);
-    }
-
-    #[test]
-    fn contact_fraction_from_events() {
-        let ev = |time, kind| Event {
-            time,
-            kind,
-            state: State::default(),
-        };
-        let events = [ev(1.0, EventKind::Enter), ev(3.0, EventKind::Exit)];
-        assert_eq!(contact_fraction(Regime::Free, &events, 0.0, 4.0), 0.5);
-        let events = [ev(1.0, EventKind::Exit)];
-        assert_eq!(contact_fraction(Regime::Contact, &events, 0.0, 4.0), 0.25);
     }
 }

@@ -29,7 +29,7 @@ pub fn largest_exponent(
     let mut t = problem.start_time;
     let mut sum = 0.0;
     let mut averaged = 0;
-    for k in 0..SKIPPED_INTERVALS + intervals {
+    for k in 0..SKIPPED_INTERVALS.saturating_add(intervals) {
         let base = reference.state().to_array();
         let perturbed_start = State::from_array(core::array::from_fn(|i| {
             base[i] + SEPARATION * direction[i]

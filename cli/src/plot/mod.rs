@@ -58,6 +58,12 @@ pub fn err(e: impl std::fmt::Display) -> String {
 
 /// Write `figure` to `svg` and `png` (both atomically).
 pub fn save(figure: &impl Figure, svg: &Path, png: &Path) -> Result<()> {
+    crate::output::commit_all(render(figure, svg, png)?)
+}
+
+/// Draw `figure` into temporary files for `svg` and `png`, to be committed with the command's
+/// other outputs.
+pub fn render(figure: &impl Figure, svg: &Path, png: &Path) -> Result<[AtomicFile; 2]> {
     register_fonts();
     let size = figure.size();
     let svg_file = AtomicFile::create(svg)?;
@@ -74,16 +80,18 @@ pub fn save(figure: &impl Figure, svg: &Path, png: &Path) -> Result<()> {
         figure.draw(&root).map_err(|e| failed(png, e))?;
         root.present().map_err(|e| failed(png, err(e)))?;
     }
-    svg_file.commit()?;
-    png_file.commit()
+    Ok([svg_file, png_file])
 }
 
-/// Write `figure` as `<stem>.svg` and `<stem>.png` next to `path` (any extension).
-pub fn save_beside(figure: &impl Figure, path: &Path) -> Result<[std::path::PathBuf; 2]> {
-    let svg = path.with_extension("svg");
-    let png = path.with_extension("png");
-    save(figure, &svg, &png)?;
-    Ok([svg, png])
+/// The plot paths next to `path`: `<stem>.svg` and `<stem>.png`.
+pub fn beside(path: &Path) -> [std::path::PathBuf; 2] {
+    [path.with_extension("svg"), path.with_extension("png")]
+}
+
+/// [`render`] as `<stem>.svg` and `<stem>.png` next to `path`.
+pub fn render_beside(figure: &impl Figure, path: &Path) -> Result<[AtomicFile; 2]> {
+    let [svg, png] = beside(path);
+    render(figure, &svg, &png)
 }
 
 /// A range covering `values` with a 5 % margin (a unit range around a single value).

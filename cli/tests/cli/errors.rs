@@ -276,15 +276,31 @@ fn set_overrides_an_invalid_config_value() {
     assert!(!String::from_utf8_lossy(&out.stderr).contains("speed_ratio"));
 }
 
+/// A shard file with a valid metadata line (FNV-1a 64 over `body`) around any body.
+fn shard_file(body: &str) -> String {
+    let sum = body.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    let rows = body.lines().count() - 1;
+    format!("# rotor-rub sweep shard 0/1; rows {rows}; fnv1a64 {sum:016x}; run test\n{body}")
+}
+
 #[test]
 fn bad_merge_inputs() {
     let dir = tempfile::tempdir().unwrap();
-    fs::write(dir.path().join("bad.csv"), "a,b\n1,2\n").unwrap();
+    fs::write(dir.path().join("plain.csv"), "a,b\n1,2\n").unwrap();
+    fs::write(dir.path().join("bad.csv"), shard_file("a,b\n1,2\n")).unwrap();
     fs::write(
         dir.path().join("text.csv"),
-        "value,period,x,y,vx,vy\n1,2,3,four,5,6\n",
+        shard_file("value,period,x,y,vx,vy\n1,2,3,four,5,6\n"),
     )
     .unwrap();
+    fails_in(
+        dir.path(),
+        &["merge", "m.csv", "plain.csv"],
+        2,
+        &["plain.csv", "metadata"],
+    );
     fails_in(
         dir.path(),
         &["merge", "m.csv", "bad.csv"],
