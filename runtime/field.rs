@@ -79,7 +79,7 @@ pub fn switching_function(params: &Params, s: &State) -> (f64, f64) {
     (u * u + v * v - 1.0, 2.0 * (u * s.vx + v * s.vy))
 }
 
-/// The regime of a state (`model.md` §6 case 14): by the sign of h = z² − 1; on z = 1 (|h| within
+/// The regime of a state (`docs/MODEL.md` §6 case 14): by the sign of h = z² − 1; on z = 1 (|h| within
 /// rounding, 4ε), by the sign of z' (radial velocity) unless it too is within its rounding (a
 /// tangential start: deciding by the rounding's sign would start a zero-length regime), then of
 /// z'' (both fields agree on z = 1, where g = 0, so the free acceleration is used); free when

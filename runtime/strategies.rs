@@ -6,7 +6,7 @@
 //!   φ0 ∈ [0, 2π), K̂xx, K̂yy ∈ [0, 50], K̂xy, K̂yx ∈ [−20, 30] independently (non-symmetric and
 //!   indefinite K_s included), ε̂ ∈ [−0.5, 0.5]².
 //! * [`initial_state`]: position within radius 2 of the origin, velocity components in [−2, 2].
-//! * [`degenerate_problem`]: the corners of `model.md` §6 — ν = 1 exactly (critical free flight
+//! * [`degenerate_problem`]: the corners of `docs/MODEL.md` §6 — ν = 1 exactly (critical free flight
 //!   and critical contact entries), ν > 1, Kxy ≠ Kyx with Fb1·Fb2 < 0 (complex modes),
 //!   Kxx = Kxy (Fb1 = 0 at entry angles 3π/4, −π/4), isotropic K_s (repeated modes), starts
 //!   exactly on z = 1.
@@ -65,7 +65,7 @@ pub fn problem() -> impl Strategy<Value = Problem> {
     })
 }
 
-/// Problems in the degenerate corners of `model.md` §6 (see the module docs).
+/// Problems in the degenerate corners of `docs/MODEL.md` §6 (see the module docs).
 pub fn degenerate_problem() -> impl Strategy<Value = Problem> {
     (
         problem(),

@@ -3,7 +3,7 @@
 
 Usage: scripts/scipy_yardstick.py [--periods 100] [--tol 1e-10] [--repeat 3]
 
-Same model and cases as `benches/propagation.rs` (model.md §1; `paper` preset; contact-sparse:
+Same model and cases as `benches/propagation.rs` (docs/MODEL.md §1; `paper` preset; contact-sparse:
 η = 1.5 with offset (0, 0); contact-heavy: η = 2.5): the piecewise right-hand side with the
 regime chosen by the sign of h = z² − 1, switches found by solve_ivp's event location on h, the
 Poincaré section from `t_eval`, rtol = atol = tol and the same largest step as ours (a quarter of

@@ -234,7 +234,7 @@ fn start_on_boundary_is_decided_by_radial_velocity() {
 /// first 20 for chaotic motion), same counts where the motion is not chaotic.
 #[test]
 fn methods_agree_on_fig2_cases() {
-    // Chaotic per model.md §9: paper preset η = 1.5.
+    // Chaotic per docs/MODEL.md §9: paper preset η = 1.5.
     for preset in Preset::ALL {
         for eta in [1.0, 1.5, 2.0, 2.5, 3.0, 3.5] {
             let mut problem = preset.problem();
@@ -335,7 +335,7 @@ fn invalid_inputs_give_typed_errors() {
 }
 
 /// Contact-sparse motion settles on the non-contact orbit; a million forcing periods then cost
-/// nothing and nothing overflows (local time, `model.md` §6 case 12).
+/// nothing and nothing overflows (local time, `docs/MODEL.md` §6 case 12).
 #[test]
 fn a_million_periods_in_local_time() {
     let mut problem = Preset::Paper.problem();
@@ -357,7 +357,7 @@ fn a_million_periods_in_local_time() {
     );
 }
 
-/// Strong circulatory stiffness (`model.md` §6 case 3): the rotor stays in contact and grows
+/// Strong circulatory stiffness (`docs/MODEL.md` §6 case 3): the rotor stays in contact and grows
 /// without bound; every method ends with the typed `Diverged` outcome, not NaN or a hang.
 #[test]
 fn flutter_ends_in_diverged() {

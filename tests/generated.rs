@@ -1,11 +1,11 @@
 //! Every generated coefficient formula (`rotor_rub::coefficients`, written by `codegen/`) against
 //! an independent computation: finite-difference Jacobians of the contact function, nalgebra
 //! LU solves and eigenvalues, matrix exponentials of the equations of motion as first-order
-//! linear systems, and finite-difference residuals of the ODEs (`model.md` §2–§7).
+//! linear systems, and finite-difference residuals of the ODEs (`docs/MODEL.md` §2–§7).
 //!
 //! Property tests run over the random physical ensemble of [`support::any_case`] with a fixed
 //! seed (set `PROPTEST_RNG_SEED` to explore others); the named tests cover each degenerate case
-//! of `model.md` §6 and each paper erratum of §7. Each tolerance is justified where it is used.
+//! of `docs/MODEL.md` §6 and each paper erratum of §7. Each tolerance is justified where it is used.
 
 #[path = "generated/support.rs"]
 mod support;

@@ -236,7 +236,7 @@ fn invalid_inputs_give_typed_errors() {
         )))
     ));
     assert_eq!(before, (stepper.time(), stepper.state(), *stepper.params()));
-    // A flutter case diverges with a typed error (model.md §6 case 3).
+    // A flutter case diverges with a typed error (docs/MODEL.md §6 case 3).
     let mut flutter = problem;
     (flutter.params.k_xy, flutter.params.k_yx) = (15.0, -10.0);
     flutter.params.offset_x = 0.0;

@@ -354,7 +354,7 @@ pub struct ForcedBasis {
 }
 /// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
 ///
-/// Source: model.md §2.
+/// Source: docs/MODEL.md §2.
 /// Derivation: partial derivatives of g = (1 − 1/z)(x − εx, y − εy) at (x0, y0); D = g(r0) − J r0.
 #[inline]
 #[must_use]
@@ -386,7 +386,7 @@ pub fn taylor_terms(model: &ModelParams, at: &Position) -> TaylorTerms {
 }
 /// Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] = I + K_s J and constant Fd = K_s D (erratum 2: Fb2 is the y–x entry, Fa2 the diagonal).
 ///
-/// Source: model.md §3, errata 2–3.
+/// Source: docs/MODEL.md §3, errata 2–3.
 /// Derivation: coefficients of x and y, and the constant, of q + K_s (J q + D) in the equations of motion.
 #[inline]
 #[must_use]
@@ -415,7 +415,7 @@ pub fn linearized_stiffness(
 }
 /// Steady-state harmonic response of free flight: xp = c11 cos θ + c22 sin θ, yp = c33 cos θ + c44 sin θ.
 ///
-/// Source: model.md §4, eqs. (5)–(6).
+/// Source: docs/MODEL.md §4, eqs. (5)–(6).
 /// Derivation: harmonic ansatz substituted into the free equations of motion; the 4×4 system for the coefficients of cos θ and sin θ solved by Cramer's rule.
 #[inline]
 #[must_use]
@@ -443,7 +443,7 @@ pub struct DampedFrequency {
 }
 /// Squared damped frequency γ² = ω² − ν² of a mode of undamped frequency² ω² (β² for free flight, ω² = 1); negative when over-damped.
 ///
-/// Source: model.md §4 (β), §5 (γ_i), §6 cases 4–6, 11.
+/// Source: docs/MODEL.md §4 (β), §5 (γ_i), §6 cases 4–6, 11.
 /// Derivation: ansatz e^{−ντ} cos(√b τ) substituted into the homogeneous equation x'' + 2νx' + ω²x = 0, residual at τ = 0 solved for b.
 /// Test-only: checks the derivation against the paper's form; the runtime does not use it.
 #[doc(hidden)]
@@ -458,7 +458,7 @@ pub fn damped_frequency_sq(model: &ModelParams, mode: &Eigenvalue) -> DampedFreq
 }
 /// Squared damped frequency β² = 1 − ν² of free flight (negative for ν > 1, zero at critical damping).
 ///
-/// Source: model.md §4.
+/// Source: docs/MODEL.md §4.
 /// Derivation: `damped_frequency_sq` at ω² = 1.
 #[inline]
 #[must_use]
@@ -470,7 +470,7 @@ pub fn free_damped_frequency_sq(model: &ModelParams) -> FreeDampedFrequency {
 }
 /// Constants X, P, Y, Q of the free homogeneous solution x_h = X·EC(s) + P·ES(s) from the state (x0, y0, vx0, vy0) and forcing phase (cos θ0, sin θ0) at the segment start (P = c2·β of the paper; no division by β).
 ///
-/// Source: model.md §4 (robust form), §6 cases 11–12.
+/// Source: docs/MODEL.md §4 (robust form), §6 cases 11–12.
 /// Derivation: initial conditions of the trajectory X·EC + P·ES + xp at s = 0 (EC = 1, ES = 0) solved for X, P, Y, Q.
 #[inline]
 #[must_use]
@@ -519,7 +519,7 @@ pub struct FreeState {
 }
 /// State (x, y, x', y') and switching function h = z² − 1 with h' on a free segment, from the basis values EC(s), ES(s) and the forcing phasor (cos θ, sin θ).
 ///
-/// Source: model.md §4, eq. (10).
+/// Source: docs/MODEL.md §4, eq. (10).
 /// Derivation: the trajectory X·EC + P·ES + xp and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, (cos θ)' = −η sin θ, (sin θ)' = η cos θ.
 #[inline]
 #[must_use]
@@ -573,7 +573,7 @@ pub fn free_eval(
 }
 /// Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = fxc cos ηs + fxs sin ηs, fy = fyc cos ηs + fys sin ηs.
 ///
-/// Source: model.md §1, §11.
+/// Source: docs/MODEL.md §1, §11.
 /// Derivation: the forcing at θ = θ0 + ηs with the phasor rotated by angle addition; coefficients of cos ηs and sin ηs by partial differentiation.
 #[inline]
 #[must_use]
@@ -591,7 +591,7 @@ pub fn free_forcing(model: &ModelParams, phasor: &Phasor) -> FreeForcing {
 }
 /// Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + fxc·FC + fxs·FS from the start state (the forced part FC, FS starts at rest).
 ///
-/// Source: model.md §4, §11.
+/// Source: docs/MODEL.md §4, §11.
 /// Derivation: initial conditions of the trajectory at s = 0 (EC = 1, ES = FC = FS = FC' = FS' = 0) solved for X, P, Y, Q.
 #[inline]
 #[must_use]
@@ -626,7 +626,7 @@ pub struct ForcedFreeState {
 }
 /// State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.
 ///
-/// Source: model.md §4, §11, eq. (10).
+/// Source: docs/MODEL.md §4, §11, eq. (10).
 /// Derivation: the trajectory X·EC + P·ES + fxc·FC + fxs·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.
 #[inline]
 #[must_use]
@@ -681,7 +681,7 @@ pub fn free_forced_eval(
 }
 /// Particular solution of the linearized contact equations: xp = c11 cos θ + c22 sin θ + c55, yp = c33 cos θ + c44 sin θ + c66.
 ///
-/// Source: model.md §5 (particular part), eqs. (8)–(9).
+/// Source: docs/MODEL.md §5 (particular part), eqs. (8)–(9).
 /// Derivation: harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd = F(cos θ, sin θ); the system splits into a 2×2 block (constants, Kl⁻¹) and a 4×4 block (harmonic), each solved by Cramer's rule.
 #[inline]
 #[must_use]
@@ -737,7 +737,7 @@ pub struct ParticularState {
 }
 /// Position and velocity of the contact particular solution at forcing phase (cos θ, sin θ).
 ///
-/// Source: model.md §5, eqs. (8)–(9).
+/// Source: docs/MODEL.md §5, eqs. (8)–(9).
 /// Derivation: the harmonic-plus-constant trajectory and its total derivative ((cos θ)' = −η sin θ, (sin θ)' = η cos θ).
 #[inline]
 #[must_use]
@@ -764,7 +764,7 @@ pub fn contact_particular_eval(
 }
 /// Eigenvalues of Kl: ω²₁,₂ = mean ∓ √Δ (complex when Δ < 0), det Kl = ω²₁ ω²₂, and the mean of γ² = ω² − ν².
 ///
-/// Source: model.md §5 (modes), §6 cases 2, 7–9.
+/// Source: docs/MODEL.md §5 (modes), §6 cases 2, 7–9.
 /// Derivation: characteristic polynomial det(Kl − λI) = c2 λ² + c1 λ + c0 differentiated at λ = 0; mean = −c1/(2c2); Δ = −det(Kl − mean·I)/c2 (trace-free shift, no cancellation).
 #[inline]
 #[must_use]
@@ -797,9 +797,9 @@ pub struct ModeShape {
     /// y of (ω² − Fa2, Fb2)
     pub row2_y: f64,
 }
-/// Eigenvectors of Kl for eigenvalue ω², one from each row of (Kl − ω²I)v = 0; the runtime keeps the longer (`model.md` §6 case 1: Fb1 = 0).
+/// Eigenvectors of Kl for eigenvalue ω², one from each row of (Kl − ω²I)v = 0; the runtime keeps the longer (`docs/MODEL.md` §6 case 1: Fb1 = 0).
 ///
-/// Source: model.md §5 (s_i), §6 case 1.
+/// Source: docs/MODEL.md §5 (s_i), §6 case 1.
 /// Derivation: null vector (b, −a) of each row (a, b) of Kl − ω²I.
 /// Test-only: checks the derivation against the paper's form; the runtime does not use it.
 #[doc(hidden)]
@@ -828,7 +828,7 @@ pub struct PaperModeRatio {
 }
 /// The paper's mode ratio s = y/x = (ω² − Fa1)/Fb1 (valid only when Fb1 ≠ 0, erratum 7).
 ///
-/// Source: model.md §5, erratum 7.
+/// Source: docs/MODEL.md §5, erratum 7.
 /// Derivation: first row of (Kl − ω²I)(1, s) = 0 solved for s.
 /// Test-only: checks the derivation against the paper's form; the runtime does not use it.
 #[doc(hidden)]
@@ -857,7 +857,7 @@ pub struct PaperModalConstants {
 }
 /// The paper's homogeneous constants c1 … c4 of eqs. (8)–(9), with γ2 in the s2 terms, from the homogeneous initial state (xh0, yh0, x'h0, y'h0) in local time.
 ///
-/// Source: model.md §5 (homogeneous part), errata 5–7.
+/// Source: docs/MODEL.md §5 (homogeneous part), errata 5–7.
 /// Derivation: initial conditions of the modal ansatz e^{−ντ}[(1, s1)(c1 cos γ1τ + c2 sin γ1τ) + (1, s2)(c3 cos γ2τ + c4 sin γ2τ)] at τ = 0; positions then velocities, each a 2×2 Cramer solve.
 /// Test-only: checks the derivation against the paper's form; the runtime does not use it.
 #[doc(hidden)]
@@ -892,7 +892,7 @@ pub fn paper_modal_constants(
 }
 /// Start vectors q0, w0 of the homogeneous contact solution q_h = e^{−νs}[C(s) q0 + S(s) w0] from its initial position and velocity.
 ///
-/// Source: model.md §5 (alternative without eigenvectors).
+/// Source: docs/MODEL.md §5 (alternative without eigenvectors).
 /// Derivation: initial conditions of the matrix-function ansatz at s = 0 (C = I, S = 0, C' = 0, S' = I) solved for q0, w0.
 #[inline]
 #[must_use]
@@ -926,7 +926,7 @@ pub struct HomogeneousState {
 }
 /// Homogeneous contact solution q_h = e^{−νs}[C q0 + S w0] and its velocity, from C = cc·I + cd·B, S = sc·I + sd·B (B = Kl − σI) and decay = e^{−νs}.
 ///
-/// Source: model.md §5 (alternative without eigenvectors), §6 cases 1–8.
+/// Source: docs/MODEL.md §5 (alternative without eigenvectors), §6 cases 1–8.
 /// Derivation: the matrix-function form and its total derivative using C' = −(B + (σ − ν²)I) S, S' = C reduced with Cayley–Hamilton B² = tr(B) B − det(B) I.
 #[inline]
 #[must_use]
@@ -973,7 +973,7 @@ pub fn contact_homogeneous_eval(
 }
 /// Cubic particular solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² + a3 s³.
 ///
-/// Source: model.md §8 (φ-terms as polynomial particular solutions).
+/// Source: docs/MODEL.md §8 (φ-terms as polynomial particular solutions).
 /// Derivation: cubic ansatz substituted into the linearized equations; coefficients of s³, s², s, 1 solved top-down as 2×2 blocks with Kl (Cramer).
 #[inline]
 #[must_use]
@@ -1033,7 +1033,7 @@ pub struct PolynomialState {
 }
 /// Position and velocity of the cubic particular solution at local time s.
 ///
-/// Source: model.md §8.
+/// Source: docs/MODEL.md §8.
 /// Derivation: the cubic and its derivative.
 #[inline]
 #[must_use]

@@ -33,7 +33,7 @@ pub struct Formula {
     pub name: String,
     /// What it computes (the doc comment's first line).
     pub summary: String,
-    /// Where the formula is stated (`model.md` section).
+    /// Where the formula is stated (`docs/MODEL.md` section).
     pub source: String,
     /// How the generator derived it.
     pub derivation: String,

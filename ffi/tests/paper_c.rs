@@ -6,7 +6,7 @@
 //! the test binary's `deps/` folder.
 //!
 //! # Why these checks and tolerances
-//! The paper preset at η = 1.5 is chaotic (`model.md` §9): two accurate methods agree on the
+//! The paper preset at η = 1.5 is chaotic (`docs/MODEL.md` §9): two accurate methods agree on the
 //! switch times only up to a predictability horizon. Measured: the analytic method at its
 //! default tolerance and DOP853 at 1e-12 differ by O(1) in switch time from τ ≈ 120 (≈ 29
 //! periods) on; over 100 periods they do not even agree on the switch count. So:

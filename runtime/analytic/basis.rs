@@ -1,9 +1,9 @@
 //! Scalar basis functions of the closed forms, robust in every damping regime.
 //!
-//! * Free flight (`model.md` §4): EC(s) = e^{−νs} cos βs and ES(s) = e^{−νs} sin(βs)/β for any
+//! * Free flight (`docs/MODEL.md` §4): EC(s) = e^{−νs} cos βs and ES(s) = e^{−νs} sin(βs)/β for any
 //!   sign of β² = 1 − ν² (cosh/sinh when over-damped, written with e^{(b−ν)s} so nothing
 //!   overflows on long segments; a series when |β²s²| is small, so ν = 1 needs no special case).
-//! * Contact (`model.md` §5, the form without eigenvectors): the even and odd parts of
+//! * Contact (`docs/MODEL.md` §5, the form without eigenvectors): the even and odd parts of
 //!   f(μ) = cos(√μ s) and f(μ) = sin(√μ s)/√μ over the eigenvalue pair μ = γ̄² ± √Δ of
 //!   A = Kl − ν²I, which give C = cos(√A s) = cc·I + cd·B and S = sin(√A s)/√A = sc·I + sd·B with
 //!   B = A − γ̄²I (trace-free, B² = Δ·I). Δ > 0: real pair; Δ < 0: complex pair (case 2);
@@ -52,7 +52,7 @@ fn cos_sinc_derivative(mu: f64, s: f64) -> (f64, f64) {
     (-0.5 * s * sn, dsn)
 }
 
-/// The free-flight basis (EC, ES) at local time `s` ≥ 0 (`model.md` §4, §6 cases 5, 11, 12).
+/// The free-flight basis (EC, ES) at local time `s` ≥ 0 (`docs/MODEL.md` §4, §6 cases 5, 11, 12).
 pub fn free_basis(nu: f64, beta_sq: f64, s: f64) -> (f64, f64) {
     let x = beta_sq * s * s;
     if math::abs(x) < SERIES_LIMIT {
@@ -99,7 +99,7 @@ pub fn free_basis_bound(nu: f64, beta_sq: f64, lo: f64, hi: f64) -> (f64, f64) {
     (d, es)
 }
 
-/// A minimal complex number for the complex eigenvalue pair (`model.md` §6 case 2).
+/// A minimal complex number for the complex eigenvalue pair (`docs/MODEL.md` §6 case 2).
 #[derive(Clone, Copy, Debug)]
 struct Complex {
     re: f64,

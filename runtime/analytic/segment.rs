@@ -3,7 +3,7 @@
 
 use crate::params::State;
 
-/// The state at a local time, with h = z² − 1 and h' (`model.md` eq. (10), squared).
+/// The state at a local time, with h = z² − 1 and h' (`docs/MODEL.md` eq. (10), squared).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Point {
     /// The state.
@@ -40,7 +40,7 @@ pub trait Segment {
     fn bounds(&self, lo: f64, hi: f64) -> Bounds;
 }
 
-/// h = z² − 1 and h' for a state (the switching function of `model.md` eq. (10), squared so
+/// h = z² − 1 and h' for a state (the switching function of `docs/MODEL.md` eq. (10), squared so
 /// that it is smooth and cheap).
 #[inline]
 pub fn point_of(state: State, offset_x: f64, offset_y: f64) -> Point {

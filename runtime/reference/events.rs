@@ -1,12 +1,12 @@
 //! Event location on a step's dense output: the first time in a step at which a switching
 //! function leaves the current regime, including a crossing and return inside one step (a
-//! grazing contact, `model.md` §6 case 13).
+//! grazing contact, `docs/MODEL.md` §6 case 13).
 //!
 //! The switching function is given as `g(y) = (s, s')`: the value, positive inside the current
 //! regime, and its time derivative (for the rotor, ±(h, h') with h = z² − 1 from
 //! [`crate::field::switching_function`]). The start of every step counts as inside, so a regime
 //! that starts exactly on the switching surface is never switched again at its first instant
-//! (`model.md` §6 case 15).
+//! (`docs/MODEL.md` §6 case 15).
 
 use super::scheme::Interpolant;
 use crate::math;

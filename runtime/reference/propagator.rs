@@ -1,5 +1,5 @@
 //! The reference propagators: an adaptive Runge–Kutta integration of the full piecewise equations
-//! (`model.md` §1) behind [`Propagate`], with switches located on the dense output.
+//! (`docs/MODEL.md` §1) behind [`Propagate`], with switches located on the dense output.
 //!
 //! How a run proceeds:
 //! - The regime at the start is decided by [`crate::field::regime_of`]; the field is always the current

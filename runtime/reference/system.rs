@@ -1,6 +1,6 @@
 //! The rotor's equations of motion as [`OdeSystem`]s: the 4-state field the reference
 //! propagators integrate, and the 6-state form with the forcing carried as a rotating phasor (for
-//! the hybrid method's contact phase, `model.md` §8).
+//! the hybrid method's contact phase, `docs/MODEL.md` §8).
 
 use super::ode::OdeSystem;
 use crate::field;

@@ -1,4 +1,4 @@
-//! One named test per paper erratum of `model.md` §7 (1–5): the corrected reading agrees with
+//! One named test per paper erratum of `docs/MODEL.md` §7 (1–5): the corrected reading agrees with
 //! the generated formulas and with a direct linearization of the nonlinear model, the printed
 //! reading does not.
 
@@ -149,7 +149,7 @@ fn erratum_4_d1_d2_parenthesisation() {
 
 /// Erratum 5 (γ2 in the s2 terms of eq. 9): with the constants of `paper_modal_constants`, the
 /// corrected form solves the homogeneous ODE (residual ≤ 1e-9 of its terms), the printed form
-/// (γ1 in the s2 terms of y) leaves a residual of order 1 (model.md measured 0.78; > 1e-2 here).
+/// (γ1 in the s2 terms of y) leaves a residual of order 1 (docs/MODEL.md measured 0.78; > 1e-2 here).
 #[test]
 fn erratum_5_gamma2_in_s2_terms() {
     let mut case = generic();

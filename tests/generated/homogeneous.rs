@@ -1,6 +1,6 @@
 //! Homogeneous solutions: `contact_homogeneous_start` + `contact_homogeneous_eval` with the
 //! runtime's `matrix_function`, and `free_homogeneous` + `free_eval` with `free_basis`
-//! (`model.md` §4, §5), against the matrix exponential of the first-order system.
+//! (`docs/MODEL.md` §4, §5), against the matrix exponential of the first-order system.
 
 use proptest::prelude::*;
 use rotor_rub::State;
@@ -225,7 +225,7 @@ fn close_pair(disc: f64) -> LinearizedContact {
     }
 }
 
-/// `model.md` §6 cases 7–8 at the switch-over of `matrix_function`: below
+/// `docs/MODEL.md` §6 cases 7–8 at the switch-over of `matrix_function`: below
 /// √|Δ| = 1e-5(1 + |γ̄²|) it uses the first-order expansion f(γ̄²)I + f'(γ̄²)B, whose truncation
 /// error is O(Δ) (measured 1.6e-10 at the threshold, Δ ≈ 7e-8, γ̄² ≈ 27); just above it, real
 /// pairs use divided differences (measured 1e-13). Tolerance 1e-9 (the runtime's default

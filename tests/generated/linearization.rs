@@ -1,4 +1,4 @@
-//! `taylor_terms` and `linearized_stiffness` (`model.md` §2–3).
+//! `taylor_terms` and `linearized_stiffness` (`docs/MODEL.md` §2–3).
 
 use nalgebra::{Matrix2, Vector2};
 use proptest::prelude::*;
@@ -16,7 +16,7 @@ proptest! {
 
     /// A1, B1, B2, A2 are the Jacobian of g(x, y) = (1 − 1/z)(x − εx, y − εy) at (x0, y0) and
     /// D = g(r0) − J r0, both against central differences (rel. 1e-6); the generated values
-    /// also equal `model.md` §2's closed forms (α^1.5 form and the n nᵀ form, rel. 1e-12: same
+    /// also equal `docs/MODEL.md` §2's closed forms (α^1.5 form and the n nᵀ form, rel. 1e-12: same
     /// quantity, a few roundings apart).
     #[test]
     fn taylor_terms_match_finite_difference_jacobian(case in any_case()) {
@@ -32,7 +32,7 @@ proptest! {
         prop_assert!((t.d1 - d_fd.x).abs() <= 1e-6 * d_scale, "D1 {} vs {}", t.d1, d_fd.x);
         prop_assert!((t.d2 - d_fd.y).abs() <= 1e-6 * d_scale, "D2 {} vs {}", t.d2, d_fd.y);
 
-        // model.md §2 closed forms.
+        // docs/MODEL.md §2 closed forms.
         let (u0, v0) = (case.x0 - ex, case.y0 - ey);
         let alpha = u0 * u0 + v0 * v0;
         let a15 = alpha.powf(1.5);
@@ -67,7 +67,7 @@ proptest! {
 
 /// At the contact boundary z0 = 1, n = (cos ϑ, sin ϑ): A1 = cos²ϑ, B1 = B2 = sinϑ cosϑ,
 /// A2 = sin²ϑ, D1 = −cosϑ (x0 cosϑ + y0 sinϑ), D2 = −sinϑ (x0 cosϑ + y0 sinϑ), and the
-/// linearized force K_s n nᵀ (r − r_c) vanishes at the contact point r_c (`model.md` §2).
+/// linearized force K_s n nᵀ (r − r_c) vanishes at the contact point r_c (`docs/MODEL.md` §2).
 #[test]
 fn taylor_terms_at_the_contact_boundary() {
     for k in 0..24 {

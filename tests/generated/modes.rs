@@ -1,5 +1,5 @@
 //! Modes of Kl and the paper's modal form: `contact_modes`, `mode_shape`, `paper_mode_ratio`,
-//! `paper_modal_constants`, `damped_frequency_sq`, `free_damped_frequency_sq` (`model.md` §5).
+//! `paper_modal_constants`, `damped_frequency_sq`, `free_damped_frequency_sq` (`docs/MODEL.md` §5).
 
 use nalgebra::{Complex, Matrix2, Vector2};
 use proptest::prelude::*;

@@ -1,5 +1,5 @@
 //! Particular solutions: `contact_particular`, `contact_particular_eval`, `free_particular`,
-//! `polynomial_particular`, `polynomial_eval` (`model.md` §4, §5, §8).
+//! `polynomial_particular`, `polynomial_eval` (`docs/MODEL.md` §4, §5, §8).
 
 use nalgebra::{Matrix2, SVector, Vector2};
 use proptest::prelude::*;
@@ -74,7 +74,7 @@ proptest! {
         prop_assert!(r.norm() <= 1e-10 * scale, "residual {} (scale {scale})", r.norm());
     }
 
-    /// free_particular is the same 4×4 system with Kl = I and Fd = 0 (`model.md` §4), and
+    /// free_particular is the same 4×4 system with Kl = I and Fd = 0 (`docs/MODEL.md` §4), and
     /// contact_particular reduces to it for Kl = I, Fd = 0.
     #[test]
     fn free_particular_matches_lu(nu in 0.05..1.5f64, eta in 0.2..5.0f64, f in 0.01..2.0f64) {

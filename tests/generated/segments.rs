@@ -1,7 +1,7 @@
 //! The assembled closed-form contact segment (`Linearization::segment`: taylor_terms,
 //! linearized_stiffness, contact_modes, contact_particular(_eval), contact_homogeneous_start/eval,
 //! polynomial_particular/eval) solves q'' + 2νq' + Kl q + Fd = F(cos θ, sin θ) + a(s), over a
-//! random ensemble and in each degenerate case of `model.md` §6.
+//! random ensemble and in each degenerate case of `docs/MODEL.md` §6.
 //!
 //! Tolerances (see `support::SegmentCheck` for the measures):
 //! - start state: 1e-14·cancellation (a handful of roundings of numbers of size ≤ cancellation;

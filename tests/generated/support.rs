@@ -138,7 +138,7 @@ pub fn any_cubic() -> impl Strategy<Value = [f64; 8]> {
     proptest::array::uniform8(-3.0..3.0f64)
 }
 
-/// The contact function g(x, y) = (1 − 1/z)(x − εx, y − εy) (`model.md` §1).
+/// The contact function g(x, y) = (1 − 1/z)(x − εx, y − εy) (`docs/MODEL.md` §1).
 pub fn g(x: f64, y: f64, ex: f64, ey: f64) -> Vector2<f64> {
     let (u, v) = (x - ex, y - ey);
     let z = (u * u + v * v).sqrt();

@@ -1,5 +1,5 @@
 //! Free flight with no contact possible against the exact damped, harmonically forced
-//! oscillator (derived here independently of the library, `model.md` §4).
+//! oscillator (derived here independently of the library, `docs/MODEL.md` §4).
 
 use rotor_rub::reference::{Dop853Propagator, Rk45Propagator};
 use std::f64::consts::PI;

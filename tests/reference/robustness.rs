@@ -57,7 +57,7 @@ fn invalid_targets_are_typed_errors() {
 
 #[test]
 fn flutter_is_reported_as_divergence() {
-    // `model.md` §6 case 3: a strong circulatory stator grows without bound in contact.
+    // `docs/MODEL.md` §6 case 3: a strong circulatory stator grows without bound in contact.
     let mut p = paper(1.5);
     p.params.k_xy = 15.0;
     p.params.k_yx = -10.0;

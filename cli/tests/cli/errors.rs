@@ -356,7 +356,7 @@ fn divergence_fails_without_partial_files() {
     require!(Method::Dop853);
     let dir = tempfile::tempdir().unwrap();
     fs::write(dir.path().join("e.csv"), "keep me\n").unwrap();
-    // A strongly circulatory stator (model.md §6 case 3): the rotor stays in contact and the
+    // A strongly circulatory stator (docs/MODEL.md §6 case 3): the rotor stays in contact and the
     // motion grows without bound.
     let args = [
         "simulate",

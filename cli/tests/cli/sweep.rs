@@ -78,7 +78,7 @@ fn a_diverging_value_fails_the_sweep_or_is_skipped() {
     require!(Method::Dop853);
     let dir = tempfile::tempdir().unwrap();
     fs::write(dir.path().join("sw.csv"), "keep me\n").unwrap();
-    // k_yx = −10 with k_xy = 15 is the flutter case (model.md §6 case 3); k_yx = 20 is not.
+    // k_yx = −10 with k_xy = 15 is the flutter case (docs/MODEL.md §6 case 3); k_yx = 20 is not.
     let args = [
         "sweep",
         "--method",

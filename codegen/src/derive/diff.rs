@@ -4,7 +4,7 @@
 //! symbols: `rates[s]` is ds/dt for each symbol that varies, every other symbol is constant. A
 //! partial derivative is the special case of one symbol with rate 1. Rates let the model state
 //! time-dependent basis functions (cos θ with d(cos θ)/dτ = −η sin θ, the damped basis EC, ES of
-//! `model.md` §4) as plain symbols, so derivatives stay in closed form without trigonometry.
+//! `docs/MODEL.md` §4) as plain symbols, so derivatives stay in closed form without trigonometry.
 
 use std::collections::HashMap;
 

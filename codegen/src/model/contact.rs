@@ -1,4 +1,4 @@
-//! Contact regime, linearized (`model.md` §5): particular solution, modes, the paper's modal
+//! Contact regime, linearized (`docs/MODEL.md` §5): particular solution, modes, the paper's modal
 //! constants, and the matrix-function form of the homogeneous solution that the runtime uses in
 //! every case of §6.
 
@@ -40,7 +40,7 @@ fn contact_particular(m: &mut Model) {
     m.add_formula(
         "contact_particular",
         "Particular solution of the linearized contact equations: xp = c11 cos θ + c22 sin θ + c55, yp = c33 cos θ + c44 sin θ + c66.",
-        "model.md §5 (particular part), eqs. (8)–(9)",
+        "docs/MODEL.md §5 (particular part), eqs. (8)–(9)",
         "harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd = F(cos θ, sin θ); the system splits into a 2×2 block (constants, Kl⁻¹) and a 4×4 block (harmonic), each solved by Cramer's rule.",
         "ContactParticular",
         vec![
@@ -67,7 +67,7 @@ fn contact_particular_eval(m: &mut Model) {
     m.add_formula(
         "contact_particular_eval",
         "Position and velocity of the contact particular solution at forcing phase (cos θ, sin θ).",
-        "model.md §5, eqs. (8)–(9)",
+        "docs/MODEL.md §5, eqs. (8)–(9)",
         "the harmonic-plus-constant trajectory and its total derivative ((cos θ)' = −η sin θ, (sin θ)' = η cos θ).",
         "ParticularState",
         vec![("x", "x_p", q[0]), ("y", "y_p", q[1]), ("vx", "x_p'", v[0]), ("vy", "y_p'", v[1])],
@@ -118,7 +118,7 @@ fn contact_modes(m: &mut Model) {
     m.add_formula(
         "contact_modes",
         "Eigenvalues of Kl: ω²₁,₂ = mean ∓ √Δ (complex when Δ < 0), det Kl = ω²₁ ω²₂, and the mean of γ² = ω² − ν².",
-        "model.md §5 (modes), §6 cases 2, 7–9",
+        "docs/MODEL.md §5 (modes), §6 cases 2, 7–9",
         "characteristic polynomial det(Kl − λI) = c2 λ² + c1 λ + c0 differentiated at λ = 0; mean = −c1/(2c2); Δ = −det(Kl − mean·I)/c2 (trace-free shift, no cancellation).",
         "ContactModes",
         vec![
@@ -143,8 +143,8 @@ fn mode_shapes(m: &mut Model) {
     let n2 = [g.neg(r2[1]), r2[0]];
     m.add_test_formula(
         "mode_shape",
-        "Eigenvectors of Kl for eigenvalue ω², one from each row of (Kl − ω²I)v = 0; the runtime keeps the longer (`model.md` §6 case 1: Fb1 = 0).",
-        "model.md §5 (s_i), §6 case 1",
+        "Eigenvectors of Kl for eigenvalue ω², one from each row of (Kl − ω²I)v = 0; the runtime keeps the longer (`docs/MODEL.md` §6 case 1: Fb1 = 0).",
+        "docs/MODEL.md §5 (s_i), §6 case 1",
         "null vector (b, −a) of each row (a, b) of Kl − ω²I.",
         "ModeShape",
         vec![
@@ -164,7 +164,7 @@ fn mode_shapes(m: &mut Model) {
     m.add_test_formula(
         "paper_mode_ratio",
         "The paper's mode ratio s = y/x = (ω² − Fa1)/Fb1 (valid only when Fb1 ≠ 0, erratum 7).",
-        "model.md §5, erratum 7",
+        "docs/MODEL.md §5, erratum 7",
         "first row of (Kl − ω²I)(1, s) = 0 solved for s.",
         "PaperModeRatio",
         vec![("s", "s = (ω² − Fa1)/Fb1", sol)],
@@ -214,7 +214,7 @@ fn paper_modal_constants(m: &mut Model) {
     m.add_test_formula(
         "paper_modal_constants",
         "The paper's homogeneous constants c1 … c4 of eqs. (8)–(9), with γ2 in the s2 terms, from the homogeneous initial state (xh0, yh0, x'h0, y'h0) in local time.",
-        "model.md §5 (homogeneous part), errata 5–7",
+        "docs/MODEL.md §5 (homogeneous part), errata 5–7",
         "initial conditions of the modal ansatz e^{−ντ}[(1, s1)(c1 cos γ1τ + c2 sin γ1τ) + (1, s2)(c3 cos γ2τ + c4 sin γ2τ)] at τ = 0; positions then velocities, each a 2×2 Cramer solve.",
         "PaperModalConstants",
         vec![
@@ -308,7 +308,7 @@ fn homogeneous_start(m: &mut Model) {
     m.add_formula(
         "contact_homogeneous_start",
         "Start vectors q0, w0 of the homogeneous contact solution q_h = e^{−νs}[C(s) q0 + S(s) w0] from its initial position and velocity.",
-        "model.md §5 (alternative without eigenvectors)",
+        "docs/MODEL.md §5 (alternative without eigenvectors)",
         "initial conditions of the matrix-function ansatz at s = 0 (C = I, S = 0, C' = 0, S' = I) solved for q0, w0.",
         "HomogeneousStart",
         vec![
@@ -329,7 +329,7 @@ fn homogeneous_eval(m: &mut Model) {
     m.add_formula(
         "contact_homogeneous_eval",
         "Homogeneous contact solution q_h = e^{−νs}[C q0 + S w0] and its velocity, from C = cc·I + cd·B, S = sc·I + sd·B (B = Kl − σI) and decay = e^{−νs}.",
-        "model.md §5 (alternative without eigenvectors), §6 cases 1–8",
+        "docs/MODEL.md §5 (alternative without eigenvectors), §6 cases 1–8",
         "the matrix-function form and its total derivative using C' = −(B + (σ − ν²)I) S, S' = C reduced with Cayley–Hamilton B² = tr(B) B − det(B) I.",
         "HomogeneousState",
         vec![("x", "x_h", q[0]), ("y", "y_h", q[1]), ("vx", "x_h'", v[0]), ("vy", "y_h'", v[1])],

@@ -1,4 +1,4 @@
-//! Free flight (`model.md` §4): steady-state harmonic response, damped frequency, and the robust
+//! Free flight (`docs/MODEL.md` §4): steady-state harmonic response, damped frequency, and the robust
 //! closed form x_h = X·EC + P·ES, with EC = e^{−νs} cos βs and ES = e^{−νs} sin(βs)/β.
 
 use super::{Model, Rates};
@@ -29,7 +29,7 @@ fn free_particular(m: &mut Model) {
     m.add_formula(
         "free_particular",
         "Steady-state harmonic response of free flight: xp = c11 cos θ + c22 sin θ, yp = c33 cos θ + c44 sin θ.",
-        "model.md §4, eqs. (5)–(6)",
+        "docs/MODEL.md §4, eqs. (5)–(6)",
         "harmonic ansatz substituted into the free equations of motion; the 4×4 system for the coefficients of cos θ and sin θ solved by Cramer's rule.",
         "FreeParticular",
         vec![
@@ -87,7 +87,7 @@ fn damped_frequency(m: &mut Model) {
     m.add_test_formula(
         "damped_frequency_sq",
         "Squared damped frequency γ² = ω² − ν² of a mode of undamped frequency² ω² (β² for free flight, ω² = 1); negative when over-damped.",
-        "model.md §4 (β), §5 (γ_i), §6 cases 4–6, 11",
+        "docs/MODEL.md §4 (β), §5 (γ_i), §6 cases 4–6, 11",
         "ansatz e^{−ντ} cos(√b τ) substituted into the homogeneous equation x'' + 2νx' + ω²x = 0, residual at τ = 0 solved for b.",
         "DampedFrequency",
         vec![("gamma_sq", "γ² = ω² − ν²", b)],
@@ -97,7 +97,7 @@ fn damped_frequency(m: &mut Model) {
     m.add_formula(
         "free_damped_frequency_sq",
         "Squared damped frequency β² = 1 − ν² of free flight (negative for ν > 1, zero at critical damping).",
-        "model.md §4",
+        "docs/MODEL.md §4",
         "`damped_frequency_sq` at ω² = 1.",
         "FreeDampedFrequency",
         vec![("beta_sq", "β² = 1 − ν²", beta)],
@@ -167,7 +167,7 @@ fn free_homogeneous(m: &mut Model) {
     m.add_formula(
         "free_homogeneous",
         "Constants X, P, Y, Q of the free homogeneous solution x_h = X·EC(s) + P·ES(s) from the state (x0, y0, vx0, vy0) and forcing phase (cos θ0, sin θ0) at the segment start (P = c2·β of the paper; no division by β).",
-        "model.md §4 (robust form), §6 cases 11–12",
+        "docs/MODEL.md §4 (robust form), §6 cases 11–12",
         "initial conditions of the trajectory X·EC + P·ES + xp at s = 0 (EC = 1, ES = 0) solved for X, P, Y, Q.",
         "FreeHomogeneous",
         vec![
@@ -197,7 +197,7 @@ fn free_eval(m: &mut Model) {
     m.add_formula(
         "free_eval",
         "State (x, y, x', y') and switching function h = z² − 1 with h' on a free segment, from the basis values EC(s), ES(s) and the forcing phasor (cos θ, sin θ).",
-        "model.md §4, eq. (10)",
+        "docs/MODEL.md §4, eq. (10)",
         "the trajectory X·EC + P·ES + xp and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, (cos θ)' = −η sin θ, (sin θ)' = η cos θ.",
         "FreeState",
         vec![
@@ -232,7 +232,7 @@ fn free_forcing(m: &mut Model) {
     m.add_formula(
         "free_forcing",
         "Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = fxc cos ηs + fxs sin ηs, fy = fyc cos ηs + fys sin ηs.",
-        "model.md §1, §11",
+        "docs/MODEL.md §1, §11",
         "the forcing at θ = θ0 + ηs with the phasor rotated by angle addition; coefficients of cos ηs and sin ηs by partial differentiation.",
         "FreeForcing",
         vec![
@@ -286,7 +286,7 @@ fn free_start(m: &mut Model) {
     m.add_formula(
         "free_start",
         "Constants X, P, Y, Q of the resonance-stable free form x = X·EC + P·ES + fxc·FC + fxs·FS from the start state (the forced part FC, FS starts at rest).",
-        "model.md §4, §11",
+        "docs/MODEL.md §4, §11",
         "initial conditions of the trajectory at s = 0 (EC = 1, ES = FC = FS = FC' = FS' = 0) solved for X, P, Y, Q.",
         "FreeHomogeneous",
         vec![
@@ -316,7 +316,7 @@ fn free_forced_eval(m: &mut Model) {
     m.add_formula(
         "free_forced_eval",
         "State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.",
-        "model.md §4, §11, eq. (10)",
+        "docs/MODEL.md §4, §11, eq. (10)",
         "the trajectory X·EC + P·ES + fxc·FC + fxs·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.",
         "ForcedFreeState",
         vec![

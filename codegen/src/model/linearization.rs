@@ -1,4 +1,4 @@
-//! Taylor linearization of the contact function and the linearized stiffness (`model.md` §2–3).
+//! Taylor linearization of the contact function and the linearized stiffness (`docs/MODEL.md` §2–3).
 
 use super::Model;
 use crate::derive::partial;
@@ -38,7 +38,7 @@ fn taylor_terms(m: &mut Model) {
     m.add_formula(
         "taylor_terms",
         "Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].",
-        "model.md §2",
+        "docs/MODEL.md §2",
         "partial derivatives of g = (1 − 1/z)(x − εx, y − εy) at (x0, y0); D = g(r0) − J r0.",
         "TaylorTerms",
         vec![
@@ -83,7 +83,7 @@ fn linearized_stiffness(m: &mut Model) {
     m.add_formula(
         "linearized_stiffness",
         "Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] = I + K_s J and constant Fd = K_s D (erratum 2: Fb2 is the y–x entry, Fa2 the diagonal).",
-        "model.md §3, errata 2–3",
+        "docs/MODEL.md §3, errata 2–3",
         "coefficients of x and y, and the constant, of q + K_s (J q + D) in the equations of motion.",
         "LinearizedContact",
         vec![

@@ -1,4 +1,4 @@
-//! Polynomial particular solutions (for exprb43's φ-terms, `model.md` §8): a cubic forcing
+//! Polynomial particular solutions (for exprb43's φ-terms, `docs/MODEL.md` §8): a cubic forcing
 //! a0 + a1 s + a2 s² + a3 s³ has the cubic particular solution b0 + b1 s + b2 s² + b3 s³.
 
 use super::{Model, Rates};
@@ -76,7 +76,7 @@ fn polynomial_particular(m: &mut Model) {
     m.add_formula(
         "polynomial_particular",
         "Cubic particular solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² + a3 s³.",
-        "model.md §8 (φ-terms as polynomial particular solutions)",
+        "docs/MODEL.md §8 (φ-terms as polynomial particular solutions)",
         "cubic ansatz substituted into the linearized equations; coefficients of s³, s², s, 1 solved top-down as 2×2 blocks with Kl (Cramer).",
         "PolynomialParticular",
         outputs,
@@ -95,7 +95,7 @@ fn polynomial_eval(m: &mut Model) {
     m.add_formula(
         "polynomial_eval",
         "Position and velocity of the cubic particular solution at local time s.",
-        "model.md §8",
+        "docs/MODEL.md §8",
         "the cubic and its derivative.",
         "PolynomialState",
         vec![
