@@ -2,16 +2,20 @@
 //! q'' + 2νq' + Kl q = −Fd + F(cos θ, sin θ) + a0 + a1 s + a2 s² + a3 s³
 //! from a state, in local time, for every case of `docs/MODEL.md` §6 (matrix-function homogeneous part).
 
+mod bounds;
+
+pub use bounds::max_contact_stiffness;
+use bounds::{acceleration_gains, frobenius, harmonic_condition};
+
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
-use super::segment::{Bounds, Point, Segment, point_of};
 use super::series::{
     self, Coefficients, MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, len_for_rate, rate, series_len,
 };
 use crate::coefficients::{
-    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, Force,
-    HomogeneousInitial, HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor,
-    PolynomialParticular, Position, Velocity,
+    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
+    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
+    Position, Velocity,
 };
 
 /// Gain of the harmonic particular solution (its amplitude over the forcing amplitude F) above
@@ -47,97 +51,6 @@ pub struct Linearization {
     /// Near resonance ([`RESONANT_GAIN`]): the harmonic particular part is zero and every
     /// segment carries the harmonic forcing in its series response.
     resonant: bool,
-}
-
-/// The Frobenius norm of a 2×2 matrix (rows), diagonal first.
-fn frobenius(m: [[f64; 2]; 2]) -> f64 {
-    let [[a, b], [c, d]] = m;
-    math::sqrt(a * a + d * d + b * b + c * c)
-}
-
-/// Gains of the homogeneous linearized contact acceleration q'' = −2ν q' − Kl q (the generated
-/// `linear_acceleration` with no extra force): |q''| ≤ g_v |q'| + g_q |q| with g_v, g_q the
-/// largest singular values of its Jacobians in q' and q, read off as its values at unit vectors
-/// (the map is linear).
-fn acceleration_gains(model: &ModelParams, kl: &LinearizedContact) -> (f64, f64) {
-    let acc = |q: [f64; 2], v: [f64; 2]| {
-        let a = coef::linear_acceleration(
-            model,
-            &Position { x: q[0], y: q[1] },
-            &Velocity { vx: v[0], vy: v[1] },
-            &Force::default(),
-            kl,
-        );
-        [a.ax, a.ay]
-    };
-    let norm = |c1: [f64; 2], c2: [f64; 2]| harmonic_amplitude(c1[0], c2[0], c1[1], c2[1]);
-    (
-        norm(acc([0.0; 2], [1.0, 0.0]), acc([0.0; 2], [0.0, 1.0])),
-        norm(acc([1.0, 0.0], [0.0; 2]), acc([0.0, 1.0], [0.0; 2])),
-    )
-}
-
-/// An upper bound of ‖Kl‖₂ over every linearization point with z ≥ 1: the square of the fastest
-/// contact frequency (the analytic propagator caps its contact step by its inverse root).
-///
-/// Argument, from the generated formulas only: Kl (`linearized_stiffness`) is affine in K_s,
-/// Kl = Kl₀ + K_s J with Kl₀ its value at K_s = 0 (the restoring spring), so
-/// ‖Kl‖₂ ≤ ‖Kl₀‖₂ + ‖K_s‖_F ‖J‖₂. The contact function g is rotation-equivariant about the stator
-/// centre (g(Rq) = R g(q)), so J(Rq) = R J(q) Rᵀ and ‖J‖₂ depends on z only: J is evaluated along
-/// (1, 0) (`taylor_terms`). J is affine in w = 1/z (checked in `tests/generated/field.rs`) and the
-/// norm is convex, so its supremum over w ∈ (0, 1] is at an end: J(1) at z = 1 and
-/// J(0) = 2 J(½) − J(1) from z = 2. (For the elastic law J = (1 − w) I + w n nᵀ: the bound is
-/// 1 + ‖K_s‖_F up to the singular-value margin.)
-pub fn max_contact_stiffness(params: &Params) -> f64 {
-    let mut model = ModelParams::of(params);
-    let ks = frobenius([[model.kxx, model.kxy], [model.kyx, model.kyy]]);
-    let jacobian = |z: f64| {
-        let at = Position {
-            x: model.ex + z,
-            y: model.ey,
-        };
-        let t = coef::taylor_terms(&model, &at);
-        [[t.a1, t.b1], [t.b2, t.a2]]
-    };
-    let (j1, j2) = (jacobian(1.0), jacobian(2.0));
-    let j0 = [[0, 1], [2, 3]].map(|row| {
-        row.map(|k| {
-            let (a, b) = (j2.as_flattened(), j1.as_flattened());
-            2.0 * a.get(k).copied().unwrap_or(0.0) - b.get(k).copied().unwrap_or(0.0)
-        })
-    });
-    let spectral = |m: [[f64; 2]; 2]| harmonic_amplitude(m[0][0], m[0][1], m[1][0], m[1][1]);
-    let j_norm = spectral(j1).max(spectral(j0));
-    (model.kxx, model.kxy, model.kyx, model.kyy) = (0.0, 0.0, 0.0, 0.0);
-    let t = coef::taylor_terms(&model, &Position { x: 1.0, y: 0.0 });
-    let k0 = coef::linearized_stiffness(&model, &t);
-    spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]]) + ks * j_norm
-}
-
-/// The condition of the harmonic system (Kl − η² I + 2iνη I) Z = F (1, −i)ᵀ that gives the
-/// harmonic particular constants: the size of its determinant's terms over the determinant's
-/// modulus. Rounding in the generated Cramer formulas is amplified by it; near resonance it can
-/// leave finite but wrong constants whose amplitude looks harmless (at z0 = 1 with η = 1 the
-/// tangential eigenvalue of Kl is 1 exactly and the computed determinant is rounding noise), so
-/// the amplitude alone cannot detect resonance. The determinant comes from the generated
-/// `contact_modes` of the shifted stiffness Kl − η² I: det(M + iP I) = det M − P² + iP tr M.
-fn harmonic_condition(model: &ModelParams, kl: &LinearizedContact) -> f64 {
-    let eta_sq = model.eta * model.eta;
-    let shifted = LinearizedContact {
-        fa1: kl.fa1 - eta_sq,
-        fa2: kl.fa2 - eta_sq,
-        ..*kl
-    };
-    let det = coef::contact_modes(model, &shifted).det;
-    let p = 2.0 * model.nu * model.eta;
-    let trace = shifted.fa1 + shifted.fa2;
-    let modulus = math::hypot(det - p * p, p * trace);
-    let terms = math::abs(shifted.fa1 * shifted.fa2)
-        + math::abs(shifted.fb1 * shifted.fb2)
-        + p * p
-        + p * (math::abs(shifted.fa1) + math::abs(shifted.fa2));
-    // (0/0 at a zero system is not resonant: there is no harmonic forcing to amplify.)
-    if terms == 0.0 { 0.0 } else { terms / modulus }
 }
 
 /// Why a linearization cannot be used.
@@ -506,62 +419,5 @@ impl LinearSegment {
     /// The linearization this segment belongs to.
     pub fn linearization(&self) -> &Linearization {
         &self.lin
-    }
-}
-
-/// Σ‖c_m‖ s^m and the same bound for the first two derivatives at s = `hi`, from the norms
-/// ‖c_m‖ in order of m.
-#[inline]
-fn polynomial_bounds(norms: impl Iterator<Item = f64>, hi: f64) -> (f64, f64, f64) {
-    let (mut pr, mut pv, mut pa) = (0.0, 0.0, 0.0);
-    // p2 = hi^(m−2), p1 = hi^(m−1), p0 = hi^m.
-    let (mut p2, mut p1, mut p0) = (0.0, 0.0, 1.0);
-    for (m, norm) in norms.enumerate() {
-        let mf = m as f64;
-        pr += norm * p0;
-        pv += mf * norm * p1;
-        pa += mf * (mf - 1.0) * norm * p2;
-        (p2, p1, p0) = (if m == 0 { 1.0 } else { p1 }, p0, p0 * hi);
-    }
-    (pr, pv, pa)
-}
-
-impl Segment for LinearSegment {
-    fn point(&self, s: f64) -> Point {
-        let state = self.state_with(s, &self.lin.scalars(s));
-        point_of(state, self.lin.offset.0, self.lin.offset.1)
-    }
-
-    fn bounds(&self, lo: f64, hi: f64) -> Bounds {
-        let l = &self.lin;
-        // ‖cos(√A s)‖ ≤ cosh(√‖A‖ s), ‖sin(√A s)/√A‖ ≤ s·cosh(√‖A‖ s) (power series).
-        let ch = math::cosh(math::sqrt(l.norm_a) * hi);
-        let decay = math::exp(-l.nu * lo);
-        // |q0|, |w0| (no overflow: states are bounded by the divergence radius).
-        let h = &self.start;
-        let q0 = math::sqrt(h.q0x * h.q0x + h.q0y * h.q0y);
-        let w0 = math::sqrt(h.w0x * h.w0x + h.w0y * h.w0y);
-        let rh = decay * ch * (q0 + hi * w0);
-        let vh = l.nu * rh + decay * ch * (l.norm_a * hi * q0 + w0);
-        let ah = l.gains.0 * vh + l.gains.1 * rh;
-        let (amp, shift) = (l.harmonic_amplitude, l.harmonic_shift);
-        // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi (1-norms bound the
-        // Euclidean ones).
-        let norm = |c: &[f64]| c.iter().take(2).map(|v| math::abs(*v)).sum::<f64>();
-        let (pr, pv, pa) = match &self.response {
-            Response::None => (0.0, 0.0, 0.0),
-            Response::Polynomial(b) => {
-                let c = [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y];
-                polynomial_bounds(c.chunks_exact(2).map(norm), hi)
-            }
-            Response::Series(c) => {
-                polynomial_bounds(c.iter().take(series::used(c)).map(|c| norm(c)), hi)
-            }
-        };
-        Bounds {
-            radius: rh + amp + shift + pr,
-            speed: vh + l.eta * amp + pv,
-            accel: ah + l.eta * l.eta * amp + pa,
-        }
     }
 }
