@@ -212,15 +212,17 @@ fn full_stdout_fails_cleanly_after_complete_files() {
 fn closed_pipe_ends_quietly() {
     // `simulate | head -1` panicked on the broken pipe.
     let dir = tempfile::tempdir().unwrap();
-    let mut child = Command::new(assert_cmd::cargo::cargo_bin!("rotor-rub"))
+    // The reader is gone before the child starts (dropping it after the spawn would race with
+    // the child's first write, which the pipe's buffer would accept).
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(assert_cmd::cargo::cargo_bin!("rotor-rub"))
         .current_dir(dir.path())
         .args(["simulate", "--periods", "2", "--events", "e.csv"])
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
-        .spawn()
+        .output()
         .unwrap();
-    drop(child.stdout.take()); // the reader goes away before anything is written
-    let out = child.wait_with_output().unwrap();
     assert_eq!(
         out.status.code(),
         Some(141),
