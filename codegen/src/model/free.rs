@@ -183,31 +183,14 @@ fn free_homogeneous(m: &mut Model) {
 fn free_eval(m: &mut Model) {
     let mut rates = Rates::new();
     let q = free_trajectory(m, &mut rates);
-    let (ex, ey) = (m.var("ex"), m.var("ey"));
-    let g = &mut m.graph;
-    let vx = derivative(g, q[0], &rates);
-    let vy = derivative(g, q[1], &rates);
-    let u = g.sub(q[0], ex);
-    let v = g.sub(q[1], ey);
-    let uu = g.mul(u, u);
-    let vv = g.mul(v, v);
-    let m1 = g.constant(-1.0);
-    let h = g.sum(&[uu, vv, m1]);
-    let dh = derivative(g, h, &rates);
+    let outputs = state_and_event(m, q, &rates);
     m.add_formula(
         "free_eval",
         "State (x, y, x', y') and switching function h = z² − 1 with h' on a free segment, from the basis values EC(s), ES(s) and the forcing phasor (cos θ, sin θ).",
         "docs/MODEL.md §4, eq. (10)",
         "the trajectory X·EC + P·ES + xp and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, (cos θ)' = −η sin θ, (sin θ)' = η cos θ.",
         "FreeState",
-        vec![
-            ("x", "x", q[0]),
-            ("y", "y", q[1]),
-            ("vx", "x'", vx),
-            ("vy", "y'", vy),
-            ("h", "h = z² − 1", h),
-            ("dh", "h' = dh/dτ", dh),
-        ],
+        outputs,
     );
 }
 
@@ -302,30 +285,41 @@ fn free_start(m: &mut Model) {
 fn free_forced_eval(m: &mut Model) {
     let mut rates = Rates::new();
     let q = forced_trajectory(m, &mut rates);
-    let (ex, ey) = (m.var("ex"), m.var("ey"));
-    let g = &mut m.graph;
-    let vx = derivative(g, q[0], &rates);
-    let vy = derivative(g, q[1], &rates);
-    let u = g.sub(q[0], ex);
-    let v = g.sub(q[1], ey);
-    let uu = g.mul(u, u);
-    let vv = g.mul(v, v);
-    let m1 = g.constant(-1.0);
-    let h = g.sum(&[uu, vv, m1]);
-    let dh = derivative(g, h, &rates);
+    let outputs = state_and_event(m, q, &rates);
     m.add_formula(
         "free_forced_eval",
         "State (x, y, x', y') and switching function h = z² − 1 with h' of the resonance-stable free form, from the basis values EC, ES and the forced basis FC, FS, FC', FS' at s.",
         "docs/MODEL.md §4, §11, eq. (10)",
         "the trajectory X·EC + P·ES + fxc·FC + fxs·FS and its total derivative using EC' = −νEC − β²ES, ES' = EC − νES, FC' and FS' as given.",
         "ForcedFreeState",
-        vec![
-            ("x", "x", q[0]),
-            ("y", "y", q[1]),
-            ("vx", "x'", vx),
-            ("vy", "y'", vy),
-            ("h", "h = z² − 1", h),
-            ("dh", "h' = dh/dτ", dh),
-        ],
+        outputs,
     );
+}
+
+/// The outputs of a segment evaluation: the state of trajectory `q` (velocities by total
+/// derivative with `rates`) and the switching function h = z² − 1 with h'.
+fn state_and_event(
+    m: &mut Model,
+    q: [crate::expr::ExprId; 2],
+    rates: &Rates,
+) -> Vec<(&'static str, &'static str, crate::expr::ExprId)> {
+    let (ex, ey) = (m.var("ex"), m.var("ey"));
+    let g = &mut m.graph;
+    let vx = derivative(g, q[0], rates);
+    let vy = derivative(g, q[1], rates);
+    let u = g.sub(q[0], ex);
+    let v = g.sub(q[1], ey);
+    let uu = g.mul(u, u);
+    let vv = g.mul(v, v);
+    let m1 = g.constant(-1.0);
+    let h = g.sum(&[uu, vv, m1]);
+    let dh = derivative(g, h, rates);
+    vec![
+        ("x", "x", q[0]),
+        ("y", "y", q[1]),
+        ("vx", "x'", vx),
+        ("vy", "y'", vy),
+        ("h", "h = z² − 1", h),
+        ("dh", "h' = dh/dτ", dh),
+    ]
 }
