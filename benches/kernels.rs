@@ -170,7 +170,15 @@ fn main() {
         let exit_step = loop {
             let step = exprb43(&params, t, s, h, 1e-10).expect("regular contact");
             let start = point_of(s, params.offset_x, params.offset_y);
-            if first_crossing(&step.segment, 0.0, start, step.h, Direction::Down, step.h).is_some()
+            if first_crossing(
+                &step.segment,
+                0.0,
+                start,
+                step.length,
+                Direction::Down,
+                step.length,
+            )
+            .is_some()
             {
                 break (s, step);
             }
@@ -184,9 +192,9 @@ fn main() {
                     &step.segment,
                     0.0,
                     start,
-                    black_box(step.h),
+                    black_box(step.length),
                     Direction::Down,
-                    step.h,
+                    step.length,
                 )
             })
         });

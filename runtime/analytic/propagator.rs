@@ -163,7 +163,7 @@ impl ExprbContact {
         }
         if !slot.end.is_finite() {
             return Err(PropagationError::Diverged {
-                time: t0 + slot.h,
+                time: t0 + slot.length,
                 state: slot.end,
             });
         }
@@ -171,7 +171,7 @@ impl ExprbContact {
         let start = point_of(state, ox, oy);
         // The sub-step's end is the segment's point at its length: no need to evaluate it again.
         let end = point_of(slot.end, ox, oy);
-        self.exit = first_crossing_to(&slot.segment, 0.0, start, slot.h, end, Direction::Down);
+        self.exit = first_crossing_to(&slot.segment, 0.0, start, slot.length, end, Direction::Down);
         self.t0 = t0;
         self.current = next;
         Ok(())
@@ -199,8 +199,8 @@ impl SegmentSolver for ExprbContact {
                 state: p.state,
             });
         }
-        if s_target <= step.h {
-            Located::Reached(if s_target == step.h {
+        if s_target <= step.length {
+            Located::Reached(if s_target == step.length {
                 step.end
             } else {
                 step.segment.point(s_target).state
@@ -212,7 +212,7 @@ impl SegmentSolver for ExprbContact {
 
     fn step(&mut self) -> Result<(), PropagationError> {
         let step = self.current();
-        let (length, state) = (step.h, step.end);
+        let (length, state) = (step.length, step.end);
         // Kahan summation of the sub-step lengths.
         let y = length - self.time_carry;
         let t_next = self.t0 + y;
@@ -221,7 +221,7 @@ impl SegmentSolver for ExprbContact {
     }
 
     fn computed_to(&self) -> f64 {
-        self.t0 + self.current().h
+        self.t0 + self.current().length
     }
 }
 

@@ -21,7 +21,7 @@ pub struct SubStep {
     /// The closed-form continuous extension.
     pub segment: LinearSegment,
     /// The step length.
-    pub h: f64,
+    pub length: f64,
     /// The state at s = h.
     pub end: State,
     /// Error estimate in units of the tolerance (exprb43; 0 for exprb2).
@@ -40,7 +40,7 @@ impl SubStep {
     pub fn zeroed() -> SubStep {
         SubStep {
             segment: LinearSegment::zeroed(),
-            h: 0.0,
+            length: 0.0,
             end: State::default(),
             error: 0.0,
         }
@@ -68,7 +68,7 @@ pub fn exprb2_into(
     }
     lin.segment_into(state, [0.0; 8], h, &mut out.segment);
     out.end = out.segment.state_with(h, &lin.scalars(h));
-    out.h = h;
+    out.length = h;
     out.error = 0.0;
     Ok(())
 }
@@ -137,7 +137,7 @@ pub fn exprb43_into(
     if !error.is_finite() {
         error = f64::INFINITY;
     }
-    out.h = h;
+    out.length = h;
     out.end = end;
     out.error = error;
     Ok(())

@@ -133,9 +133,9 @@ impl Stepper {
         let found = locate(
             &sub.segment,
             (0.0, start),
-            (sub.h, end),
+            (sub.length, end),
             Direction::Down,
-            sub.h,
+            sub.length,
         );
         resolve(found, report)
     }
