@@ -231,6 +231,20 @@ fn search_chunk<F: EventFunction>(
             return found(x, converged && !work.capped);
         }
     }
+    // The common case first: the whole chunk proved free by one bound test, exactly as the
+    // search's first step below would, without setting up its stack (a few kilobytes).
+    let len = b.s - a.s;
+    if b.g <= TOUCH
+        && work.tests > 0
+        && !b.g.is_nan()
+        && len > budget.min_interval * (1.0 + math::abs(b.s))
+    {
+        let m2 = f.curvature(a.s, &a.p, b.s);
+        if no_crossing(a.g, a.dg, b.g, b.dg, m2, len, TOUCH) {
+            work.tests -= 1;
+            return Search::None;
+        }
+    }
     // Left-first depth-first search: the current interval is [x, top of the stack]; a
     // discarded interval moves x to its right end.
     let mut stack = [(b, 0usize); MAX_DEPTH + 1];
