@@ -170,6 +170,13 @@ fn agree_with_dop853(manifold: Manifold, problem: &Problem) {
         }
         Err(e) => panic!("{manifold:?}: reference failed: {e}"),
     };
+    // Flutter that reaches a tenth of the divergence radius within the run: a method whose last
+    // step overshoots the end time may see the radius passed a little later and rightly report
+    // the divergence; nothing to compare.
+    let end = reference.1;
+    if end.x.hypot(end.y) > 0.1 * rotor_rub::propagate::DIVERGENCE_RADIUS {
+        return;
+    }
     let analytic = Options {
         tol: Some(1e-11),
         ..Options::default()
