@@ -203,6 +203,7 @@ fn main() {
         let sys = RotorSystem {
             params,
             regime: Regime::Contact,
+            slip: 0.0,
         };
         let mut integ = Integrator::<Dop853, 4>::new(
             &sys,

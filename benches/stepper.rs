@@ -36,8 +36,8 @@ fn kind(start: Regime, switches: usize) -> usize {
     match (start, switches > 0) {
         (Regime::Free, false) => 0,
         (Regime::Free, true) => 1,
-        (Regime::Contact, false) => 2,
-        (Regime::Contact, true) => 3,
+        (Regime::Contact | Regime::Rolling, false) => 2,
+        (Regime::Contact | Regime::Rolling, true) => 3,
     }
 }
 
@@ -131,7 +131,7 @@ fn rk4_step(problem: &Problem, t: f64, s: &State, dt: f64) -> State {
         } else {
             Regime::Free
         };
-        field::derivative(p, regime, t, s).to_array()
+        field::derivative(p, regime, 0.0, t, s).to_array()
     };
     let add = |a: &State, k: &[f64; 4], c: f64| {
         let a = a.to_array();

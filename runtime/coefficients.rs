@@ -21,7 +21,7 @@
 include!(concat!(env!("OUT_DIR"), "/coefficients.rs"));
 
 impl ModelParams {
-    /// The paper's symbols of `params` (ν, η, F, K̂, ε̂).
+    /// The paper's symbols of `params` (ν, η, F, K̂, ε̂, μ, ρ_R).
     #[inline]
     pub fn of(params: &crate::params::Params) -> Self {
         ModelParams {
@@ -34,6 +34,8 @@ impl ModelParams {
             kyy: params.k_yy,
             ex: params.offset_x,
             ey: params.offset_y,
+            mu: params.friction_coefficient,
+            rho_r: params.radius_ratio,
         }
     }
 }

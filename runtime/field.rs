@@ -7,10 +7,10 @@
 //! the contact force in the contact regime. Comparisons of methods stay independent because the test suites keep
 //! their own hand-written field (`tests/generated/field.rs`, `tests/reference`).
 
-use crate::coefficients::{self as coef, ModelParams, Phasor, Position, Velocity};
+use crate::coefficients::{self as coef, ModelParams, Phasor, Position, Slip, Velocity};
 use crate::math;
 use crate::params::{Params, State};
-use crate::propagate::Regime;
+use crate::propagate::{EventKind, Regime};
 
 /// z = √((x − ε̂x)² + (y − ε̂y)²): the distance from the stator centre in clearances (`docs/MODEL.md`
 /// notation). Contact when z > 1.
@@ -27,11 +27,12 @@ pub fn contact_force(params: &Params, x: f64, y: f64) -> (f64, f64) {
     (f.fx, f.fy)
 }
 
-/// Accelerations (x'', y'') of the regime's vector field at time τ (`docs/MODEL.md` §1).
+/// Accelerations (x'', y'') of the regime's vector field at time τ (`docs/MODEL.md` §1, §14);
+/// `slip` is the slip direction σ of slipping contact (±1), 0 when no slip is tracked.
 #[inline]
-pub fn acceleration(params: &Params, regime: Regime, tau: f64, s: &State) -> (f64, f64) {
+pub fn acceleration(params: &Params, regime: Regime, slip: f64, tau: f64, s: &State) -> (f64, f64) {
     let (sin_t, cos_t) = math::sin_cos(params.speed_ratio * tau + params.phase);
-    acceleration_with_phasor(params, regime, cos_t, sin_t, s)
+    acceleration_with_phasor(params, regime, slip, cos_t, sin_t, s)
 }
 
 /// As [`acceleration`], with the forcing direction (cos θ, sin θ) supplied by the caller (for
@@ -41,6 +42,7 @@ pub fn acceleration(params: &Params, regime: Regime, tau: f64, s: &State) -> (f6
 pub fn acceleration_with_phasor(
     params: &Params,
     regime: Regime,
+    slip: f64,
     cos_theta: f64,
     sin_theta: f64,
     s: &State,
@@ -52,21 +54,34 @@ pub fn acceleration_with_phasor(
         ct: cos_theta,
         st: sin_theta,
     };
-    let a = coef::free_acceleration(&model, &at, &rate, &phasor);
     match regime {
-        Regime::Free => (a.ax, a.ay),
-        // The contact regime adds the contact force (every contact piece of the model).
-        Regime::Contact => {
+        Regime::Free => {
+            let a = coef::free_acceleration(&model, &at, &rate, &phasor);
+            (a.ax, a.ay)
+        }
+        // Frictionless contact (μ = 0 tracks no slip: σ = 0) adds the elastic contact force.
+        Regime::Contact if slip == 0.0 => {
+            let a = coef::free_acceleration(&model, &at, &rate, &phasor);
             let f = coef::contact_force(&model, &at);
             (a.ax - f.fx, a.ay - f.fy)
+        }
+        // Slipping adds the elastic force and friction μσN t.
+        Regime::Contact => {
+            let a = coef::free_acceleration(&model, &at, &rate, &phasor);
+            let f = coef::slipping_contact_force(&model, &at, &Slip { sigma: slip });
+            (a.ax - f.fx, a.ay - f.fy)
+        }
+        Regime::Rolling => {
+            let a = coef::rolling_acceleration(&model, &at, &rate, &phasor);
+            (a.ax, a.ay)
         }
     }
 }
 
 /// The regime's vector field s' = (x', y', x'', y'') at time τ.
 #[inline]
-pub fn derivative(params: &Params, regime: Regime, tau: f64, s: &State) -> State {
-    let (ax, ay) = acceleration(params, regime, tau, s);
+pub fn derivative(params: &Params, regime: Regime, slip: f64, tau: f64, s: &State) -> State {
+    let (ax, ay) = acceleration(params, regime, slip, tau, s);
     State::new(s.vx, s.vy, ax, ay)
 }
 
@@ -93,12 +108,120 @@ pub fn regime_of(params: &Params, tau: f64, state: &State) -> Regime {
     } else if math::abs(dh) > dh_rounding {
         dh
     } else {
-        let (ax, ay) = acceleration(params, Regime::Free, tau, state);
+        let (ax, ay) = acceleration(params, Regime::Free, 0.0, tau, state);
         state.vx * state.vx + state.vy * state.vy + u * ax + v * ay
     };
-    if sign > 0.0 {
-        Regime::Contact
-    } else {
+    if sign <= 0.0 {
         Regime::Free
+    } else if params.friction_coefficient > 0.0 && friction_at(params, tau, state).rolls(params) {
+        // A start in contact with w = 0 exactly and |λ| ≤ μN rolls (`docs/MODEL.md` §14).
+        Regime::Rolling
+    } else {
+        Regime::Contact
+    }
+}
+
+/// The friction quantities of a contact state (`docs/MODEL.md` §14), generated from the model:
+/// the normal force N, the slip velocity w and λ, the tangential force that would keep w at 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Friction {
+    /// N = nᵀK_s g, the normal elastic contact force (≥ 0 in contact).
+    pub normal: f64,
+    /// w = q'·t + ρ_R η, the slip velocity of the rotor surface at the contact point.
+    pub slip_velocity: f64,
+    /// λ = t·G − (q'·t)(q'·n)/z.
+    pub lambda: f64,
+}
+
+impl Friction {
+    /// Whether rolling holds: w = 0 exactly and |λ| ≤ μN.
+    fn rolls(&self, params: &Params) -> bool {
+        self.slip_velocity == 0.0 && self.within_cone(params)
+    }
+
+    /// |λ| ≤ μN: friction can keep w at 0.
+    pub fn within_cone(&self, params: &Params) -> bool {
+        math::abs(self.lambda) <= params.friction_coefficient * self.normal
+    }
+
+    /// w' while slipping in direction `slip`: λ − μσN.
+    pub fn slip_acceleration(&self, params: &Params, slip: f64) -> f64 {
+        self.lambda - params.friction_coefficient * slip * self.normal
+    }
+
+    /// sign λ as a slip direction (+1 when λ = 0).
+    pub fn lambda_direction(&self) -> f64 {
+        if self.lambda < 0.0 { -1.0 } else { 1.0 }
+    }
+}
+
+/// [`Friction`] at a state and time.
+#[inline]
+pub fn friction_at(params: &Params, tau: f64, state: &State) -> Friction {
+    let (sin_t, cos_t) = math::sin_cos(params.speed_ratio * tau + params.phase);
+    friction_with_phasor(params, cos_t, sin_t, state)
+}
+
+/// [`friction_at`] with the forcing direction supplied by the caller.
+#[inline]
+pub fn friction_with_phasor(
+    params: &Params,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> Friction {
+    let f = coef::friction_state(
+        &ModelParams::of(params),
+        &Position { x: s.x, y: s.y },
+        &Velocity { vx: s.vx, vy: s.vy },
+        &Phasor {
+            ct: cos_theta,
+            st: sin_theta,
+        },
+    );
+    Friction {
+        normal: f.normal,
+        slip_velocity: f.slip_velocity,
+        lambda: f.lambda,
+    }
+}
+
+/// What happens where the slip velocity w reaches 0 while slipping in direction `slip`
+/// (`docs/MODEL.md` §14).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlipZero {
+    /// |λ| ≤ μN: the rotor rolls (`roll`).
+    Roll,
+    /// |λ| > μN with sign λ ≠ σ: the slip reverses (`reverse`).
+    Reverse,
+    /// |λ| > μN with sign λ = σ: w only touched 0; slipping goes on, no event.
+    Touch,
+}
+
+/// The decision at w = 0 while slipping in direction `slip`.
+pub fn at_slip_zero(params: &Params, tau: f64, state: &State, slip: f64) -> SlipZero {
+    let f = friction_at(params, tau, state);
+    if f.within_cone(params) {
+        SlipZero::Roll
+    } else if f.lambda_direction() == slip {
+        SlipZero::Touch
+    } else {
+        SlipZero::Reverse
+    }
+}
+
+/// The slip direction σ of slipping contact starting at `state` (`docs/MODEL.md` §14): 0 when no
+/// slip is tracked (μ = 0); on entering contact (or a start in contact) sign w, or sign λ where
+/// w = 0 exactly; after `reverse` or `slip` (w = 0, where w's own sign is rounding) sign λ.
+pub fn slip_direction(params: &Params, tau: f64, state: &State, cause: Option<EventKind>) -> f64 {
+    if params.friction_coefficient <= 0.0 {
+        return 0.0;
+    }
+    let f = friction_at(params, tau, state);
+    match cause {
+        Some(EventKind::Reverse | EventKind::Slip) => f.lambda_direction(),
+        _ if f.slip_velocity > 0.0 => 1.0,
+        _ if f.slip_velocity < 0.0 => -1.0,
+        _ => f.lambda_direction(),
     }
 }

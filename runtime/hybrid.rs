@@ -13,7 +13,7 @@ use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
 use crate::reference::{
     Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, PhasorRotorSystem, REFERENCE_BUDGET,
-    SUBDIVISIONS, Tolerance, switch_in_deferred_step,
+    ReferenceSolver, SUBDIVISIONS, Tolerance, switch_in_deferred_step,
 };
 
 /// DOP853 on the 6-state contact field (rotor plus forcing phasor).
@@ -44,6 +44,7 @@ impl Dop853Contact {
         let system = PhasorRotorSystem {
             params: *params,
             regime: Regime::Contact,
+            slip: 0.0,
         };
         // A quarter of the shorter of the forcing period and 2π, as the reference integrators.
         let max_step = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
@@ -87,7 +88,14 @@ impl Dop853Contact {
 }
 
 impl SegmentSolver for Dop853Contact {
-    fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+    fn start(
+        &mut self,
+        _regime: Regime,
+        slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError> {
+        self.system.slip = slip;
         let y = PhasorRotorSystem::initial(&self.params, time, &state);
         match self.carried_step {
             Some(step) => self
@@ -153,7 +161,9 @@ impl SegmentSolver for Dop853Contact {
 }
 
 /// The hybrid method (see [`crate::Method::Hybrid`]).
-pub struct HybridPropagator(Piecewise<ByRegime<FreeFlightSolver, Dop853Contact>>);
+pub struct HybridPropagator(
+    Piecewise<ByRegime<FreeFlightSolver, Dop853Contact, ReferenceSolver<Dop853>>>,
+);
 
 impl HybridPropagator {
     /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
@@ -163,11 +173,14 @@ impl HybridPropagator {
         Method::Hybrid.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
-        Piecewise::new(problem, Some(REFERENCE_BUDGET), |_, s0| {
-            // The integrator starts at the problem start, ready for a start in contact.
+        Piecewise::new(problem, Some(REFERENCE_BUDGET), |_, slip, s0| {
+            // The integrators start at the problem start, ready for a start in contact.
+            let mut contact = Dop853Contact::new(&params, tol, t0, s0);
+            contact.system.slip = slip;
             Ok(ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),
-                contact: Dop853Contact::new(&params, tol, t0, s0),
+                contact,
+                rolling: ReferenceSolver::new(&params, Regime::Rolling, t0, s0, tol),
             })
         })
         .map(HybridPropagator)

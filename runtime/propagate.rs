@@ -10,13 +10,33 @@ use core::fmt;
 
 use crate::params::{ParamError, State};
 
-/// Contact regime (`docs/MODEL.md` §1): free flight for z < 1, contact for z > 1.
+/// Contact regime (`docs/MODEL.md` §1, §14): free flight for z < 1, contact for z > 1; under
+/// friction (μ > 0) contact either slips (`Contact`, with a slip direction σ the methods track)
+/// or rolls without slip (`Rolling`, dry whip).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Regime {
     /// No contact: the rotor moves freely inside the clearance.
     Free,
-    /// The rotor presses on the stator.
+    /// The rotor presses on the stator (slipping on it when there is friction).
     Contact,
+    /// The rotor rolls on the stator without slip (μ > 0 only): w ≡ 0, |λ| ≤ μN.
+    Rolling,
+}
+
+impl Regime {
+    /// `free`, `contact` or `rolling`, as written in sample files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Regime::Free => "free",
+            Regime::Contact => "contact",
+            Regime::Rolling => "rolling",
+        }
+    }
+
+    /// Whether the rotor touches the stator (contact or rolling).
+    pub const fn in_contact(self) -> bool {
+        !matches!(self, Regime::Free)
+    }
 }
 
 /// What a switch does.
@@ -24,29 +44,54 @@ pub enum Regime {
 pub enum EventKind {
     /// Contact starts (z crosses 1 upwards).
     Enter,
-    /// Contact ends (z crosses 1 downwards).
+    /// Contact ends (z crosses 1 downwards, from slipping or rolling).
     Exit,
+    /// The slip direction reverses while in contact (w crosses 0, |λ| > μN).
+    Reverse,
+    /// Rolling starts (w reaches 0 with |λ| ≤ μN).
+    Roll,
+    /// Rolling ends and slipping resumes (|λ| reaches μN), σ = sign λ.
+    Slip,
 }
 
 impl EventKind {
-    /// `enter` or `exit`, as written in event files.
+    /// Every kind, in the order of their C codes.
+    pub const ALL: [EventKind; 5] = [
+        EventKind::Enter,
+        EventKind::Exit,
+        EventKind::Reverse,
+        EventKind::Roll,
+        EventKind::Slip,
+    ];
+
+    /// `enter`, `exit`, `reverse`, `roll` or `slip`, as written in event files.
     pub const fn name(self) -> &'static str {
         match self {
             EventKind::Enter => "enter",
             EventKind::Exit => "exit",
+            EventKind::Reverse => "reverse",
+            EventKind::Roll => "roll",
+            EventKind::Slip => "slip",
         }
     }
 
     /// The regime after the switch.
     pub const fn regime_after(self) -> Regime {
         match self {
-            EventKind::Enter => Regime::Contact,
+            EventKind::Enter | EventKind::Reverse | EventKind::Slip => Regime::Contact,
             EventKind::Exit => Regime::Free,
+            EventKind::Roll => Regime::Rolling,
         }
+    }
+
+    /// Whether the switch is one of z = 1 (`enter`, `exit`) rather than of friction.
+    pub const fn is_contact_switch(self) -> bool {
+        matches!(self, EventKind::Enter | EventKind::Exit)
     }
 }
 
-/// A contact switch: time, kind and the state at the switch (where z = 1).
+/// A switch: time, kind and the state at the switch (where z = 1 for `enter`/`exit`, w = 0 for
+/// `reverse`/`roll`, |λ| = μN for `slip`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Event {
     /// Switch time τ.

@@ -41,6 +41,7 @@ pub fn params() -> impl Strategy<Value = Params> {
                 k_yy: kyy,
                 offset_x: ex,
                 offset_y: ey,
+                ..Params::DEFAULT
             },
         )
 }

@@ -65,6 +65,7 @@ fn base() -> impl Strategy<Value = Problem> {
                     k_yy: kyy,
                     offset_x: ex,
                     offset_y: ey,
+                    ..Params::DEFAULT
                 },
                 initial,
                 start_time: 0.0,

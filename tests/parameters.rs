@@ -22,6 +22,8 @@ fn slot<'a>(p: &'a mut Problem, name: &str) -> &'a mut f64 {
         "k_yy" => &mut q.k_yy,
         "offset_x" => &mut q.offset_x,
         "offset_y" => &mut q.offset_y,
+        "friction_coefficient" => &mut q.friction_coefficient,
+        "radius_ratio" => &mut q.radius_ratio,
         "x0" => &mut p.initial.x,
         "y0" => &mut p.initial.y,
         "vx0" => &mut p.initial.vx,
@@ -33,8 +35,8 @@ fn slot<'a>(p: &'a mut Problem, name: &str) -> &'a mut f64 {
 
 #[test]
 fn access_by_name_reaches_the_named_field() {
-    assert_eq!(Parameter::COUNT, 16);
-    assert_eq!(Parameter::MODEL_COUNT, 11);
+    assert_eq!(Parameter::COUNT, 18);
+    assert_eq!(Parameter::MODEL_COUNT, 13);
     for (i, p) in Parameter::ALL.into_iter().enumerate() {
         assert_eq!(Parameter::from_name(p.name()), Some(p));
         assert_eq!(p.is_model(), i < Parameter::MODEL_COUNT, "{p}");

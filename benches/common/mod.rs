@@ -324,7 +324,7 @@ pub mod peer {
             } else {
                 Regime::Free
             };
-            *dydt = field::derivative(&self.0, regime, t, &s).to_array();
+            *dydt = field::derivative(&self.0, regime, 0.0, t, &s).to_array();
         }
     }
 

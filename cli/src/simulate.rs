@@ -97,7 +97,7 @@ pub fn run(args: &Args) -> Result<()> {
         |sample| match &mut samples_out {
             Some(out) => {
                 let s = sample.state;
-                let contact = u8::from(sample.regime == Regime::Contact);
+                let contact = u8::from(sample.regime.in_contact());
                 out.row((sample.time, s.x, s.y, s.vx, s.vy, contact))
             }
             None => Ok(()),
@@ -138,6 +138,7 @@ pub fn run(args: &Args) -> Result<()> {
         match pass.last.regime {
             Regime::Contact => "in contact",
             Regime::Free => "free flight",
+            Regime::Rolling => "rolling",
         }
     );
     let _ = writeln!(

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use rotor_rub::{Event, Options, Problem, Propagate, Propagator, Regime, Sample};
+use rotor_rub::{Event, Options, Problem, Propagate, Propagator, Sample};
 
 use crate::error::{CliError, Result};
 use crate::limits::{Tracker, fits_memory, memory_limit};
@@ -80,17 +80,17 @@ pub fn run(
     let mut elapsed = Duration::ZERO;
     let mut events = Vec::new();
     let (mut switches, mut enters, mut contact) = (0_u64, 0_u64, 0.0);
-    let (mut in_contact, mut since) = (initial_regime == Regime::Contact, start_time);
+    let (mut in_contact, mut since) = (initial_regime.in_contact(), start_time);
     let mut step = |propagator: &mut Propagator, t: f64| {
         let started = Instant::now();
         let sample = advance_to(propagator, t, tracker, |e| {
             switches += 1;
-            if e.kind.regime_after() == Regime::Contact {
+            if e.kind.regime_after().in_contact() {
                 enters += 1;
             } else {
                 contact += e.time - since;
             }
-            (in_contact, since) = (e.kind.regime_after() == Regime::Contact, e.time);
+            (in_contact, since) = (e.kind.regime_after().in_contact(), e.time);
             if keep_events {
                 if switches > max_kept {
                     fits_memory("switches kept", switches, std::mem::size_of::<Event>())?;
@@ -113,7 +113,7 @@ pub fn run(
     let contact_fraction = if end > start_time {
         contact / (end - start_time)
     } else {
-        f64::from(u8::from(initial_regime == Regime::Contact))
+        f64::from(u8::from(initial_regime.in_contact()))
     };
     Ok(Pass {
         events,

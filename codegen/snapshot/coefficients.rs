@@ -52,6 +52,16 @@
 //                               after:     6 add     8 mul    0 div   0 sqrt   0 trans
 // shifted_stiffness            before:     2 add     2 mul    0 div   0 sqrt   0 trans
 //                               after:     2 add     1 mul    0 div   0 sqrt   0 trans
+// slipping_contact_force       before:   130 add    70 mul   18 div  18 sqrt   0 trans
+//                               after:    11 add    22 mul    1 div   1 sqrt   0 trans
+// slipping_linearized_stiffness before:  2328 add  1242 mul  270 div 270 sqrt   0 trans
+//                               after:    53 add   126 mul    2 div   1 sqrt   0 trans
+// slipping_remainder           before:   138 add    74 mul   18 div  18 sqrt   0 trans
+//                               after:    19 add    34 mul    1 div   1 sqrt   0 trans
+// friction_state               before:   138 add    72 mul   19 div  19 sqrt   0 trans
+//                               after:    21 add    43 mul    1 div   1 sqrt   0 trans
+// rolling_acceleration         before:   212 add   114 mul   28 div  28 sqrt   0 trans
+//                               after:    26 add    34 mul    1 div   1 sqrt   0 trans
 
 use crate::math as m;
 /// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
@@ -75,6 +85,10 @@ pub struct ModelParams {
     pub ex: f64,
     /// ε̂y, stator centre offset
     pub ey: f64,
+    /// μ, Coulomb friction coefficient at contact
+    pub mu: f64,
+    /// ρ_R = R/δ, rotor radius over radial clearance
+    pub rho_r: f64,
 }
 /// A rotor position (x, y): the point a formula is evaluated or linearized at.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -351,6 +365,12 @@ pub struct ForcedBasis {
     pub dfc: f64,
     /// FS'(s)
     pub dfs: f64,
+}
+/// The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §14).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Slip {
+    /// σ = ±1, the sign of the slip velocity w
+    pub sigma: f64,
 }
 /// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
 ///
@@ -1202,5 +1222,246 @@ pub fn shifted_stiffness(
         a12: fb1,
         a21: fb2,
         a22: t0 + fa2,
+    }
+}
+/// The contact force while slipping in direction σ: K_s·g(q) + μσN t (restoring sign).
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: the model's `elastic_contact` and `friction` pieces.
+#[inline]
+#[must_use]
+pub fn slipping_contact_force(model: &ModelParams, at: &Position, slip: &Slip) -> Force {
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let mu = model.mu;
+    let x = at.x;
+    let y = at.y;
+    let sigma = slip.sigma;
+    let t0 = x - ex;
+    let t1 = y - ey;
+    let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    let t3 = 1.0 - t2;
+    let t4 = t0 * t3 * kxx;
+    let t5 = t1 * t3 * kxy;
+    let t6 = t0 * t3 * kyx;
+    let t7 = t1 * t3 * kyy;
+    let t8 = t0 * t2 * (t4 + t5) + t1 * t2 * (t6 + t7);
+    Force {
+        fx: t4 + t5 - t1 * t2 * sigma * t8 * mu,
+        fy: t6 + t7 + t0 * t2 * sigma * t8 * mu,
+    }
+}
+/// Linearized stiffness of slipping contact in direction σ: Kl = I + ∂(K_s g + μσN t)/∂q and Fd so that q + K_s g + μσN t ≈ Kl q + Fd about (x0, y0).
+///
+/// Source: docs/MODEL.md §14, §3.
+/// Derivation: partial derivatives of the model's stiffness term with the friction piece, at (x0, y0); Fd = term(r0) − Kl r0.
+#[inline]
+#[must_use]
+pub fn slipping_linearized_stiffness(
+    model: &ModelParams,
+    at: &Position,
+    slip: &Slip,
+) -> LinearizedContact {
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let mu = model.mu;
+    let x = at.x;
+    let y = at.y;
+    let sigma = slip.sigma;
+    let t0 = x - ex;
+    let t1 = t0 * t0;
+    let t2 = y - ey;
+    let t3 = t2 * t2;
+    let t4 = t1 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = 1.0 - t5;
+    let t7 = t6 * kxx;
+    let t8 = 1.0 / t4;
+    let t9 = t1 * t5 * t8 * kxx;
+    let t10 = t0 * t2 * t5 * t8 * kxy;
+    let t11 = t0 * t6 * kxx;
+    let t12 = t2 * t6 * kxy;
+    let t13 = t11 + t12;
+    let t14 = t0 * t6 * kyx;
+    let t15 = t2 * t6 * kyy;
+    let t16 = t14 + t15;
+    let t17 = t0 * t5 * t13 + t2 * t5 * t16;
+    let t18 = t6 * kyx;
+    let t19 = t1 * t5 * t8 * kyx;
+    let t20 = t0 * t2 * t5 * t8 * kyy;
+    let t21 = t5 * t13 + t0 * t5 * (t7 + t9 + t10) + t2 * t5 * (t18 + t19 + t20)
+        - t1 * t5 * t8 * t13 - t0 * t2 * t5 * t8 * t16;
+    let t22 = 1.0 + t7 + t9 + t10 + t0 * t2 * t5 * t8 * sigma * t17 * mu
+        - t2 * t5 * sigma * mu * t21;
+    let t23 = t0 * t2 * t5 * t8 * kxx;
+    let t24 = t6 * kxy;
+    let t25 = t3 * t5 * t8 * kxy;
+    let t26 = t0 * t2 * t5 * t8 * kyx;
+    let t27 = t6 * kyy;
+    let t28 = t3 * t5 * t8 * kyy;
+    let t29 = t0 * t5 * (t23 + t24 + t25) + t5 * t16 + t2 * t5 * (t26 + t27 + t28)
+        - t0 * t2 * t5 * t8 * t13 - t3 * t5 * t8 * t16;
+    let t30 = t23 + t24 + t25 + t3 * t5 * t8 * sigma * t17 * mu - t5 * sigma * t17 * mu
+        - t2 * t5 * sigma * mu * t29;
+    let t31 = t18 + t19 + t20 + t5 * sigma * t17 * mu + t0 * t5 * sigma * mu * t21
+        - t1 * t5 * t8 * sigma * t17 * mu;
+    let t32 = 1.0 + t26 + t27 + t28 + t0 * t5 * sigma * mu * t29
+        - t0 * t2 * t5 * t8 * sigma * t17 * mu;
+    LinearizedContact {
+        fa1: t22,
+        fb1: t30,
+        fb2: t31,
+        fa2: t32,
+        fd1: x + t11 + t12 - t2 * t5 * sigma * t17 * mu - x * t22 - y * t30,
+        fd2: y + t14 + t15 + t0 * t5 * sigma * t17 * mu - x * t31 - y * t32,
+    }
+}
+/// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) − μσN t of the linearized slipping contact field, as a force on the acceleration.
+///
+/// Source: docs/MODEL.md §14, §8.
+/// Derivation: the linearized stiffness term minus the model's stiffness term with the friction piece.
+#[inline]
+#[must_use]
+pub fn slipping_remainder(
+    model: &ModelParams,
+    at: &Position,
+    kl: &LinearizedContact,
+    slip: &Slip,
+) -> Force {
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let mu = model.mu;
+    let x = at.x;
+    let y = at.y;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
+    let sigma = slip.sigma;
+    let t0 = x - ex;
+    let t1 = y - ey;
+    let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    let t3 = 1.0 - t2;
+    let t4 = t0 * t2 * (t0 * t3 * kxx + t1 * t3 * kxy)
+        + t1 * t2 * (t0 * t3 * kyx + t1 * t3 * kyy);
+    Force {
+        fx: fd1 + x * fa1 + y * fb1 + t1 * t2 * sigma * t4 * mu - x - t0 * t3 * kxx
+            - t1 * t3 * kxy,
+        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t3 * kyx - t1 * t3 * kyy
+            - t0 * t2 * sigma * t4 * mu,
+    }
+}
+/// Outputs of [`friction_state`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionState {
+    /// N, the normal elastic contact force
+    pub normal: f64,
+    /// w, the slip velocity
+    pub slip_velocity: f64,
+    /// λ, the tangential force of rolling
+    pub lambda: f64,
+}
+/// The friction quantities of a contact state: the normal force N = nᵀK_s g, the slip velocity w = q'·t + ρ_R η of the rotor surface at the contact point, and λ = t·G − (q'·t)(q'·n)/z (G: every force but friction), the tangential force that keeps w constant. While slipping w' = λ − μσN.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: the model's `normal_force`, `contact_frame` and the frictionless contact field; w' = t·q'' + q'·t', t' = −(q'·t/z) n.
+#[inline]
+#[must_use]
+pub fn friction_state(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> FrictionState {
+    let nu = model.nu;
+    let eta = model.eta;
+    let f = model.f;
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let rho_r = model.rho_r;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = x - ex;
+    let t1 = y - ey;
+    let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    let t3 = 1.0 - t2;
+    let t4 = -t1 * t2 * vx;
+    let t5 = t0 * t2 * vy;
+    FrictionState {
+        normal: t0 * t2 * (t0 * t3 * kxx + t1 * t3 * kxy)
+            + t1 * t2 * (t0 * t3 * kyx + t1 * t3 * kyy),
+        slip_velocity: t4 + t5 + eta * rho_r,
+        lambda: t0 * t2 * (st * f - 2.0 * nu * vy - y - t0 * t3 * kyx - t1 * t3 * kyy)
+            - t1 * t2 * (ct * f - 2.0 * nu * vx - x - t0 * t3 * kxx - t1 * t3 * kxy)
+            - t2 * (t4 + t5) * (t0 * t2 * vx + t1 * t2 * vy),
+    }
+}
+/// Acceleration while rolling: q'' = G − λ t, the frictionless contact field minus the tangential force λ that keeps the slip velocity w at 0.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: the frictionless contact field and λ of `friction_state`.
+#[inline]
+#[must_use]
+pub fn rolling_acceleration(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> Acceleration {
+    let nu = model.nu;
+    let f = model.f;
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = ct * f;
+    let t1 = -2.0 * nu * vx;
+    let t2 = -x;
+    let t3 = x - ex;
+    let t4 = y - ey;
+    let t5 = 1.0 / m::sqrt(t3 * t3 + t4 * t4);
+    let t6 = 1.0 - t5;
+    let t7 = -t3 * t6 * kxx;
+    let t8 = -t4 * t6 * kxy;
+    let t9 = st * f;
+    let t10 = -2.0 * nu * vy;
+    let t11 = -y;
+    let t12 = -t3 * t6 * kyx;
+    let t13 = -t4 * t6 * kyy;
+    let t14 = t3 * t5 * (t9 + t10 + t11 + t12 + t13) - t4 * t5 * (t0 + t1 + t2 + t7 + t8)
+        - t5 * (t3 * t5 * vy - t4 * t5 * vx) * (t3 * t5 * vx + t4 * t5 * vy);
+    Acceleration {
+        ax: t0 + t1 + t2 + t7 + t8 + t4 * t5 * t14,
+        ay: t9 + t10 + t11 + t12 + t13 - t3 * t5 * t14,
     }
 }

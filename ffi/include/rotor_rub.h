@@ -31,20 +31,24 @@
 #define ROTOR_RUB_PARAMETER_OFFSET_X 9
 /* offset_y (ε̂y): stator centre offset from the rotor's rest position, y, clearances; valid range [-10, 10]. */
 #define ROTOR_RUB_PARAMETER_OFFSET_Y 10
+/* friction_coefficient (μ): Coulomb friction coefficient at contact (0: frictionless, the paper's model); valid range [0, 10]. */
+#define ROTOR_RUB_PARAMETER_FRICTION_COEFFICIENT 11
+/* radius_ratio (ρ_R): rotor radius over radial clearance, R/δ (the rotor spins counter-clockwise at η); valid range (0, 100000]. */
+#define ROTOR_RUB_PARAMETER_RADIUS_RATIO 12
 /* x0 (x̃0): initial position x, clearances; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_X0 11
+#define ROTOR_RUB_PARAMETER_X0 13
 /* y0 (ỹ0): initial position y, clearances; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_Y0 12
+#define ROTOR_RUB_PARAMETER_Y0 14
 /* vx0 (x̃0'): initial velocity x', clearances per unit τ; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_VX0 13
+#define ROTOR_RUB_PARAMETER_VX0 15
 /* vy0 (ỹ0'): initial velocity y', clearances per unit τ; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_VY0 14
+#define ROTOR_RUB_PARAMETER_VY0 16
 /* start_time (τ0): time of the initial state; valid range [-1e6, 1e6]. */
-#define ROTOR_RUB_PARAMETER_START_TIME 15
+#define ROTOR_RUB_PARAMETER_START_TIME 17
 
 
 // Number of table entries: model parameters, initial state and start time.
-#define ROTOR_RUB_PARAMETER_COUNT 16
+#define ROTOR_RUB_PARAMETER_COUNT 18
 
 // Success.
 #define ROTOR_RUB_OK 0
@@ -89,14 +93,26 @@
 // Regime: free flight (no contact).
 #define ROTOR_RUB_REGIME_FREE 0
 
-// Regime: contact with the stator.
+// Regime: contact with the stator (slipping on it under friction).
 #define ROTOR_RUB_REGIME_CONTACT 1
+
+// Regime: rolling on the stator without slip (friction only).
+#define ROTOR_RUB_REGIME_ROLLING 2
 
 // Event kind: contact starts.
 #define ROTOR_RUB_EVENT_ENTER 1
 
 // Event kind: contact ends.
 #define ROTOR_RUB_EVENT_EXIT 2
+
+// Event kind: the slip direction reverses in contact (friction).
+#define ROTOR_RUB_EVENT_REVERSE 3
+
+// Event kind: rolling starts (friction).
+#define ROTOR_RUB_EVENT_ROLL 4
+
+// Event kind: rolling ends, slipping resumes (friction).
+#define ROTOR_RUB_EVENT_SLIP 5
 
 // Preset: the Fig. 2 caption's stiffnesses with offset (0.3, -0.2) (the project's "paper").
 #define ROTOR_RUB_PRESET_PAPER 0
@@ -135,6 +151,10 @@ typedef struct RotorRubParams {
   double offset_x;
   // ε̂y: stator offset, y.
   double offset_y;
+  // μ: Coulomb friction coefficient at contact (0: frictionless).
+  double friction_coefficient;
+  // ρ_R: rotor radius over radial clearance.
+  double radius_ratio;
 } RotorRubParams;
 
 // A state (x, y, x', y').

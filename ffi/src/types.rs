@@ -35,13 +35,21 @@ pub const ROTOR_RUB_SCHEME_EXPRB43: i32 = 1;
 
 /// Regime: free flight (no contact).
 pub const ROTOR_RUB_REGIME_FREE: i32 = 0;
-/// Regime: contact with the stator.
+/// Regime: contact with the stator (slipping on it under friction).
 pub const ROTOR_RUB_REGIME_CONTACT: i32 = 1;
+/// Regime: rolling on the stator without slip (friction only).
+pub const ROTOR_RUB_REGIME_ROLLING: i32 = 2;
 
 /// Event kind: contact starts.
 pub const ROTOR_RUB_EVENT_ENTER: i32 = 1;
 /// Event kind: contact ends.
 pub const ROTOR_RUB_EVENT_EXIT: i32 = 2;
+/// Event kind: the slip direction reverses in contact (friction).
+pub const ROTOR_RUB_EVENT_REVERSE: i32 = 3;
+/// Event kind: rolling starts (friction).
+pub const ROTOR_RUB_EVENT_ROLL: i32 = 4;
+/// Event kind: rolling ends, slipping resumes (friction).
+pub const ROTOR_RUB_EVENT_SLIP: i32 = 5;
 
 /// Preset: the Fig. 2 caption's stiffnesses with offset (0.3, -0.2) (the project's "paper").
 pub const ROTOR_RUB_PRESET_PAPER: i32 = 0;
@@ -88,6 +96,10 @@ pub struct RotorRubParams {
     pub offset_x: f64,
     /// ε̂y: stator offset, y.
     pub offset_y: f64,
+    /// μ: Coulomb friction coefficient at contact (0: frictionless).
+    pub friction_coefficient: f64,
+    /// ρ_R: rotor radius over radial clearance.
+    pub radius_ratio: f64,
 }
 
 /// A state (x, y, x', y').
@@ -179,6 +191,8 @@ impl From<RotorRubParams> for Params {
             k_yy: p.k_yy,
             offset_x: p.offset_x,
             offset_y: p.offset_y,
+            friction_coefficient: p.friction_coefficient,
+            radius_ratio: p.radius_ratio,
         }
     }
 }
@@ -197,6 +211,8 @@ impl From<Params> for RotorRubParams {
             k_yy: p.k_yy,
             offset_x: p.offset_x,
             offset_y: p.offset_y,
+            friction_coefficient: p.friction_coefficient,
+            radius_ratio: p.radius_ratio,
         }
     }
 }
@@ -249,6 +265,7 @@ pub fn regime_code(regime: Regime) -> i32 {
     match regime {
         Regime::Free => ROTOR_RUB_REGIME_FREE,
         Regime::Contact => ROTOR_RUB_REGIME_CONTACT,
+        Regime::Rolling => ROTOR_RUB_REGIME_ROLLING,
     }
 }
 
@@ -272,6 +289,9 @@ impl From<&StepReport> for RotorRubStepResult {
                 kind: match e.kind {
                     EventKind::Enter => ROTOR_RUB_EVENT_ENTER,
                     EventKind::Exit => ROTOR_RUB_EVENT_EXIT,
+                    EventKind::Reverse => ROTOR_RUB_EVENT_REVERSE,
+                    EventKind::Roll => ROTOR_RUB_EVENT_ROLL,
+                    EventKind::Slip => ROTOR_RUB_EVENT_SLIP,
                 },
                 state: e.state.into(),
             };

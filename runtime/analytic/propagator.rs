@@ -15,6 +15,7 @@ use crate::method::{
 };
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
+use crate::reference::{Dop853, ReferenceSolver};
 
 /// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `docs/MODEL.md`
 /// §8).
@@ -45,7 +46,13 @@ impl FreeFlightSolver {
 }
 
 impl SegmentSolver for FreeFlightSolver {
-    fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+    fn start(
+        &mut self,
+        _regime: Regime,
+        _slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError> {
         self.flight = FreeFlight::new(&self.params, &self.constants, time, state);
         self.located = time;
         Ok(())
@@ -184,7 +191,13 @@ impl ExprbContact {
 }
 
 impl SegmentSolver for ExprbContact {
-    fn start(&mut self, _regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+    fn start(
+        &mut self,
+        _regime: Regime,
+        _slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError> {
         self.time_carry = 0.0;
         self.sub_step(time, state)
     }
@@ -226,7 +239,9 @@ impl SegmentSolver for ExprbContact {
 }
 
 /// The piecewise-analytical method (see [`crate::Method::Analytic`]).
-pub struct AnalyticPropagator(Piecewise<ByRegime<FreeFlightSolver, ExprbContact>>);
+pub struct AnalyticPropagator(
+    Piecewise<ByRegime<FreeFlightSolver, ExprbContact, ReferenceSolver<Dop853>>>,
+);
 
 impl AnalyticPropagator {
     /// Start the analytic method. `tol` drives exprb43's step control; `fixed_step` fixes the
@@ -248,13 +263,16 @@ impl AnalyticPropagator {
         }
         let params = problem.params;
         let t0 = problem.start_time;
-        Piecewise::new(problem, None, |regime, s0| {
+        Piecewise::new(problem, None, |regime, slip, s0| {
             let mut solvers = ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact: ExprbContact::new(&params, scheme, tol, fixed_step),
+                // Rolling has no known closed form (`docs/MODEL.md` §14): DOP853 at the
+                // method's tolerance.
+                rolling: ReferenceSolver::new(&params, Regime::Rolling, t0, s0, tol),
             };
             if regime == Regime::Contact {
-                solvers.contact.start(regime, t0, s0)?;
+                solvers.contact.start(regime, slip, t0, s0)?;
             }
             Ok(solvers)
         })

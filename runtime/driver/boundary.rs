@@ -18,7 +18,7 @@ pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, 
     if math::abs(h) > TOUCH_DEPTH || h.is_nan() {
         return (field::regime_of(params, time, state), *state);
     }
-    let (ax, ay) = field::acceleration(params, Regime::Free, time, state);
+    let (ax, ay) = field::acceleration(params, Regime::Free, 0.0, time, state);
     let (u, v) = (state.x - params.offset_x, state.y - params.offset_y);
     let c = state.vx * state.vx + state.vy * state.vy + u * ax + v * ay;
     // March out geometrically until the expansion leaves the band; its sign there is the side.
@@ -41,7 +41,7 @@ pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, 
         field::regime_of(params, time, state)
     };
     let target = match regime {
-        Regime::Contact => 2.0 * TOUCH_DEPTH,
+        Regime::Contact | Regime::Rolling => 2.0 * TOUCH_DEPTH,
         Regime::Free => -2.0 * TOUCH_DEPTH,
     };
     let z = math::hypot(u, v);

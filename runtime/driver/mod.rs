@@ -45,8 +45,16 @@ pub enum Located {
 
 /// A solver of one regime's segments.
 pub trait SegmentSolver {
-    /// Start a segment in `regime` at `(time, state)`. A solver may compute its first step here.
-    fn start(&mut self, regime: Regime, time: f64, state: State) -> Result<(), PropagationError>;
+    /// Start a segment in `regime` at `(time, state)`; `slip` is the slip direction σ = ±1 of
+    /// slipping contact under friction, 0 when no slip is tracked (free flight, rolling, μ = 0).
+    /// A solver may compute its first step here.
+    fn start(
+        &mut self,
+        regime: Regime,
+        slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError>;
     /// Serve `target` (not before the segment start nor before the last target served) from what
     /// has been computed. A closed-form solver may serve every target without steps. Serving a
     /// target never changes the steps taken (sampling does not perturb a run).
@@ -64,19 +72,23 @@ pub trait Solvers {
     fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver;
 }
 
-/// A free-flight solver and a contact solver.
-pub struct ByRegime<F, C> {
+/// A free-flight solver, a contact solver and a rolling solver (rolling occurs only under
+/// friction).
+pub struct ByRegime<F, C, R> {
     /// Free flight (z < 1).
     pub free: F,
-    /// Contact (z > 1).
+    /// Contact (z > 1), slipping under friction.
     pub contact: C,
+    /// Rolling contact (μ > 0, w ≡ 0).
+    pub rolling: R,
 }
 
-impl<F: SegmentSolver, C: SegmentSolver> Solvers for ByRegime<F, C> {
+impl<F: SegmentSolver, C: SegmentSolver, R: SegmentSolver> Solvers for ByRegime<F, C, R> {
     fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver {
         match regime {
             Regime::Free => &mut self.free,
             Regime::Contact => &mut self.contact,
+            Regime::Rolling => &mut self.rolling,
         }
     }
 }

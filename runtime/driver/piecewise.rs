@@ -2,7 +2,8 @@
 
 use super::boundary::start_side;
 use super::{Located, Solvers, StepBudget};
-use crate::params::{Problem, State};
+use crate::field;
+use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target, within_bounds};
 
 /// A piecewise propagation: the current regime's solver serves targets until it reports a
@@ -11,10 +12,13 @@ use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target,
 #[derive(Clone, Copy, Debug)]
 pub struct Piecewise<S> {
     solvers: S,
+    params: Params,
     budget: Option<StepBudget>,
     time: f64,
     state: State,
     regime: Regime,
+    /// σ of the current slipping contact segment (0 when none is tracked).
+    slip: f64,
     /// A step failure: the run stays at its last good time and reports it again.
     failure: Option<PropagationError>,
 }
@@ -23,7 +27,8 @@ impl<S: Solvers> Piecewise<S> {
     /// Start at the problem's start, in the regime [`crate::field::regime_of`] decides there (on z = 1:
     /// the side the motion takes, see the module documentation). `build(regime, state)` makes
     /// the method's solvers with the solver of `regime` started at the problem's start time in
-    /// `state` (the initial state, or on z = 1 the start moved onto its side).
+    /// `state` (the initial state, or on z = 1 the start moved onto its side), with slip
+    /// direction `slip` (see [`super::SegmentSolver::start`]).
     ///
     /// # Errors
     /// [`PropagationError::Diverged`] for a start beyond the divergence radius, or what `build`
@@ -31,7 +36,7 @@ impl<S: Solvers> Piecewise<S> {
     pub fn new(
         problem: &Problem,
         budget: Option<StepBudget>,
-        build: impl FnOnce(Regime, State) -> Result<S, PropagationError>,
+        build: impl FnOnce(Regime, f64, State) -> Result<S, PropagationError>,
     ) -> Result<Self, PropagationError> {
         let params = problem.params;
         let (time, state) = (problem.start_time, problem.initial);
@@ -39,15 +44,27 @@ impl<S: Solvers> Piecewise<S> {
             return Err(PropagationError::Diverged { time, state });
         }
         let (regime, start) = start_side(&params, time, &state);
-        let solvers = build(regime, start)?;
+        let slip = match regime {
+            Regime::Contact => field::slip_direction(&params, time, &start, None),
+            Regime::Free | Regime::Rolling => 0.0,
+        };
+        let solvers = build(regime, slip, start)?;
         Ok(Piecewise {
             solvers,
+            params,
             budget,
             time,
             state,
             regime,
+            slip,
             failure: None,
         })
+    }
+
+    /// The slip direction σ of the current contact segment (±1 while slipping under friction, 0
+    /// otherwise).
+    pub fn slip(&self) -> f64 {
+        self.slip
     }
 
     /// The method's solvers (for their work counters).
@@ -64,12 +81,19 @@ impl<S: Solvers> Piecewise<S> {
             });
         }
         let regime = event.kind.regime_after();
+        let slip = match regime {
+            Regime::Contact => {
+                field::slip_direction(&self.params, event.time, &event.state, Some(event.kind))
+            }
+            Regime::Free | Regime::Rolling => 0.0,
+        };
         self.solvers
             .solver(regime)
-            .start(regime, event.time, event.state)?;
+            .start(regime, slip, event.time, event.state)?;
         self.time = event.time;
         self.state = event.state;
         self.regime = regime;
+        self.slip = slip;
         Ok(())
     }
 }

@@ -13,17 +13,30 @@ pub enum Preset {
     /// The text's stiffnesses (K̂xx = K̂xy = K̂yx = 2, K̂yy = 40) with ε̂ = (0, 0), as printed.
     /// Every η ≥ 1.5 of Fig. 2 ends on the non-contact synchronous orbit.
     PaperText,
+    /// Coulomb friction turning a forward full rub into backward whirl while slipping: isotropic
+    /// K̂ = 100, ε̂ = (0.3, −0.2), η = 1.5, μ = 0.2, ρ_R = 100 (`docs/MODEL.md §14`).
+    Friction,
+    /// Sustained dry whip (rolling without slip): isotropic K̂ = 300, ε̂ = (0, 0), η = 1.5,
+    /// μ = 0.6, ρ_R = 2 (`docs/MODEL.md §14`).
+    DryWhip,
 }
 
 impl Preset {
     /// Every preset, in the order `presets` lists them.
-    pub const ALL: [Preset; 2] = [Preset::Paper, Preset::PaperText];
+    pub const ALL: [Preset; 4] = [
+        Preset::Paper,
+        Preset::PaperText,
+        Preset::Friction,
+        Preset::DryWhip,
+    ];
 
     /// The preset's command-line name.
     pub const fn name(self) -> &'static str {
         match self {
             Preset::Paper => "paper",
             Preset::PaperText => "paper-text",
+            Preset::Friction => "friction",
+            Preset::DryWhip => "dry-whip",
         }
     }
 
@@ -35,6 +48,12 @@ impl Preset {
             }
             Preset::PaperText => {
                 "paper text: Kxx = Kxy = Kyx = 2, Kyy = 40, offset (0, 0) as printed"
+            }
+            Preset::Friction => {
+                "backward whirl from friction: isotropic K = 100, offset (0.3, -0.2), mu = 0.2, R/clearance = 100"
+            }
+            Preset::DryWhip => {
+                "sustained dry whip (rolling): isotropic K = 300, offset (0, 0), mu = 0.6, R/clearance = 2"
             }
         }
     }
@@ -49,6 +68,23 @@ impl Preset {
                 (Parameter::KYx, 2.0),
                 (Parameter::OffsetX, 0.0),
                 (Parameter::OffsetY, 0.0),
+            ],
+            Preset::Friction => &[
+                (Parameter::KXx, 100.0),
+                (Parameter::KXy, 0.0),
+                (Parameter::KYx, 0.0),
+                (Parameter::KYy, 100.0),
+                (Parameter::FrictionCoefficient, 0.2),
+            ],
+            Preset::DryWhip => &[
+                (Parameter::KXx, 300.0),
+                (Parameter::KXy, 0.0),
+                (Parameter::KYx, 0.0),
+                (Parameter::KYy, 300.0),
+                (Parameter::OffsetX, 0.0),
+                (Parameter::OffsetY, 0.0),
+                (Parameter::FrictionCoefficient, 0.6),
+                (Parameter::RadiusRatio, 2.0),
             ],
         }
     }

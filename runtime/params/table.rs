@@ -19,6 +19,10 @@
 //!   √(r0² + v0²) + η_m ρ̂ stays below the divergence radius, so a start inside the ranges is never
 //!   reported as diverged before it moves.
 //! * |φ0| ≤ 1e3 rad and |τ0| ≤ 1e6: the forcing phase η τ0 + φ0 keeps an absolute error ≤ 1e-8.
+//! * μ ∈ [0, 10]: dry friction coefficients of rubbing metals and seals are 0.1–0.6; 10 leaves
+//!   room for studies of the limit. ρ_R ∈ (0, 1e5]: real rotors have R/δ ≈ 1e2–1e4; the slip
+//!   velocity's spin term ρ_R η stays below 1e7. μ > 0 also needs a positive definite symmetric
+//!   part of K_s (`cross_checks`), else the normal force can turn negative (`docs/MODEL.md §14`).
 
 use super::{Problem, Range};
 
@@ -129,6 +133,10 @@ parameter_table! {
             "stator centre offset from the rotor's rest position, x, clearances";
         OffsetY offset_y "ε̂y" = -0.2, Range::closed(-10.0, 10.0),
             "stator centre offset from the rotor's rest position, y, clearances";
+        FrictionCoefficient friction_coefficient "μ" = 0.0, Range::closed(0.0, 10.0),
+            "Coulomb friction coefficient at contact (0: frictionless, the paper's model)";
+        RadiusRatio radius_ratio "ρ_R" = 100.0, Range::above(0.0, 1.0e5),
+            "rotor radius over radial clearance, R/δ (the rotor spins counter-clockwise at η)";
     }
     start {
         X0 x0 "x̃0" = 0.1, Range::closed(-1.0e2, 1.0e2),

@@ -87,6 +87,14 @@ pub enum ParamError {
         /// The valid range (the table's).
         range: Range,
     },
+    /// `friction_coefficient` > 0 with a stator stiffness whose symmetric part is not positive
+    /// definite (K̂xx ≤ 0, K̂yy ≤ 0 or K̂xx K̂yy − ((K̂xy + K̂yx)/2)² ≤ 0).
+    FrictionNeedsDefiniteStator {
+        /// μ.
+        friction_coefficient: f64,
+        /// K̂xx K̂yy − ((K̂xy + K̂yx)/2)², the determinant of the symmetric part.
+        determinant: f64,
+    },
 }
 
 impl ParamError {
@@ -96,6 +104,7 @@ impl ParamError {
             ParamError::NonFinite { parameter, .. } | ParamError::OutOfRange { parameter, .. } => {
                 Some(parameter)
             }
+            ParamError::FrictionNeedsDefiniteStator { .. } => Some(Parameter::FrictionCoefficient),
         }
     }
 }
@@ -114,6 +123,15 @@ impl fmt::Display for ParamError {
                 f,
                 "{parameter} = {} is out of range: it must be in {range}",
                 Number(value)
+            ),
+            ParamError::FrictionNeedsDefiniteStator {
+                friction_coefficient,
+                determinant,
+            } => write!(
+                f,
+                "friction_coefficient = {} needs a stator stiffness with a positive definite symmetric part (k_xx > 0, k_yy > 0 and k_xx·k_yy − ((k_xy + k_yx)/2)² > 0; it is {}): otherwise the normal contact force can be negative",
+                Number(friction_coefficient),
+                Number(determinant)
             ),
         }
     }
@@ -178,10 +196,21 @@ impl Params {
     }
 }
 
-/// Rules across parameters. None today: ν = 0 at η = 1 (exact resonance) is valid, its free
-/// flight grows secularly (`docs/MODEL.md §11`). Issue 12 adds here: μ > 0 needs a positive
-/// definite symmetric part of K_s (`docs/MODEL.md §10`), as a new `ParamError` variant.
-fn cross_checks(_: &Params) -> Result<(), ParamError> {
+/// Rules across parameters: μ > 0 needs a positive definite symmetric part of K_s
+/// (`docs/MODEL.md §14`: else the normal force N = (z − 1) nᵀK_s n turns negative in some
+/// direction and the Coulomb cone is meaningless). ν = 0 at η = 1 (exact resonance) is valid,
+/// its free flight grows secularly (`docs/MODEL.md §11`).
+fn cross_checks(p: &Params) -> Result<(), ParamError> {
+    if p.friction_coefficient > 0.0 {
+        let cross = 0.5 * (p.k_xy + p.k_yx);
+        let determinant = p.k_xx * p.k_yy - cross * cross;
+        if !(p.k_xx > 0.0 && p.k_yy > 0.0 && determinant > 0.0) {
+            return Err(ParamError::FrictionNeedsDefiniteStator {
+                friction_coefficient: p.friction_coefficient,
+                determinant,
+            });
+        }
+    }
     Ok(())
 }
 

@@ -57,16 +57,43 @@ pub const REFERENCE_BUDGET: StepBudget = StepBudget {
 pub struct ReferenceSolver<S: Scheme<4>> {
     params: Params,
     regime: Regime,
+    slip: f64,
     integrator: Integrator<S, 4>,
     step: Option<AcceptedStep<4, S::Dense>>,
     pending: Option<Event>,
 }
 
 impl<S: Scheme<4>> ReferenceSolver<S> {
+    /// A solver of `regime`'s field started at `(t0, state)` with `rtol = atol = tol` (the
+    /// analytic and hybrid methods' rolling segments use it; σ = 0, as rolling tracks none).
+    pub fn new(params: &Params, regime: Regime, t0: f64, state: State, tol: f64) -> Self {
+        let sys = RotorSystem {
+            params: *params,
+            regime,
+            slip: 0.0,
+        };
+        let integrator = Integrator::new(
+            &sys,
+            t0,
+            state.to_array(),
+            Tolerance::uniform(tol),
+            max_step(params),
+        );
+        ReferenceSolver {
+            params: *params,
+            regime,
+            slip: 0.0,
+            integrator,
+            step: None,
+            pending: None,
+        }
+    }
+
     fn system(&self) -> RotorSystem {
         RotorSystem {
             params: self.params,
             regime: self.regime,
+            slip: self.slip,
         }
     }
 }
@@ -79,8 +106,15 @@ impl<S: Scheme<4>> Solvers for ReferenceSolver<S> {
 
 impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
     /// Switch the field and restart the integration at the switch.
-    fn start(&mut self, regime: Regime, time: f64, state: State) -> Result<(), PropagationError> {
+    fn start(
+        &mut self,
+        regime: Regime,
+        slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError> {
         self.regime = regime;
+        self.slip = slip;
         self.step = None;
         self.pending = None;
         let sys = self.system();
@@ -121,7 +155,7 @@ impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
                 time: t,
                 kind: match regime {
                     Regime::Free => EventKind::Enter,
-                    Regime::Contact => EventKind::Exit,
+                    Regime::Contact | Regime::Rolling => EventKind::Exit,
                 },
                 state: State::from_array(y),
             },
@@ -155,22 +189,10 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         method.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
-        let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, start| {
-            let sys = RotorSystem { params, regime };
-            let integrator = Integrator::new(
-                &sys,
-                t0,
-                start.to_array(),
-                Tolerance::uniform(tol),
-                max_step(&params),
-            );
-            Ok(ReferenceSolver {
-                params,
-                regime,
-                integrator,
-                step: None,
-                pending: None,
-            })
+        let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, start| {
+            let mut solver = ReferenceSolver::new(&params, regime, t0, start, tol);
+            solver.slip = slip;
+            Ok(solver)
         })?;
         Ok(ReferencePropagator { driver, events: 0 })
     }

@@ -16,12 +16,21 @@ pub struct RotorSystem {
     pub params: Params,
     /// Which field to integrate.
     pub regime: Regime,
+    /// The slip direction σ of slipping contact (±1), 0 when none is tracked.
+    pub slip: f64,
 }
 
 impl OdeSystem<4> for RotorSystem {
     #[inline]
     fn rhs(&self, t: f64, y: &[f64; 4]) -> [f64; 4] {
-        field::derivative(&self.params, self.regime, t, &State::from_array(*y)).to_array()
+        field::derivative(
+            &self.params,
+            self.regime,
+            self.slip,
+            t,
+            &State::from_array(*y),
+        )
+        .to_array()
     }
 }
 
@@ -34,6 +43,8 @@ pub struct PhasorRotorSystem {
     pub params: Params,
     /// Which field to integrate.
     pub regime: Regime,
+    /// The slip direction σ of slipping contact (±1), 0 when none is tracked.
+    pub slip: f64,
 }
 
 impl PhasorRotorSystem {
@@ -55,7 +66,8 @@ impl OdeSystem<6> for PhasorRotorSystem {
     fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
         let [x, yy, vx, vy, c, s] = *y;
         let state = State::new(x, yy, vx, vy);
-        let (ax, ay) = field::acceleration_with_phasor(&self.params, self.regime, c, s, &state);
+        let (ax, ay) =
+            field::acceleration_with_phasor(&self.params, self.regime, self.slip, c, s, &state);
         let eta = self.params.speed_ratio;
         [vx, vy, ax, ay, -eta * s, eta * c]
     }
@@ -72,7 +84,7 @@ pub fn inside_measure<const N: usize>(params: &Params, regime: Regime, y: &[f64;
     }
     let (h, dh) = field::switching_function(params, &State::from_array(s));
     match regime {
-        Regime::Contact => (h, dh),
+        Regime::Contact | Regime::Rolling => (h, dh),
         Regime::Free => (-h, -dh),
     }
 }

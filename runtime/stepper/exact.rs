@@ -47,6 +47,8 @@ impl Stepper {
                         (s, state, regime) = (s + se, p.state, Regime::Contact);
                     }
                 },
+                // Friction's rolling regime in the stepper: issue 12, in progress.
+                Regime::Rolling => return Ok((state, regime)),
                 Regime::Contact if budget == 0 => {
                     // Cap exhausted: one last sub-step to the end, no exit search.
                     report.capped = true;

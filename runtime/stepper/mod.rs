@@ -153,6 +153,7 @@ impl Stepper {
     /// switch is reported at the start (`docs/MODEL.md` §6 cases 14–15).
     pub fn new(problem: &Problem, config: StepperConfig) -> Result<Self, StepperError> {
         problem.validate()?;
+        frictionless(&problem.params)?;
         config.validate()?;
         check_dt(config.dt, problem.start_time)?;
         let params = problem.params;
@@ -195,7 +196,7 @@ impl Stepper {
         };
         let fast = match self.regime {
             Regime::Free => self.free_step(),
-            Regime::Contact => None,
+            Regime::Contact | Regime::Rolling => None,
         };
         let (state, regime) = match fast {
             Some(state) => (state, Regime::Free),
@@ -222,6 +223,7 @@ impl Stepper {
     /// no event is reported for that. On error nothing changes.
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
+        frictionless(params)?;
         self.params = *params;
         self.free = FreeConstants::new(params);
         self.transition = FreeTransition::new(params, &self.free, self.transition.dt());
@@ -299,4 +301,16 @@ fn check_bounded(time: f64, state: State) -> Result<(), StepperError> {
 fn phasor_at(params: &Params, t: f64) -> (f64, f64) {
     let (s, c) = math::sin_cos(math::wrap_angle(params.speed_ratio * t + params.phase));
     (c, s)
+}
+
+/// The stepper does not track slip yet (issue 12 in progress): friction is refused, never run
+/// as frictionless.
+fn frictionless(params: &Params) -> Result<(), StepperError> {
+    if params.friction_coefficient > 0.0 {
+        return Err(StepperError::InvalidConfig {
+            what: "friction_coefficient (the stepper supports friction_coefficient = 0 only)",
+            value: params.friction_coefficient,
+        });
+    }
+    Ok(())
 }

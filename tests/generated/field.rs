@@ -74,9 +74,9 @@ proptest! {
         prop_assert!(close(Vector2::new(fx, fy), contact, scale));
         let s = State::new(q.x, q.y, v.x, v.y);
         let (ct, st) = (theta.cos(), theta.sin());
-        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Free, ct, st, &s);
+        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Free, 0.0, ct, st, &s);
         prop_assert!(close(Vector2::new(ax, ay), free, scale));
-        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Contact, ct, st, &s);
+        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Contact, 0.0, ct, st, &s);
         prop_assert!(close(Vector2::new(ax, ay), free - contact, scale));
     }
 

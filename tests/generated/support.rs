@@ -60,6 +60,7 @@ impl Case {
             k_yy: self.k[1][1],
             offset_x: self.offset.0,
             offset_y: self.offset.1,
+            ..Params::DEFAULT
         }
     }
 

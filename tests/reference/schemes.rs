@@ -143,10 +143,12 @@ fn phasor_system_matches_trigonometric_forcing() {
         let sys4 = RotorSystem {
             params: p.params,
             regime,
+            slip: 0.0,
         };
         let sys6 = PhasorRotorSystem {
             params: p.params,
             regime,
+            slip: 0.0,
         };
         let t0 = 0.3;
         let mut a = Integrator::<Dop853, 4>::new(&sys4, t0, s0.to_array(), tol, 0.5);

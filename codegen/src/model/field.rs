@@ -23,7 +23,7 @@ fn position(m: &mut Model) -> Vec2 {
 /// K_s·g(q); friction will be one more term of `Model::contact_pieces`).
 fn contact_force(m: &mut Model) {
     let q = position(m);
-    let f = m.contact_pieces(q);
+    let f = m.contact_pieces(q, None);
     m.add_formula(
         "contact_force",
         "The elastic contact force K_s·g(q), g = (1 − 1/z)(x − ε̂x, y − ε̂y), at a position (restoring sign).",
@@ -44,7 +44,7 @@ fn accelerations(m: &mut Model) {
     let v = [m.var("vx"), m.var("vy")];
     let phasor = [m.var("ct"), m.var("st")];
     let forcing = m.unbalance(phasor);
-    let stiffness = m.stiffness(q, false);
+    let stiffness = m.stiffness(q, None);
     let a = m.acceleration(v, stiffness, forcing);
     m.add_formula(
         "free_acceleration",
@@ -61,7 +61,7 @@ fn contact_remainder(m: &mut Model) {
     let q = position(m);
     let (kl, fd) = m.linearized_inputs();
     let linear = m.linear_stiffness_term(kl, fd, q);
-    let full = m.stiffness(q, true);
+    let full = m.stiffness(q, Some(None));
     let g = &mut m.graph;
     let n = [0, 1].map(|i| g.sub(linear[i], full[i]));
     m.add_formula(

@@ -3,11 +3,13 @@
 //! The equations of motion are a sum of named pieces, each written once below:
 //!
 //! ```text
-//! q'' = F (cos θ, sin θ)  − 2ν q'   − q          − K_s·g(q)        [contact only]
-//!       [`unbalance`]      [`damping`] [`restoring`] [`elastic_contact`], g = [`contact_function`]
+//! q'' = F (cos θ, sin θ)  − 2ν q'   − q          − K_s·g(q)        − μσN t      [contact only]
+//!       [`unbalance`]      [`damping`] [`restoring`] [`elastic_contact`] [`friction`] [slipping]
 //! ```
 //!
-//! with g(q) = (1 − 1/z)(u, v), (u, v) = q − ε̂, z = |(u, v)|. [`Model::contact_pieces`] sums
+//! with g(q) = (1 − 1/z)(u, v) ([`contact_function`]), (u, v) = q − ε̂, z = |(u, v)|, the
+//! normal force N = nᵀK_s g ([`normal_force`]) and the frame n, t ([`contact_frame`]); rolling
+//! replaces μσN by the tangential force λ that keeps the slip velocity at 0 (`friction.rs`). [`Model::contact_pieces`] sums
 //! the forces that act only in contact, [`Model::acceleration`] assembles a regime's field and
 //! [`Model::equations_of_motion`] is its residual, which every derivation substitutes an ansatz
 //! into; the Taylor linearization replaces K_s·g(q) by K_s(J q + D). A new force is one more
@@ -19,10 +21,14 @@
 //! [`restoring`]: Model::restoring
 //! [`elastic_contact`]: Model::elastic_contact
 //! [`contact_function`]: Model::contact_function
+//! [`friction`]: Model::friction
+//! [`normal_force`]: Model::normal_force
+//! [`contact_frame`]: Model::contact_frame
 
 mod contact;
 mod field;
 mod free;
+mod friction;
 mod linearization;
 mod polynomial;
 pub mod symbols;
@@ -52,6 +58,7 @@ pub fn derive_all() -> Model {
     contact::derive(&mut m);
     polynomial::derive(&mut m);
     field::derive(&mut m);
+    friction::derive(&mut m);
     m
 }
 
@@ -149,19 +156,73 @@ impl Model {
         self.stator_force(w)
     }
 
-    /// Every force that acts only in contact, summed (restoring sign): the elastic K_s·g(q).
-    /// Friction (issue 12) and other contact laws are further terms of this sum.
-    pub(crate) fn contact_pieces(&mut self, q: Vec2) -> Vec2 {
-        self.elastic_contact(q)
+    /// The outward normal n = (u, v)/z and the counter-clockwise tangent t = (−v, u)/z of the
+    /// contact at q, with z (`docs/MODEL.md` §14).
+    pub(crate) fn contact_frame(&mut self, q: Vec2) -> (Vec2, Vec2, ExprId) {
+        let (ex, ey) = (self.var("ex"), self.var("ey"));
+        let g = &mut self.graph;
+        let u = g.sub(q[0], ex);
+        let v = g.sub(q[1], ey);
+        let uu = g.mul(u, u);
+        let vv = g.mul(v, v);
+        let z2 = g.add(uu, vv);
+        let z = g.sqrt(z2);
+        let inv_z = g.powi(z, -1);
+        let n = [g.mul(u, inv_z), g.mul(v, inv_z)];
+        let mv = g.neg(v);
+        let t = [g.mul(mv, inv_z), g.mul(u, inv_z)];
+        (n, t, z)
     }
 
-    /// The nonlinear stiffness term of a regime: q, plus the contact pieces in contact.
-    pub(crate) fn stiffness(&mut self, q: Vec2, contact: bool) -> Vec2 {
-        let r = self.restoring(q);
-        if !contact {
-            return r;
+    /// The normal elastic contact force N = nᵀ K_s g(q) (≥ 0 when the symmetric part of K_s
+    /// is positive definite): what presses the rotor on the stator.
+    pub(crate) fn normal_force(&mut self, q: Vec2) -> ExprId {
+        let f = self.elastic_contact(q);
+        let (n, _, _) = self.contact_frame(q);
+        self.dot(n, f)
+    }
+
+    /// Coulomb friction while slipping, μ σ N t (restoring sign: it enters the acceleration with
+    /// −, opposing the slip velocity w whose sign is σ).
+    pub(crate) fn friction(&mut self, q: Vec2, sigma: ExprId) -> Vec2 {
+        let normal = self.normal_force(q);
+        let (_, t, _) = self.contact_frame(q);
+        let mu = self.var("mu");
+        let g = &mut self.graph;
+        let magnitude = g.product(&[mu, sigma, normal]);
+        t.map(|ti| g.mul(magnitude, ti))
+    }
+
+    /// a·b for 2-vectors.
+    pub(crate) fn dot(&mut self, a: Vec2, b: Vec2) -> ExprId {
+        let g = &mut self.graph;
+        let p0 = g.mul(a[0], b[0]);
+        let p1 = g.mul(a[1], b[1]);
+        g.add(p0, p1)
+    }
+
+    /// Every force that acts only in contact, summed (restoring sign): the elastic K_s·g(q),
+    /// and while slipping in direction `slip` (σ), Coulomb friction μσN t. `None` is the
+    /// frictionless contact of the paper (μ = 0 runs it, bit for bit).
+    pub(crate) fn contact_pieces(&mut self, q: Vec2, slip: Option<ExprId>) -> Vec2 {
+        let elastic = self.elastic_contact(q);
+        match slip {
+            None => elastic,
+            Some(sigma) => {
+                let f = self.friction(q, sigma);
+                [0, 1].map(|i| self.graph.add(elastic[i], f[i]))
+            }
         }
-        let c = self.contact_pieces(q);
+    }
+
+    /// The nonlinear stiffness term of a regime: q, plus the contact pieces in contact
+    /// (`Some(slip)`: slipping in direction `slip`, see [`Model::contact_pieces`]).
+    pub(crate) fn stiffness(&mut self, q: Vec2, contact: Option<Option<ExprId>>) -> Vec2 {
+        let r = self.restoring(q);
+        let Some(slip) = contact else {
+            return r;
+        };
+        let c = self.contact_pieces(q, slip);
         [self.graph.add(r[0], c[0]), self.graph.add(r[1], c[1])]
     }
 

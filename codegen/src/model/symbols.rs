@@ -36,6 +36,12 @@ pub const GROUPS: &[Group] = &[
             ("kyy", "kyy", "K̂yy, stator stiffness"),
             ("ex", "ex", "ε̂x, stator centre offset"),
             ("ey", "ey", "ε̂y, stator centre offset"),
+            ("mu", "mu", "μ, Coulomb friction coefficient at contact"),
+            (
+                "rho_r",
+                "rho_r",
+                "ρ_R = R/δ, rotor radius over radial clearance",
+            ),
         ],
     },
     Group {
@@ -299,6 +305,12 @@ pub const GROUPS: &[Group] = &[
             ("dfc", "dfc", "FC'(s)"),
             ("dfs", "dfs", "FS'(s)"),
         ],
+    },
+    Group {
+        ty: "Slip",
+        arg: "slip",
+        doc: "The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §14).",
+        fields: &[("sigma", "sigma", "σ = ±1, the sign of the slip velocity w")],
     },
 ];
 
