@@ -27,7 +27,7 @@ pub fn contact_force(params: &Params, x: f64, y: f64) -> (f64, f64) {
     (f.fx, f.fy)
 }
 
-/// Accelerations (x'', y'') of the regime's vector field at time τ (`docs/MODEL.md` §1, §14);
+/// Accelerations (x'', y'') of the regime's vector field at time τ (`docs/MODEL.md` §1, §10);
 /// `slip` is the slip direction σ of slipping contact (±1), 0 when no slip is tracked.
 #[inline]
 pub fn acceleration(params: &Params, regime: Regime, slip: f64, tau: f64, s: &State) -> (f64, f64) {
@@ -114,14 +114,14 @@ pub fn regime_of(params: &Params, tau: f64, state: &State) -> Regime {
     if sign <= 0.0 {
         Regime::Free
     } else if params.friction_coefficient > 0.0 && friction_at(params, tau, state).rolls(params) {
-        // A start in contact with w = 0 exactly and |λ| ≤ μN rolls (`docs/MODEL.md` §14).
+        // A start in contact with w = 0 exactly and |λ| ≤ μN rolls (`docs/MODEL.md` §10).
         Regime::Rolling
     } else {
         Regime::Contact
     }
 }
 
-/// The friction quantities of a contact state (`docs/MODEL.md` §14), generated from the model:
+/// The friction quantities of a contact state (`docs/MODEL.md` §10), generated from the model:
 /// the normal force N, the slip velocity w and λ, the tangential force that would keep w at 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Friction {
@@ -187,7 +187,7 @@ pub fn friction_with_phasor(
 }
 
 /// What happens where the slip velocity w reaches 0 while slipping in direction `slip`
-/// (`docs/MODEL.md` §14).
+/// (`docs/MODEL.md` §10).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SlipZero {
     /// |λ| ≤ μN: the rotor rolls (`roll`).
@@ -210,7 +210,7 @@ pub fn at_slip_zero(params: &Params, tau: f64, state: &State, slip: f64) -> Slip
     }
 }
 
-/// The slip direction σ of slipping contact starting at `state` (`docs/MODEL.md` §14): 0 when no
+/// The slip direction σ of slipping contact starting at `state` (`docs/MODEL.md` §10): 0 when no
 /// slip is tracked (μ = 0); on entering contact (or a start in contact) sign w, or sign λ where
 /// w = 0 exactly; after `reverse` or `slip` (w = 0, where w's own sign is rounding) sign λ.
 pub fn slip_direction(params: &Params, tau: f64, state: &State, cause: Option<EventKind>) -> f64 {

@@ -10,7 +10,7 @@ use core::fmt;
 
 use crate::params::{ParamError, State};
 
-/// Contact regime (`docs/MODEL.md` §1, §14): free flight for z < 1, contact for z > 1; under
+/// Contact regime (`docs/MODEL.md` §1, §10): free flight for z < 1, contact for z > 1; under
 /// friction (μ > 0) contact either slips (`Contact`, with a slip direction σ the methods track)
 /// or rolls without slip (`Rolling`, dry whip).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

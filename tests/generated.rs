@@ -33,3 +33,6 @@ mod field;
 
 #[path = "generated/bits.rs"]
 mod bits;
+
+#[path = "generated/friction.rs"]
+mod friction;

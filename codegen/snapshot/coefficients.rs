@@ -366,7 +366,7 @@ pub struct ForcedBasis {
     /// FS'(s)
     pub dfs: f64,
 }
-/// The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §14).
+/// The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §10).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Slip {
     /// σ = ±1, the sign of the slip velocity w
@@ -1226,7 +1226,7 @@ pub fn shifted_stiffness(
 }
 /// The contact force while slipping in direction σ: K_s·g(q) + μσN t (restoring sign).
 ///
-/// Source: docs/MODEL.md §14.
+/// Source: docs/MODEL.md §10.
 /// Derivation: the model's `elastic_contact` and `friction` pieces.
 #[inline]
 #[must_use]
@@ -1257,7 +1257,7 @@ pub fn slipping_contact_force(model: &ModelParams, at: &Position, slip: &Slip) -
 }
 /// Linearized stiffness of slipping contact in direction σ: Kl = I + ∂(K_s g + μσN t)/∂q and Fd so that q + K_s g + μσN t ≈ Kl q + Fd about (x0, y0).
 ///
-/// Source: docs/MODEL.md §14, §3.
+/// Source: docs/MODEL.md §10, §3.
 /// Derivation: partial derivatives of the model's stiffness term with the friction piece, at (x0, y0); Fd = term(r0) − Kl r0.
 #[inline]
 #[must_use]
@@ -1326,7 +1326,7 @@ pub fn slipping_linearized_stiffness(
 }
 /// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) − μσN t of the linearized slipping contact field, as a force on the acceleration.
 ///
-/// Source: docs/MODEL.md §14, §8.
+/// Source: docs/MODEL.md §10, §8.
 /// Derivation: the linearized stiffness term minus the model's stiffness term with the friction piece.
 #[inline]
 #[must_use]
@@ -1377,7 +1377,7 @@ pub struct FrictionState {
 }
 /// The friction quantities of a contact state: the normal force N = nᵀK_s g, the slip velocity w = q'·t + ρ_R η of the rotor surface at the contact point, and λ = t·G − (q'·t)(q'·n)/z (G: every force but friction), the tangential force that keeps w constant. While slipping w' = λ − μσN.
 ///
-/// Source: docs/MODEL.md §14.
+/// Source: docs/MODEL.md §10.
 /// Derivation: the model's `normal_force`, `contact_frame` and the frictionless contact field; w' = t·q'' + q'·t', t' = −(q'·t/z) n.
 #[inline]
 #[must_use]
@@ -1420,7 +1420,7 @@ pub fn friction_state(
 }
 /// Acceleration while rolling: q'' = G − λ t, the frictionless contact field minus the tangential force λ that keeps the slip velocity w at 0.
 ///
-/// Source: docs/MODEL.md §14.
+/// Source: docs/MODEL.md §10.
 /// Derivation: the frictionless contact field and λ of `friction_state`.
 #[inline]
 #[must_use]

@@ -267,7 +267,7 @@ impl AnalyticPropagator {
             let mut solvers = ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact: ExprbContact::new(&params, scheme, tol, fixed_step),
-                // Rolling has no known closed form (`docs/MODEL.md` §14): DOP853 at the
+                // Rolling has no known closed form (`docs/MODEL.md` §10): DOP853 at the
                 // method's tolerance.
                 rolling: ReferenceSolver::new(&params, Regime::Rolling, t0, s0, tol),
             };

@@ -14,10 +14,10 @@ pub enum Preset {
     /// Every η ≥ 1.5 of Fig. 2 ends on the non-contact synchronous orbit.
     PaperText,
     /// Coulomb friction turning a forward full rub into backward whirl while slipping: isotropic
-    /// K̂ = 100, ε̂ = (0.3, −0.2), η = 1.5, μ = 0.2, ρ_R = 100 (`docs/MODEL.md §14`).
+    /// K̂ = 100, ε̂ = (0.3, −0.2), η = 1.5, μ = 0.2, ρ_R = 100 (`docs/MODEL.md §10`).
     Friction,
     /// Sustained dry whip (rolling without slip): isotropic K̂ = 300, ε̂ = (0, 0), η = 1.5,
-    /// μ = 0.6, ρ_R = 2 (`docs/MODEL.md §14`).
+    /// μ = 0.6, ρ_R = 2 (`docs/MODEL.md §10`).
     DryWhip,
 }
 

@@ -22,7 +22,7 @@
 //! * μ ∈ [0, 10]: dry friction coefficients of rubbing metals and seals are 0.1–0.6; 10 leaves
 //!   room for studies of the limit. ρ_R ∈ (0, 1e5]: real rotors have R/δ ≈ 1e2–1e4; the slip
 //!   velocity's spin term ρ_R η stays below 1e7. μ > 0 also needs a positive definite symmetric
-//!   part of K_s (`cross_checks`), else the normal force can turn negative (`docs/MODEL.md §14`).
+//!   part of K_s (`cross_checks`), else the normal force can turn negative (`docs/MODEL.md §10`).
 
 use super::{Problem, Range};
 

@@ -197,7 +197,7 @@ impl Params {
 }
 
 /// Rules across parameters: μ > 0 needs a positive definite symmetric part of K_s
-/// (`docs/MODEL.md §14`: else the normal force N = (z − 1) nᵀK_s n turns negative in some
+/// (`docs/MODEL.md §10`: else the normal force N = (z − 1) nᵀK_s n turns negative in some
 /// direction and the Coulomb cone is meaningless). ν = 0 at η = 1 (exact resonance) is valid,
 /// its free flight grows secularly (`docs/MODEL.md §11`).
 fn cross_checks(p: &Params) -> Result<(), ParamError> {

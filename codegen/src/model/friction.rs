@@ -1,4 +1,4 @@
-//! Coulomb friction at contact (`docs/MODEL.md` §14): what the runtime needs of the model's
+//! Coulomb friction at contact (`docs/MODEL.md` §10): what the runtime needs of the model's
 //! `friction` piece. Slipping (σ = ±1) adds μσN t to the contact pieces, a smooth function of
 //! position for a fixed σ, so its contact field is linearized and solved in closed form like
 //! frictionless contact; rolling replaces μσN by the tangential force λ that keeps the slip
@@ -29,7 +29,7 @@ fn slipping_contact_force(m: &mut Model) {
     m.add_formula(
         "slipping_contact_force",
         "The contact force while slipping in direction σ: K_s·g(q) + μσN t (restoring sign).",
-        "docs/MODEL.md §14",
+        "docs/MODEL.md §10",
         "the model's `elastic_contact` and `friction` pieces.",
         "Force",
         vec![("fx", "x component", f[0]), ("fy", "y component", f[1])],
@@ -63,7 +63,7 @@ fn slipping_linearized_stiffness(m: &mut Model) {
     m.add_formula(
         "slipping_linearized_stiffness",
         "Linearized stiffness of slipping contact in direction σ: Kl = I + ∂(K_s g + μσN t)/∂q and Fd so that q + K_s g + μσN t ≈ Kl q + Fd about (x0, y0).",
-        "docs/MODEL.md §14, §3",
+        "docs/MODEL.md §10, §3",
         "partial derivatives of the model's stiffness term with the friction piece, at (x0, y0); Fd = term(r0) − Kl r0.",
         "LinearizedContact",
         vec![
@@ -89,7 +89,7 @@ fn slipping_remainder(m: &mut Model) {
     m.add_formula(
         "slipping_remainder",
         "The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) − μσN t of the linearized slipping contact field, as a force on the acceleration.",
-        "docs/MODEL.md §14, §8",
+        "docs/MODEL.md §10, §8",
         "the linearized stiffness term minus the model's stiffness term with the friction piece.",
         "Force",
         vec![("fx", "n_x", n[0]), ("fy", "n_y", n[1])],
@@ -132,7 +132,7 @@ fn friction_state(m: &mut Model) {
     m.add_formula(
         "friction_state",
         "The friction quantities of a contact state: the normal force N = nᵀK_s g, the slip velocity w = q'·t + ρ_R η of the rotor surface at the contact point, and λ = t·G − (q'·t)(q'·n)/z (G: every force but friction), the tangential force that keeps w constant. While slipping w' = λ − μσN.",
-        "docs/MODEL.md §14",
+        "docs/MODEL.md §10",
         "the model's `normal_force`, `contact_frame` and the frictionless contact field; w' = t·q'' + q'·t', t' = −(q'·t/z) n.",
         "FrictionState",
         vec![
@@ -155,7 +155,7 @@ fn rolling_acceleration(m: &mut Model) {
     m.add_formula(
         "rolling_acceleration",
         "Acceleration while rolling: q'' = G − λ t, the frictionless contact field minus the tangential force λ that keeps the slip velocity w at 0.",
-        "docs/MODEL.md §14",
+        "docs/MODEL.md §10",
         "the frictionless contact field and λ of `friction_state`.",
         "Acceleration",
         vec![("ax", "x''", a[0]), ("ay", "y''", a[1])],

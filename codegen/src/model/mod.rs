@@ -157,7 +157,7 @@ impl Model {
     }
 
     /// The outward normal n = (u, v)/z and the counter-clockwise tangent t = (−v, u)/z of the
-    /// contact at q, with z (`docs/MODEL.md` §14).
+    /// contact at q, with z (`docs/MODEL.md` §10).
     pub(crate) fn contact_frame(&mut self, q: Vec2) -> (Vec2, Vec2, ExprId) {
         let (ex, ey) = (self.var("ex"), self.var("ey"));
         let g = &mut self.graph;

@@ -309,7 +309,7 @@ pub const GROUPS: &[Group] = &[
     Group {
         ty: "Slip",
         arg: "slip",
-        doc: "The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §14).",
+        doc: "The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §10).",
         fields: &[("sigma", "sigma", "σ = ±1, the sign of the slip velocity w")],
     },
 ];
