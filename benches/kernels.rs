@@ -21,8 +21,8 @@ use rotor_rub::analytic::segment::{Segment, point_of};
 use rotor_rub::analytic::switch::{Direction, first_crossing};
 use rotor_rub::coefficients as coef;
 use rotor_rub::reference::{
-    Dop853, Integrator, RotorSystem, Tolerance, first_crossing as dense_crossing, inside_measure,
-    switch_in_step,
+    Dop853, Integrator, RotorSystem, Switches, Tolerance, first_crossing as dense_crossing,
+    inside_measure, switch_in_step,
 };
 use rotor_rub::{Event, EventKind, Regime, State, events};
 
@@ -223,19 +223,16 @@ fn main() {
             "exit on a DOP853 step (dense output, 8 sub-intervals)",
             |b| b.iter(|| dense_crossing(&dstep.dense, &dstep.y0, &dstep.y1, g_in)),
         );
+        let switches = Switches::new(
+            &params,
+            Regime::Contact,
+            0.0,
+            entry.time,
+            &entry.state.to_array(),
+        );
         g.bench_function(
             "exit on a DOP853 step, polished onto the step solution",
-            |b| {
-                b.iter(|| {
-                    switch_in_step(
-                        &mut integ,
-                        &sys,
-                        black_box(&dstep),
-                        &params,
-                        Regime::Contact,
-                    )
-                })
-            },
+            |b| b.iter(|| switch_in_step(&mut integ, &sys, black_box(&dstep), &switches)),
         );
         g.finish();
         let _: State = exit.state;

@@ -225,3 +225,24 @@ pub fn slip_direction(params: &Params, tau: f64, state: &State, cause: Option<Ev
         _ => f.lambda_direction(),
     }
 }
+
+/// (N', λ') along the rolling field at a state, with the forcing direction supplied by the
+/// caller: the slope of the `slip` switch function μN − |λ| (generated, `rolling_rates`).
+#[inline]
+pub fn rolling_rates_with_phasor(
+    params: &Params,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> (f64, f64) {
+    let r = coef::rolling_rates(
+        &ModelParams::of(params),
+        &Position { x: s.x, y: s.y },
+        &Velocity { vx: s.vx, vy: s.vy },
+        &Phasor {
+            ct: cos_theta,
+            st: sin_theta,
+        },
+    );
+    (r.normal_rate, r.lambda_rate)
+}

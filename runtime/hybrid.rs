@@ -10,10 +10,10 @@ use crate::analytic::propagator::FreeFlightSolver;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
+use crate::propagate::{Event, Propagate, PropagationError, Regime, within_bounds};
 use crate::reference::{
-    Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, PhasorRotorSystem, REFERENCE_BUDGET,
-    ReferenceSolver, SUBDIVISIONS, Tolerance, switch_in_deferred_step,
+    Dop853, Dop853Dense, Dop853Step, Found, Integrator, Interpolant, PhasorRotorSystem,
+    REFERENCE_BUDGET, ReferenceSolver, SUBDIVISIONS, Switches, Tolerance, switch_in_deferred_step,
 };
 
 /// DOP853 on the 6-state contact field (rotor plus forcing phasor).
@@ -36,15 +36,19 @@ pub struct Dop853Contact {
     stepped: bool,
     step: Dop853Step<6>,
     dense: Option<Dop853Dense<6>>,
-    exit: Option<(f64, [f64; 6])>,
+    /// The switch ending the contact segment (exit, or under friction reverse or roll), once a
+    /// step holds it.
+    exit: Option<Found<6>>,
+    /// The segment's switch functions.
+    switches: Switches,
 }
 
 impl Dop853Contact {
-    fn new(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
+    fn new(params: &Params, tol: f64, slip: f64, t0: f64, s0: State) -> Self {
         let system = PhasorRotorSystem {
             params: *params,
             regime: Regime::Contact,
-            slip: 0.0,
+            slip,
         };
         // A quarter of the shorter of the forcing period and 2π, as the reference integrators.
         let max_step = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
@@ -65,6 +69,13 @@ impl Dop853Contact {
             step: Dop853Step::default(),
             dense: None,
             exit: None,
+            switches: Switches::new(
+                params,
+                Regime::Contact,
+                slip,
+                t0,
+                &PhasorRotorSystem::initial(params, t0, &s0),
+            ),
         }
     }
 
@@ -97,6 +108,7 @@ impl SegmentSolver for Dop853Contact {
     ) -> Result<(), PropagationError> {
         self.system.slip = slip;
         let y = PhasorRotorSystem::initial(&self.params, time, &state);
+        self.switches = Switches::new(&self.params, Regime::Contact, slip, time, &y);
         match self.carried_step {
             Some(step) => self
                 .integrator
@@ -109,11 +121,11 @@ impl SegmentSolver for Dop853Contact {
     }
 
     fn locate(&mut self, target: f64) -> Located {
-        if let Some((t, y)) = self.exit.filter(|(t, _)| *t <= target) {
+        if let Some((t, y, kind)) = self.exit.filter(|(t, _, _)| *t <= target) {
             self.carried_step = Some(self.integrator.proposed_step());
             return Located::Switch(Event {
                 time: t,
-                kind: EventKind::Exit,
+                kind,
                 state: PhasorRotorSystem::rotor_state(&y),
             });
         }
@@ -146,8 +158,7 @@ impl SegmentSolver for Dop853Contact {
             &mut self.integrator,
             &self.system,
             &self.step,
-            &self.params,
-            Regime::Contact,
+            &self.switches,
             subdivisions,
             &mut self.dense,
         );
@@ -175,12 +186,11 @@ impl HybridPropagator {
         let t0 = problem.start_time;
         Piecewise::new(problem, Some(REFERENCE_BUDGET), |_, slip, s0| {
             // The integrators start at the problem start, ready for a start in contact.
-            let mut contact = Dop853Contact::new(&params, tol, t0, s0);
-            contact.system.slip = slip;
+            let contact = Dop853Contact::new(&params, tol, slip, t0, s0);
             Ok(ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact,
-                rolling: ReferenceSolver::new(&params, Regime::Rolling, t0, s0, tol),
+                rolling: ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol),
             })
         })
         .map(HybridPropagator)

@@ -62,6 +62,8 @@
 //                               after:    21 add    43 mul    1 div   1 sqrt   0 trans
 // rolling_acceleration         before:   212 add   114 mul   28 div  28 sqrt   0 trans
 //                               after:    26 add    34 mul    1 div   1 sqrt   0 trans
+// rolling_rates                before:  1232 add   734 mul  149 div 149 sqrt   0 trans
+//                               after:    68 add   187 mul    2 div   1 sqrt   0 trans
 
 use crate::math as m;
 /// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
@@ -1463,5 +1465,93 @@ pub fn rolling_acceleration(
     Acceleration {
         ax: t0 + t1 + t2 + t7 + t8 + t4 * t5 * t14,
         ay: t9 + t10 + t11 + t12 + t13 - t3 * t5 * t14,
+    }
+}
+/// Outputs of [`rolling_rates`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionRates {
+    /// N' = dN/dτ
+    pub normal_rate: f64,
+    /// λ' = dλ/dτ
+    pub lambda_rate: f64,
+}
+/// The rates N' and λ' of the normal force and the rolling force along the rolling field (q'' = G − λ t, θ' = η): the slope of the `slip` switch function μN − |λ|.
+///
+/// Source: docs/MODEL.md §10.
+/// Derivation: total time derivatives of `friction_state`'s N and λ with the rolling acceleration and the forcing phasor's rates.
+#[inline]
+#[must_use]
+pub fn rolling_rates(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> FrictionRates {
+    let nu = model.nu;
+    let eta = model.eta;
+    let f = model.f;
+    let kxx = model.kxx;
+    let kxy = model.kxy;
+    let kyx = model.kyx;
+    let kyy = model.kyy;
+    let ex = model.ex;
+    let ey = model.ey;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = x - ex;
+    let t1 = y - ey;
+    let t2 = t0 * t0 + t1 * t1;
+    let t3 = 1.0 / m::sqrt(t2);
+    let t4 = 1.0 - t3;
+    let t5 = t0 * t4 * kxx + t1 * t4 * kxy;
+    let t6 = 1.0 / t2;
+    let t7 = 2.0 * t0 * vx + 2.0 * t1 * vy;
+    let t8 = t0 * t4 * kyx + t1 * t4 * kyy;
+    let t9 = ct * f;
+    let t10 = -2.0 * nu * vx;
+    let t11 = -x;
+    let t12 = -t0 * t4 * kxx;
+    let t13 = -t1 * t4 * kxy;
+    let t14 = t9 + t10 + t11 + t12 + t13;
+    let t15 = st * f;
+    let t16 = -2.0 * nu * vy;
+    let t17 = -y;
+    let t18 = -t0 * t4 * kyx;
+    let t19 = -t1 * t4 * kyy;
+    let t20 = t15 + t16 + t17 + t18 + t19;
+    let t21 = t0 * t3 * vy - t1 * t3 * vx;
+    let t22 = t0 * t3 * vx + t1 * t3 * vy;
+    let t23 = t0 * t3 * t20 - t1 * t3 * t14 - t3 * t21 * t22;
+    let t24 = t9 + t10 + t11 + t12 + t13 + t1 * t3 * t23;
+    let t25 = t15 + t16 + t17 + t18 + t19 - t0 * t3 * t23;
+    FrictionRates {
+        normal_rate: t3 * t5 * vx
+            + t0 * t3
+                * (t4 * kxx * vx + 0.5 * t0 * t3 * t6 * kxx * t7 + t4 * kxy * vy
+                    + 0.5 * t1 * t3 * t6 * kxy * t7) + t3 * t8 * vy
+            + t1 * t3
+                * (t4 * kyx * vx + 0.5 * t0 * t3 * t6 * kyx * t7 + t4 * kyy * vy
+                    + 0.5 * t1 * t3 * t6 * kyy * t7) - 0.5 * t0 * t3 * t6 * t5 * t7
+            - 0.5 * t1 * t3 * t6 * t8 * t7,
+        lambda_rate: 0.5 * t1 * t3 * t6 * t14 * t7 + t3 * vx * t20
+            + t0 * t3
+                * (eta * ct * f - 2.0 * nu * t25 - vy - t4 * kyx * vx
+                    - 0.5 * t0 * t3 * t6 * kyx * t7 - t4 * kyy * vy
+                    - 0.5 * t1 * t3 * t6 * kyy * t7) + 0.5 * t3 * t6 * t21 * t22 * t7
+            - t3 * vy * t14
+            - t1 * t3
+                * (-(eta * st * f) - 2.0 * nu * t24 - vx - t4 * kxx * vx
+                    - 0.5 * t0 * t3 * t6 * kxx * t7 - t4 * kxy * vy
+                    - 0.5 * t1 * t3 * t6 * kxy * t7) - 0.5 * t0 * t3 * t6 * t20 * t7
+            - t3 * t22
+                * (0.5 * t1 * t3 * t6 * vx * t7 + t0 * t3 * t25 - t1 * t3 * t24
+                    - 0.5 * t0 * t3 * t6 * vy * t7)
+            - t3 * t21
+                * (t3 * vx * vx + t0 * t3 * t24 + t3 * vy * vy + t1 * t3 * t25
+                    - 0.5 * t0 * t3 * t6 * vx * t7 - 0.5 * t1 * t3 * t6 * vy * t7),
     }
 }

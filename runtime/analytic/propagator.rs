@@ -269,7 +269,7 @@ impl AnalyticPropagator {
                 contact: ExprbContact::new(&params, scheme, tol, fixed_step),
                 // Rolling has no known closed form (`docs/MODEL.md` §10): DOP853 at the
                 // method's tolerance.
-                rolling: ReferenceSolver::new(&params, Regime::Rolling, t0, s0, tol),
+                rolling: ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol),
             };
             if regime == Regime::Contact {
                 solvers.contact.start(regime, slip, t0, s0)?;

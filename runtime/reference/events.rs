@@ -2,9 +2,9 @@
 //! function leaves the current regime, including a crossing and return inside one step (a
 //! grazing contact, `docs/MODEL.md` §6 case 13).
 //!
-//! The switching function is given as `g(y) = (s, s')`: the value, positive inside the current
-//! regime, and its time derivative (for the rotor, ±(h, h') with h = z² − 1 from
-//! [`crate::field::switching_function`]). The start of every step counts as inside, so a regime
+//! The switching function is given as `g(y) = (s, s')` (or `g(t, y)`): the value, positive
+//! inside the current regime, and its time derivative (for the rotor, ±(h, h') with h = z² − 1
+//! from [`crate::field::switching_function`]; friction's σw and μN − |λ|, `docs/MODEL.md` §10). The start of every step counts as inside, so a regime
 //! that starts exactly on the switching surface is never switched again at its first instant
 //! (`docs/MODEL.md` §6 case 15).
 
@@ -99,12 +99,13 @@ where
     D: Interpolant<N>,
     G: Fn(&[f64; N]) -> (f64, f64),
 {
-    first_crossing_subdivided(SUBDIVISIONS, dense, y0, y1, g)
+    first_crossing_subdivided(SUBDIVISIONS, dense, y0, y1, |_, y: &[f64; N]| g(y))
 }
 
-/// As [`first_crossing`] with the step split into `subdivisions` (≥ 1) sub-intervals. With one,
-/// only the exact end states are examined unless they show a crossing or a minimum, so a lazy
-/// interpolant is evaluated only then.
+/// As [`first_crossing`] with the step split into `subdivisions` (≥ 1) sub-intervals and a
+/// switching function of time and state, `g(t, y)` (friction's functions depend on the forcing
+/// phase). With one sub-interval, only the exact end states are examined unless they show a
+/// crossing or a minimum, so a lazy interpolant is evaluated only then.
 #[inline(always)]
 pub fn first_crossing_subdivided<const N: usize, D, G>(
     subdivisions: usize,
@@ -115,13 +116,13 @@ pub fn first_crossing_subdivided<const N: usize, D, G>(
 ) -> Option<f64>
 where
     D: Interpolant<N>,
-    G: Fn(&[f64; N]) -> (f64, f64),
+    G: Fn(f64, &[f64; N]) -> (f64, f64),
 {
     let subdivisions = subdivisions.max(1);
     let t0 = dense.start();
     let t1 = dense.end();
-    let value = |t: f64| g(&dense.eval(t)).0;
-    let (s0, mut ra) = g(y0);
+    let value = |t: f64| g(t, &dense.eval(t)).0;
+    let (s0, mut ra) = g(t0, y0);
     // The start is inside by definition.
     let mut sa = s0.max(0.0);
     let mut ta = t0;
@@ -133,13 +134,13 @@ where
             let tb = t0 + (t1 - t0) * (k as f64 / n);
             (tb, dense.eval(tb))
         };
-        let (sb, rb) = g(&yb);
+        let (sb, rb) = g(tb, &yb);
         if sb < 0.0 {
             return Some(refine_crossing(value, ta, sa, tb, sb));
         }
         if ra < 0.0 && rb > 0.0 {
             // A minimum of s inside (ta, tb): find it from the derivative.
-            let tm = refine_crossing(|t| -g(&dense.eval(t)).1, ta, -ra, tb, -rb);
+            let tm = refine_crossing(|t| -g(t, &dense.eval(t)).1, ta, -ra, tb, -rb);
             let sm = value(tm);
             if sm < 0.0 {
                 return Some(refine_crossing(value, ta, sa, tm, sm));
@@ -182,11 +183,11 @@ pub fn polish_switch<const N: usize, R, F, G>(
 where
     R: FnMut(f64) -> [f64; N],
     F: FnMut(f64, &[f64; N]) -> [f64; N],
-    G: Fn(&[f64; N]) -> (f64, f64),
+    G: Fn(f64, &[f64; N]) -> (f64, f64),
 {
     let linear_limit = LINEAR_SHIFT * (t_end - t_start);
     let (mut best_t, mut best_y) = (t, y);
-    let (mut s, mut ds) = g(&y);
+    let (mut s, mut ds) = g(t, &y);
     for _ in 0..POLISH_ITERATIONS {
         if s == 0.0 || ds == 0.0 || !s.is_finite() || !ds.is_finite() {
             break;
@@ -207,7 +208,7 @@ where
         } else {
             redo(t_new)
         };
-        let (s_new, ds_new) = g(&y_new);
+        let (s_new, ds_new) = g(t_new, &y_new);
         if s_new.is_nan() || math::abs(s_new) >= math::abs(s) {
             break;
         }

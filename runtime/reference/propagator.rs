@@ -30,12 +30,12 @@ use super::dop853::Dop853;
 use super::integrator::{AcceptedStep, Integrator, Stats};
 use super::rk45::Rk45;
 use super::scheme::{Interpolant, Scheme, Tolerance};
-use super::switch::switch_in_step;
+use super::switch::{Switches, switch_in_step};
 use super::system::RotorSystem;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, StepBudget};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
+use crate::propagate::{Event, Propagate, PropagationError, Regime, within_bounds};
 
 /// Step budget of one [`Propagate::advance`] call: this many steps plus
 /// [`STEPS_PER_TIME_UNIT`] per unit of the requested time span. Exceeding it reports
@@ -58,19 +58,27 @@ pub struct ReferenceSolver<S: Scheme<4>> {
     params: Params,
     regime: Regime,
     slip: f64,
+    switches: Switches,
     integrator: Integrator<S, 4>,
     step: Option<AcceptedStep<4, S::Dense>>,
     pending: Option<Event>,
 }
 
 impl<S: Scheme<4>> ReferenceSolver<S> {
-    /// A solver of `regime`'s field started at `(t0, state)` with `rtol = atol = tol` (the
-    /// analytic and hybrid methods' rolling segments use it; σ = 0, as rolling tracks none).
-    pub fn new(params: &Params, regime: Regime, t0: f64, state: State, tol: f64) -> Self {
+    /// A solver of `regime`'s field (slip direction `slip`) started at `(t0, state)` with
+    /// `rtol = atol = tol` (the analytic and hybrid methods' rolling segments use it too).
+    pub fn new(
+        params: &Params,
+        regime: Regime,
+        slip: f64,
+        t0: f64,
+        state: State,
+        tol: f64,
+    ) -> Self {
         let sys = RotorSystem {
             params: *params,
             regime,
-            slip: 0.0,
+            slip,
         };
         let integrator = Integrator::new(
             &sys,
@@ -82,7 +90,8 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
         ReferenceSolver {
             params: *params,
             regime,
-            slip: 0.0,
+            slip,
+            switches: Switches::new(params, regime, slip, t0, &state.to_array()),
             integrator,
             step: None,
             pending: None,
@@ -115,6 +124,7 @@ impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
     ) -> Result<(), PropagationError> {
         self.regime = regime;
         self.slip = slip;
+        self.switches = Switches::new(&self.params, regime, slip, time, &state.to_array());
         self.step = None;
         self.pending = None;
         let sys = self.system();
@@ -149,14 +159,10 @@ impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
                 state: end,
             });
         }
-        let regime = self.regime;
-        self.pending = switch_in_step(&mut self.integrator, &sys, &step, &self.params, regime).map(
-            |(t, y)| Event {
-                time: t,
-                kind: match regime {
-                    Regime::Free => EventKind::Enter,
-                    Regime::Contact | Regime::Rolling => EventKind::Exit,
-                },
+        self.pending = switch_in_step(&mut self.integrator, &sys, &step, &self.switches).map(
+            |(time, y, kind)| Event {
+                time,
+                kind,
                 state: State::from_array(y),
             },
         );
@@ -190,9 +196,7 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         let params = problem.params;
         let t0 = problem.start_time;
         let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, start| {
-            let mut solver = ReferenceSolver::new(&params, regime, t0, start, tol);
-            solver.slip = slip;
-            Ok(solver)
+            Ok(ReferenceSolver::new(&params, regime, slip, t0, start, tol))
         })?;
         Ok(ReferencePropagator { driver, events: 0 })
     }

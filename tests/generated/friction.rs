@@ -207,4 +207,29 @@ proptest! {
         prop_assert!(close(rate(Regime::Contact, s.sigma), f.slip_acceleration(&p, s.sigma), scale, 1e-8));
         prop_assert!(close(rate(Regime::Rolling, 0.0), 0.0, scale, 1e-8));
     }
+
+    /// N' and λ' (`rolling_rates`) against central differences of N and λ along the rolling
+    /// field, the forcing phase advancing at η (step 1e-5: error ~1e-10 relative).
+    #[test]
+    fn rolling_rates_match_finite_differences(s in any_situation()) {
+        let p = s.params();
+        let (q, v) = (s.q, s.v);
+        let state = State::new(q.x, q.y, v.x, v.y);
+        let (ct, st) = (s.theta.cos(), s.theta.sin());
+        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Rolling, 0.0, ct, st, &state);
+        let a = Vector2::new(ax, ay);
+        let h = 1e-5;
+        let at = |sign: f64| {
+            let qq = q + v * (sign * h);
+            let vv = v + a * (sign * h);
+            let th = s.theta + sign * h * s.case.eta;
+            let st2 = State::new(qq.x, qq.y, vv.x, vv.y);
+            field::friction_with_phasor(&p, th.cos(), th.sin(), &st2)
+        };
+        let (plus, minus) = (at(1.0), at(-1.0));
+        let (dn, dl) = field::rolling_rates_with_phasor(&p, ct, st, &state);
+        let scale = (1.0 + s.case.ks().norm()) * (1.0 + v.norm()).powi(3);
+        prop_assert!(close(dn, (plus.normal - minus.normal) / (2.0 * h), scale, 1e-7));
+        prop_assert!(close(dl, (plus.lambda - minus.lambda) / (2.0 * h), scale, 1e-7));
+    }
 }
