@@ -6,9 +6,10 @@ use super::free::FreeConstants;
 use super::free_flight::{FreeAdvance, FreeFlight};
 use super::linear::max_contact_stiffness;
 use super::schemes::{SubStep, exprb2_into, exprb43_into};
-use super::segment::{Point, Segment, point_of};
-use super::switch::{Direction, first_crossing_to};
+use super::segment::{Segment, point_of};
+use super::switch::{Budget, Direction, SlipPoint, SlipVelocity, first_crossing_to, locate};
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
+use crate::field::{self, SlipZero};
 use crate::math;
 use crate::method::{
     ContactScheme, Method, MethodInfo, Options, Registered, ValidRange, check_step,
@@ -100,8 +101,14 @@ pub struct ExprbContact {
     current: usize,
     /// Start of the current sub-step.
     t0: f64,
-    /// The exit inside the current sub-step (local time, point), if any.
-    exit: Option<(f64, Point)>,
+    /// The switch inside the current sub-step (local time, state, kind), if any: the exit, or
+    /// under friction `reverse` or `roll` where the slip velocity reaches 0.
+    exit: Option<(f64, State, EventKind)>,
+    /// The slip direction σ of the segment (0: frictionless).
+    slip: f64,
+    /// The slip switch's offset and scale for this segment ([`SlipVelocity`]).
+    slip_offset: f64,
+    slip_scale: f64,
 }
 
 impl ExprbContact {
@@ -124,6 +131,9 @@ impl ExprbContact {
             current: 0,
             t0: 0.0,
             exit: None,
+            slip: 0.0,
+            slip_offset: 0.0,
+            slip_scale: 1.0,
         }
     }
 
@@ -143,9 +153,12 @@ impl ExprbContact {
             let dt = self
                 .fixed_step
                 .unwrap_or(self.next_step.clamp(min_step, self.max_step));
+            let slip = self.slip;
             match self.scheme {
-                ContactScheme::Exprb2 => exprb2_into(&self.params, t0, state, dt, slot),
-                ContactScheme::Exprb43 => exprb43_into(&self.params, t0, state, dt, self.tol, slot),
+                ContactScheme::Exprb2 => exprb2_into(&self.params, slip, t0, state, dt, slot),
+                ContactScheme::Exprb43 => {
+                    exprb43_into(&self.params, slip, t0, state, dt, self.tol, slot)
+                }
             }
             .map_err(|_| PropagationError::SingularContact { time: t0 })?;
             if self.fixed_step.is_some() {
@@ -178,7 +191,22 @@ impl ExprbContact {
         let start = point_of(state, ox, oy);
         // The sub-step's end is the segment's point at its length: no need to evaluate it again.
         let end = point_of(slot.end, ox, oy);
-        self.exit = first_crossing_to(&slot.segment, 0.0, start, slot.length, end, Direction::Down);
+        let exit = first_crossing_to(&slot.segment, 0.0, start, slot.length, end, Direction::Down);
+        self.exit = exit.map(|(s, p)| (s, p.state, EventKind::Exit));
+        if self.slip != 0.0 {
+            let limit = exit.map_or(slot.length, |(s, _)| s);
+            let f = SlipVelocity::new(
+                &slot.segment,
+                &self.params,
+                t0,
+                self.slip,
+                self.slip_offset,
+                self.slip_scale,
+            );
+            if let Some(found) = first_slip_switch(&f, &self.params, t0, state, limit) {
+                self.exit = Some(found);
+            }
+        }
         self.t0 = t0;
         self.current = next;
         Ok(())
@@ -194,22 +222,27 @@ impl SegmentSolver for ExprbContact {
     fn start(
         &mut self,
         _regime: Regime,
-        _slip: f64,
+        slip: f64,
         time: f64,
         state: State,
     ) -> Result<(), PropagationError> {
         self.time_carry = 0.0;
+        self.slip = slip;
+        if slip != 0.0 {
+            self.slip_offset = SlipVelocity::start_offset(&self.params, time, &state, slip);
+            self.slip_scale = SlipVelocity::scale_at(&self.params, &state);
+        }
         self.sub_step(time, state)
     }
 
     fn locate(&mut self, target: f64) -> Located {
         let step = self.current();
         let s_target = target - self.t0;
-        if let Some((s, p)) = self.exit.filter(|(s, _)| *s <= s_target) {
+        if let Some((s, state, kind)) = self.exit.filter(|(s, _, _)| *s <= s_target) {
             return Located::Switch(Event {
                 time: self.t0 + s,
-                kind: EventKind::Exit,
-                state: p.state,
+                kind,
+                state,
             });
         }
         if s_target <= step.length {
@@ -237,6 +270,42 @@ impl SegmentSolver for ExprbContact {
         self.t0 + self.current().length
     }
 }
+
+/// Where slipping changes before local time `limit` of a sub-step starting at `(t0, state)`:
+/// the first zero of the slip velocity that is a `roll` or a `reverse` (`field::at_slip_zero`),
+/// searched by the switch kernel with [`Budget::EXPLORE`]; a touch (w back to the old sign) is
+/// looked past, at most [`MAX_TOUCHES`] times per sub-step.
+fn first_slip_switch(
+    f: &SlipVelocity<'_>,
+    params: &Params,
+    t0: f64,
+    state: State,
+    limit: f64,
+) -> Option<(f64, State, EventKind)> {
+    let mut from = SlipPoint { s: 0.0, state };
+    for _ in 0..=MAX_TOUCHES {
+        let (s, p) = locate(
+            f,
+            from.s,
+            from,
+            limit,
+            None,
+            f64::INFINITY,
+            &Budget::EXPLORE,
+        )
+        .found()?;
+        match field::at_slip_zero(params, t0 + s, &p.state, f.slip()) {
+            SlipZero::Roll => return Some((s, p.state, EventKind::Roll)),
+            SlipZero::Reverse => return Some((s, p.state, EventKind::Reverse)),
+            SlipZero::Touch => from = p,
+        }
+    }
+    None
+}
+
+/// Touches of w = 0 looked past in one sub-step (each needs σw to turn back up; more means w is
+/// flat at 0 to rounding, and the next sub-step searches afresh).
+const MAX_TOUCHES: usize = 4;
 
 /// The piecewise-analytical method (see [`crate::Method::Analytic`]).
 pub struct AnalyticPropagator(

@@ -11,7 +11,6 @@
 //!   is the scheme's continuous extension used for exit location and sampling.
 
 use super::linear::{LinearSegment, Linearization, Singular};
-use crate::coefficients::{self as coef, Position};
 use crate::math;
 use crate::params::{Params, State};
 
@@ -28,11 +27,11 @@ pub struct SubStep {
     pub error: f64,
 }
 
-/// n(q) = Kl q + Fd − q − K_s g(q): the nonlinear contact force minus its linearization, as a
-/// forcing on the acceleration (zero at the linearization point; generated from the model).
+/// n(q) = Kl q + Fd − q − (contact force): the nonlinear contact force minus its
+/// linearization, as a forcing on the acceleration (zero at the linearization point;
+/// generated from the model, with friction when the linearization slips).
 fn remainder(lin: &Linearization, s: &State) -> (f64, f64) {
-    let n = coef::contact_remainder(lin.model(), &Position { x: s.x, y: s.y }, &lin.kl);
-    (n.fx, n.fy)
+    lin.remainder(s)
 }
 
 impl SubStep {
@@ -50,19 +49,21 @@ impl SubStep {
 /// exprb2: the linearized closed form from `state` at time `t` over `h`.
 pub fn exprb2(params: &Params, t: f64, state: State, h: f64) -> Result<SubStep, Singular> {
     let mut out = SubStep::zeroed();
-    exprb2_into(params, t, state, h, &mut out)?;
+    exprb2_into(params, 0.0, t, state, h, &mut out)?;
     Ok(out)
 }
 
-/// [`exprb2`] written into `out` (no copy of the large segment); `out` is unspecified on error.
+/// [`exprb2`] written into `out` (no copy of the large segment), slipping in direction `slip`
+/// under friction (0: frictionless); `out` is unspecified on error.
 pub fn exprb2_into(
     params: &Params,
+    slip: f64,
     t: f64,
     state: State,
     h: f64,
     out: &mut SubStep,
 ) -> Result<(), Singular> {
-    let lin = Linearization::new(params, t, state.x, state.y)?;
+    let lin = Linearization::slipping(params, slip, t, state.x, state.y)?;
     if !lin.supports(h) {
         return Err(Singular);
     }
@@ -83,21 +84,22 @@ pub fn exprb43(
     tol: f64,
 ) -> Result<SubStep, Singular> {
     let mut out = SubStep::zeroed();
-    exprb43_into(params, t, state, h, tol, &mut out)?;
+    exprb43_into(params, 0.0, t, state, h, tol, &mut out)?;
     Ok(out)
 }
 
-/// [`exprb43`] written into `out` (no copy of the large segment); `out` is unspecified on
-/// error.
+/// [`exprb43`] written into `out` (no copy of the large segment), slipping in direction `slip`
+/// under friction (0: frictionless); `out` is unspecified on error.
 pub fn exprb43_into(
     params: &Params,
+    slip: f64,
     t: f64,
     state: State,
     h: f64,
     tol: f64,
     out: &mut SubStep,
 ) -> Result<(), Singular> {
-    let lin = Linearization::new(params, t, state.x, state.y)?;
+    let lin = Linearization::slipping(params, slip, t, state.x, state.y)?;
     if !lin.supports(h) {
         return Err(Singular);
     }

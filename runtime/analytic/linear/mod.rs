@@ -13,9 +13,9 @@ use super::series::{
     self, Coefficients, MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, len_for_rate, rate, series_len,
 };
 use crate::coefficients::{
-    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
-    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
-    Position, Velocity,
+    self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, Force,
+    HomogeneousInitial, HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor,
+    PolynomialParticular, Position, Slip, Velocity,
 };
 
 /// Gain of the harmonic particular solution (its amplitude over the forcing amplitude F) above
@@ -51,6 +51,9 @@ pub struct Linearization {
     /// Near resonance ([`RESONANT_GAIN`]): the harmonic particular part is zero and every
     /// segment carries the harmonic forcing in its series response.
     resonant: bool,
+    /// The slip direction σ of the linearized contact field (0: frictionless, `docs/MODEL.md`
+    /// §10).
+    slip: f64,
 }
 
 /// Why a linearization cannot be used.
@@ -61,10 +64,28 @@ impl Linearization {
     /// Linearize the contact force about position (x0, y0) for a segment starting at time `t0`
     /// (`docs/MODEL.md` §2–3, §5). Fails when Kl is singular or the forcing resonant (§6 cases 9–10).
     pub fn new(params: &Params, t0: f64, x0: f64, y0: f64) -> Result<Self, Singular> {
+        Self::slipping(params, 0.0, t0, x0, y0)
+    }
+
+    /// As [`Linearization::new`] for contact slipping in direction `slip` (σ = ±1) under
+    /// friction: the generated `slipping_linearized_stiffness`, Kl no longer symmetric
+    /// (`docs/MODEL.md` §10). `slip` = 0 is frictionless contact, exactly [`Linearization::new`].
+    pub fn slipping(
+        params: &Params,
+        slip: f64,
+        t0: f64,
+        x0: f64,
+        y0: f64,
+    ) -> Result<Self, Singular> {
         let p = params;
         let model = ModelParams::of(p);
-        let t = coef::taylor_terms(&model, &Position { x: x0, y: y0 });
-        let kl = coef::linearized_stiffness(&model, &t);
+        let at = Position { x: x0, y: y0 };
+        let kl = if slip == 0.0 {
+            let t = coef::taylor_terms(&model, &at);
+            coef::linearized_stiffness(&model, &t)
+        } else {
+            coef::slipping_linearized_stiffness(&model, &at, &Slip { sigma: slip })
+        };
         let nu = p.damping_ratio;
         let modes = coef::contact_modes(&model, &kl);
         let scale =
@@ -115,7 +136,30 @@ impl Linearization {
             harmonic_amplitude: amplitude,
             harmonic_shift: math::hypot(c.c55 - p.offset_x, c.c66 - p.offset_y),
             resonant,
+            slip,
         })
+    }
+
+    /// The slip direction σ this linearization was made for (0: frictionless).
+    pub fn slip(&self) -> f64 {
+        self.slip
+    }
+
+    /// n(q) = Kl q + Fd − q − (contact force): the nonlinear contact field minus its
+    /// linearization at `state`'s position, as a force on the acceleration (zero at the
+    /// linearization point; generated: `contact_remainder`, or `slipping_remainder` under
+    /// friction).
+    pub fn remainder(&self, state: &State) -> (f64, f64) {
+        let at = Position {
+            x: state.x,
+            y: state.y,
+        };
+        let n = if self.slip == 0.0 {
+            coef::contact_remainder(&self.model, &at, &self.kl)
+        } else {
+            coef::slipping_remainder(&self.model, &at, &self.kl, &Slip { sigma: self.slip })
+        };
+        (n.fx, n.fy)
     }
 
     /// Whether segments of this linearization are exact over `horizon`: always, except near
@@ -190,6 +234,7 @@ impl Linearization {
             lin: *self,
             response: Response::None,
             start: HomogeneousStart::default(),
+            forcing: [0.0; 8],
         };
         self.segment_into(state, forcing, horizon, &mut out);
         out
@@ -205,6 +250,7 @@ impl Linearization {
     ) {
         let k = &self.kl;
         out.lin = *self;
+        out.forcing = forcing;
         if self.resonant {
             // The harmonic forcing and the extra cubic, as one series (`docs/MODEL.md` §11).
             let mut all = [0.0; 2 * SERIES_TERMS];
@@ -353,6 +399,8 @@ pub struct LinearSegment {
     lin: Linearization,
     response: Response,
     start: HomogeneousStart,
+    /// The extra cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`.
+    forcing: [f64; 8],
 }
 
 impl LinearSegment {
@@ -410,10 +458,58 @@ impl LinearSegment {
                 harmonic_amplitude: 0.0,
                 harmonic_shift: 0.0,
                 resonant: false,
+                slip: 0.0,
             },
             response: Response::None,
             start: HomogeneousStart::default(),
+            forcing: [0.0; 8],
         }
+    }
+
+    /// The acceleration q″ at local time `s` of the segment whose state there is `state`: the
+    /// linearized equations q″ = −Fd + F(cos θ, sin θ) + a(s) − 2ν q′ − Kl q (generated
+    /// `linear_acceleration`, with the unbalance from the generated free acceleration at rest).
+    pub fn acceleration(&self, s: f64, state: &State) -> (f64, f64) {
+        let l = &self.lin;
+        let (ct, st) = l.phasor(s);
+        let unbalance = coef::free_acceleration(
+            &l.model,
+            &Position::default(),
+            &Velocity::default(),
+            &Phasor { ct, st },
+        );
+        let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
+        let load = Force {
+            fx: unbalance.ax - l.kl.fd1 + a0x + s * (a1x + s * (a2x + s * a3x)),
+            fy: unbalance.ay - l.kl.fd2 + a0y + s * (a1y + s * (a2y + s * a3y)),
+        };
+        let a = coef::linear_acceleration(
+            &l.model,
+            &Position {
+                x: state.x,
+                y: state.y,
+            },
+            &Velocity {
+                vx: state.vx,
+                vy: state.vy,
+            },
+            &load,
+            &l.kl,
+        );
+        (a.ax, a.ay)
+    }
+
+    /// A bound of |q‴| on [lo, hi]: from q‴ = −2ν q″ − Kl q′ + F η (−sin θ, cos θ) + a′(s)
+    /// with the segment's speed and acceleration bounds `b` on the same interval
+    /// ([`Segment::bounds`]; ‖Kl‖₂ ≤ its Frobenius norm).
+    pub fn jerk_bound(&self, hi: f64, b: &crate::analytic::segment::Bounds) -> f64 {
+        let l = &self.lin;
+        let [_, _, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
+        let h = math::abs(hi);
+        let extra = math::hypot(a1x, a1y)
+            + 2.0 * h * math::hypot(a2x, a2y)
+            + 3.0 * h * h * math::hypot(a3x, a3y);
+        2.0 * l.nu * b.accel + l.norm_kl * b.speed + math::abs(l.model.f) * l.eta + extra
     }
 
     /// The linearization this segment belongs to.

@@ -37,10 +37,12 @@
 //! and, failing that, by the budget.
 
 mod boundary;
+mod slip;
 
 pub use boundary::{
     Boundary, Direction, curvature, first_crossing, first_crossing_to, local_curvature,
 };
+pub use slip::{SlipPoint, SlipVelocity};
 
 use crate::math;
 
