@@ -7,9 +7,8 @@ use super::free_flight::{FreeAdvance, FreeFlight};
 use super::linear::max_contact_stiffness;
 use super::schemes::{SubStep, exprb2_into, exprb43_into};
 use super::segment::{Segment, point_of};
-use super::switch::{Budget, Direction, SlipPoint, SlipVelocity, first_crossing_to, locate};
+use super::switch::{Budget, Direction, SlipVelocity, first_crossing_to, first_slip_switch};
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
-use crate::field::{self, SlipZero};
 use crate::math;
 use crate::method::{
     ContactScheme, Method, MethodInfo, Options, Registered, ValidRange, check_step,
@@ -203,7 +202,7 @@ impl ExprbContact {
                 self.slip_offset,
                 self.slip_scale,
             );
-            if let Some(found) = first_slip_switch(&f, &self.params, t0, state, limit) {
+            if let Some(found) = first_slip_switch(&f, state, limit, &Budget::EXPLORE) {
                 self.exit = Some(found);
             }
         }
@@ -270,42 +269,6 @@ impl SegmentSolver for ExprbContact {
         self.t0 + self.current().length
     }
 }
-
-/// Where slipping changes before local time `limit` of a sub-step starting at `(t0, state)`:
-/// the first zero of the slip velocity that is a `roll` or a `reverse` (`field::at_slip_zero`),
-/// searched by the switch kernel with [`Budget::EXPLORE`]; a touch (w back to the old sign) is
-/// looked past, at most [`MAX_TOUCHES`] times per sub-step.
-fn first_slip_switch(
-    f: &SlipVelocity<'_>,
-    params: &Params,
-    t0: f64,
-    state: State,
-    limit: f64,
-) -> Option<(f64, State, EventKind)> {
-    let mut from = SlipPoint { s: 0.0, state };
-    for _ in 0..=MAX_TOUCHES {
-        let (s, p) = locate(
-            f,
-            from.s,
-            from,
-            limit,
-            None,
-            f64::INFINITY,
-            &Budget::EXPLORE,
-        )
-        .found()?;
-        match field::at_slip_zero(params, t0 + s, &p.state, f.slip()) {
-            SlipZero::Roll => return Some((s, p.state, EventKind::Roll)),
-            SlipZero::Reverse => return Some((s, p.state, EventKind::Reverse)),
-            SlipZero::Touch => from = p,
-        }
-    }
-    None
-}
-
-/// Touches of w = 0 looked past in one sub-step (each needs σw to turn back up; more means w is
-/// flat at 0 to rounding, and the next sub-step searches afresh).
-const MAX_TOUCHES: usize = 4;
 
 /// The piecewise-analytical method (see [`crate::Method::Analytic`]).
 pub struct AnalyticPropagator(

@@ -42,7 +42,7 @@ mod slip;
 pub use boundary::{
     Boundary, Direction, curvature, first_crossing, first_crossing_to, local_curvature,
 };
-pub use slip::{SlipPoint, SlipVelocity};
+pub use slip::{MAX_TOUCHES, SlipPoint, SlipVelocity, first_slip_switch};
 
 use crate::math;
 

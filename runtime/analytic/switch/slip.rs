@@ -18,13 +18,13 @@
 //! and z ≥ z(lo) − V·(hi − lo) (an interval that could come near the stator centre, z < ¼, gets
 //! no finite bound and is split instead).
 
-use super::EventFunction;
+use super::{Budget, EventFunction, locate};
 use crate::analytic::linear::LinearSegment;
 use crate::analytic::segment::Segment;
-use crate::field;
+use crate::field::{self, SlipZero};
 use crate::math;
 use crate::params::{Params, State};
-use crate::propagate::Regime;
+use crate::propagate::{EventKind, Regime};
 
 /// A point of the sub-step: its local time and state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -125,3 +125,29 @@ impl EventFunction for SlipVelocity<'_> {
         (jerk + 3.0 * a * v / z + 3.0 * v * v * v / (z * z)) / self.scale
     }
 }
+
+/// Where slipping changes before local time `limit` of the sub-step of `f`, which starts in
+/// `state`: the first zero of the slip velocity that is a `roll` or a `reverse`
+/// ([`field::at_slip_zero`]), searched by the kernel with `budget`, as (local time, state,
+/// kind); a touch (w back to the old sign) is looked past, at most [`MAX_TOUCHES`] times.
+pub fn first_slip_switch(
+    f: &SlipVelocity<'_>,
+    state: State,
+    limit: f64,
+    budget: &Budget,
+) -> Option<(f64, State, EventKind)> {
+    let mut from = SlipPoint { s: 0.0, state };
+    for _ in 0..=MAX_TOUCHES {
+        let (s, p) = locate(f, from.s, from, limit, None, f64::INFINITY, budget).found()?;
+        match field::at_slip_zero(f.params, f.t0 + s, &p.state, f.slip) {
+            SlipZero::Roll => return Some((s, p.state, EventKind::Roll)),
+            SlipZero::Reverse => return Some((s, p.state, EventKind::Reverse)),
+            SlipZero::Touch => from = p,
+        }
+    }
+    None
+}
+
+/// Touches of w = 0 looked past in one sub-step (each needs σw to turn back up; more means w is
+/// flat at 0 to rounding, and the next sub-step searches afresh).
+pub const MAX_TOUCHES: usize = 4;

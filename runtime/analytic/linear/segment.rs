@@ -1,0 +1,166 @@
+//! The linearized contact segment itself: [`Linearization`] plus an initial state and an extra
+//! cubic forcing, evaluated in closed form (`docs/MODEL.md` §5, §8), with its acceleration and
+//! a jerk bound for friction's switch (`docs/MODEL.md` §10).
+
+use super::Linearization;
+use crate::analytic::segment::Bounds;
+use crate::analytic::series::{self, Coefficients};
+use crate::coefficients::{
+    self as coef, ContactBasis, ContactModes, ContactParticular, Force, HomogeneousStart,
+    LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular, Position, Velocity,
+};
+use crate::math;
+use crate::params::State;
+
+/// How the response to the extra cubic forcing is represented.
+#[derive(Clone, Copy, Debug)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "the runtime has no heap to box into"
+)]
+pub enum Response {
+    /// No extra forcing.
+    None,
+    /// The generated cubic particular solution (its homogeneous complement is in q0, w0).
+    Polynomial(PolynomialParticular),
+    /// The zero-state response as a Taylor polynomial Σ c_m s^m (x and y coefficients), from
+    /// the equations of motion: c0 = c1 = 0 and
+    /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`docs/MODEL.md` §3).
+    Series(Coefficients),
+}
+
+/// `unforced + q` componentwise (the last sum of [`LinearSegment::state_with`]).
+#[inline]
+pub(super) fn add_response(unforced: &State, q: &[f64; 4]) -> State {
+    State::new(
+        unforced.x + q[0],
+        unforced.y + q[1],
+        unforced.vx + q[2],
+        unforced.vy + q[3],
+    )
+}
+
+/// A linearized contact segment: [`Linearization`] plus initial state and cubic forcing.
+#[derive(Clone, Copy, Debug)]
+pub struct LinearSegment {
+    pub(super) lin: Linearization,
+    pub(super) response: Response,
+    pub(super) start: HomogeneousStart,
+    /// The extra cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`.
+    pub(super) forcing: [f64; 8],
+}
+
+impl LinearSegment {
+    /// The state at `s` given precomputed scalars (see [`Linearization::scalars`]).
+    pub fn state_with(&self, s: f64, scalars: &ContactBasis) -> State {
+        let l = &self.lin;
+        let h = coef::contact_homogeneous_eval(&l.model, &l.kl, &l.modes, &self.start, scalars);
+        let p = l.particular_state(s);
+        let q = match &self.response {
+            Response::None => [0.0; 4],
+            Response::Polynomial(b) => {
+                let q = coef::polynomial_eval(&LocalTime { s }, b);
+                [q.x, q.y, q.vx, q.vy]
+            }
+            Response::Series(c) => series::eval(c, s),
+        };
+        State::new(
+            h.x + p[0] + q[0],
+            h.y + p[1] + q[1],
+            h.vx + p[2] + q[2],
+            h.vy + p[3] + q[3],
+        )
+    }
+
+    /// The state at `s` given `unforced`, the state at `s` of the segment without extra forcing
+    /// from the same start (see [`Linearization::forced_state`]), when this segment's response
+    /// shares its homogeneous part (a series or none); `None` for a polynomial response.
+    pub fn state_from_unforced(&self, s: f64, unforced: &State) -> Option<State> {
+        if self.lin.resonant {
+            return None;
+        }
+        match &self.response {
+            Response::None => Some(*unforced),
+            Response::Series(c) => Some(add_response(unforced, &series::eval(c, s))),
+            Response::Polynomial(_) => None,
+        }
+    }
+
+    /// A segment with every coefficient zero (a slot to be filled by
+    /// [`Linearization::segment_into`]).
+    pub(crate) fn zeroed() -> LinearSegment {
+        LinearSegment {
+            lin: Linearization {
+                kl: LinearizedContact::default(),
+                modes: ContactModes::default(),
+                particular: ContactParticular::default(),
+                model: ModelParams::default(),
+                nu: 0.0,
+                eta: 0.0,
+                phase0: (1.0, 0.0),
+                offset: (0.0, 0.0),
+                norm_a: 0.0,
+                norm_kl: 0.0,
+                gains: (0.0, 0.0),
+                harmonic_amplitude: 0.0,
+                harmonic_shift: 0.0,
+                resonant: false,
+                slip: 0.0,
+            },
+            response: Response::None,
+            start: HomogeneousStart::default(),
+            forcing: [0.0; 8],
+        }
+    }
+
+    /// The acceleration q″ at local time `s` of the segment whose state there is `state`: the
+    /// linearized equations q″ = −Fd + F(cos θ, sin θ) + a(s) − 2ν q′ − Kl q (generated
+    /// `linear_acceleration`, with the unbalance from the generated free acceleration at rest).
+    pub fn acceleration(&self, s: f64, state: &State) -> (f64, f64) {
+        let l = &self.lin;
+        let (ct, st) = l.phasor(s);
+        let unbalance = coef::free_acceleration(
+            &l.model,
+            &Position::default(),
+            &Velocity::default(),
+            &Phasor { ct, st },
+        );
+        let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
+        let load = Force {
+            fx: unbalance.ax - l.kl.fd1 + a0x + s * (a1x + s * (a2x + s * a3x)),
+            fy: unbalance.ay - l.kl.fd2 + a0y + s * (a1y + s * (a2y + s * a3y)),
+        };
+        let a = coef::linear_acceleration(
+            &l.model,
+            &Position {
+                x: state.x,
+                y: state.y,
+            },
+            &Velocity {
+                vx: state.vx,
+                vy: state.vy,
+            },
+            &load,
+            &l.kl,
+        );
+        (a.ax, a.ay)
+    }
+
+    /// A bound of |q‴| on [lo, hi]: from q‴ = −2ν q″ − Kl q′ + F η (−sin θ, cos θ) + a′(s)
+    /// with the segment's speed and acceleration bounds `b` on the same interval
+    /// ([`Segment::bounds`]; ‖Kl‖₂ ≤ its Frobenius norm).
+    pub fn jerk_bound(&self, hi: f64, b: &Bounds) -> f64 {
+        let l = &self.lin;
+        let [_, _, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
+        let h = math::abs(hi);
+        let extra = math::hypot(a1x, a1y)
+            + 2.0 * h * math::hypot(a2x, a2y)
+            + 3.0 * h * h * math::hypot(a3x, a3y);
+        2.0 * l.nu * b.accel + l.norm_kl * b.speed + math::abs(l.model.f) * l.eta + extra
+    }
+
+    /// The linearization this segment belongs to.
+    pub fn linearization(&self) -> &Linearization {
+        &self.lin
+    }
+}
