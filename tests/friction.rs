@@ -4,4 +4,5 @@
 mod friction {
     pub mod agreement;
     pub mod oracle;
+    pub mod properties;
 }

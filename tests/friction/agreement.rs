@@ -5,9 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use rotor_rub::{
-    Event, Method, Options, Params, Preset, Problem, Propagate, Propagator, State, advance_to,
-};
+use rotor_rub::{Event, Method, Options, Params, Preset, Problem, Propagator, State, advance_to};
 
 use super::oracle::{self, OracleEvent, OracleRun};
 

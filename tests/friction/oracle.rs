@@ -53,8 +53,6 @@ pub struct OracleRun {
     pub events: Vec<OracleEvent>,
     /// Samples (time, state, phase) every [`SPACING`] (from the scan).
     pub samples: Vec<(f64, [f64; 4], Phase)>,
-    /// The state at the end.
-    pub end: [f64; 4],
 }
 
 /// The model's parameters, read off a `Params` (only values, no production code).
@@ -151,24 +149,12 @@ impl Model {
         }
     }
 
-    /// The friction force on the rotor (per unit mass, as it enters the acceleration).
-    pub fn friction_force(&self, phase: Phase, t: f64, y: &[f64; 4]) -> [f64; 2] {
-        let (_, _, tg) = self.frame(y);
-        let (normal, _, lambda) = self.friction(t, y);
-        let f = match phase {
-            Phase::Free => 0.0,
-            Phase::Slipping(sigma) => self.mu * sigma * normal,
-            Phase::Rolling => lambda,
-        };
-        [-f * tg[0], -f * tg[1]]
-    }
-
     /// The switch functions of `phase` (positive inside): [z = 1, friction's].
     fn switches(&self, phase: Phase, t: f64, y: &[f64; 4]) -> [f64; 2] {
         let h = (y[0] - self.e[0]).powi(2) + (y[1] - self.e[1]).powi(2) - 1.0;
         match phase {
             Phase::Free => [-h, f64::INFINITY],
-            Phase::Slipping(sigma) if sigma == 0.0 => [h, f64::INFINITY],
+            Phase::Slipping(0.0) => [h, f64::INFINITY],
             Phase::Slipping(sigma) => [h, sigma * self.friction(t, y).1],
             Phase::Rolling => {
                 let (normal, _, lambda) = self.friction(t, y);
@@ -349,9 +335,5 @@ pub fn run(params: &Params, initial: State, t0: f64, t_end: f64) -> OracleRun {
             y = prev.1;
         }
     }
-    OracleRun {
-        events,
-        samples,
-        end: y,
-    }
+    OracleRun { events, samples }
 }
