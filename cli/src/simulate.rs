@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use rotor_rub::Regime;
+use rotor_rub::{EventKind, Params, Regime, State};
 
 use crate::error::{CliError, Result, num};
 use crate::limits::LimitArgs;
@@ -14,8 +14,8 @@ use crate::trajectory::{self, uniform_times};
 
 /// Header of the events file.
 pub const EVENTS_HEADER: [&str; 6] = ["tau", "kind", "x", "y", "vx", "vy"];
-/// Header of the samples file.
-pub const SAMPLES_HEADER: [&str; 6] = ["tau", "x", "y", "vx", "vy", "contact"];
+/// Header of the samples file (`regime`: free, contact or rolling, after the original columns).
+pub const SAMPLES_HEADER: [&str; 7] = ["tau", "x", "y", "vx", "vy", "contact", "regime"];
 
 /// Simulate one parameter set from τ = 0 (the stable contract for scripts).
 #[derive(clap::Args, Debug)]
@@ -32,13 +32,13 @@ pub struct Args {
     #[command(flatten)]
     pub limits: LimitArgs,
 
-    /// Write every contact switch, in order, as CSV with header tau,kind,x,y,vx,vy (kind is
-    /// `enter` or `exit`)
+    /// Write every switch, in order, as CSV with header tau,kind,x,y,vx,vy (kind is `enter` or
+    /// `exit`; with friction also `reverse`, `roll` or `slip`)
     #[arg(long, value_name = "FILE.csv")]
     pub events: Option<PathBuf>,
 
-    /// Write uniform samples as CSV with header tau,x,y,vx,vy,contact (contact 0 or 1) at the
-    /// times t_i = t_end·i/(N−1), i = 0..N−1
+    /// Write uniform samples as CSV with header tau,x,y,vx,vy,contact,regime (contact 0 or 1;
+    /// regime free, contact or rolling) at the times t_i = t_end·i/(N−1), i = 0..N−1
     #[arg(long, value_name = "FILE.csv")]
     pub samples: Option<PathBuf>,
 
@@ -81,10 +81,26 @@ pub fn run(args: &Args) -> Result<()> {
     let count =
         usize::try_from(count).map_err(|_| CliError::input("--sample-count is too large"))?;
     let mut tracker = budget.run(problem.start_time, end);
+    // Under friction the whirl rate is measured on a grid of its own (64 points per forcing
+    // period and per natural period), merged with the requested samples: sampling never changes
+    // a run, and only the requested ones are written.
+    let friction = problem.params.friction_coefficient > 0.0;
+    let user: Vec<f64> = uniform_times(problem.start_time, end, count).collect();
+    let mut times: Vec<(f64, bool)> = user.iter().map(|t| (*t, true)).collect();
+    if friction {
+        let dt = problem.params.forcing_period().min(std::f64::consts::TAU) / 64.0;
+        let n = ((end - problem.start_time) / dt).floor();
+        budget.plan("whirl samples", n as u64)?;
+        let grid = (1..=n as u64).map(|k| (problem.start_time + k as f64 * dt, false));
+        times.extend(grid);
+        times.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    let mut whirl = Whirl::new(&problem.params, problem.start_time, &problem.initial, end);
+    let mut kinds = times.iter().map(|(_, user)| *user);
     let pass = trajectory::run(
         propagator,
         end,
-        uniform_times(problem.start_time, end, count),
+        times.iter().map(|(t, _)| *t),
         &mut tracker,
         false,
         |e| match &mut events_out {
@@ -94,15 +110,20 @@ pub fn run(args: &Args) -> Result<()> {
             }
             None => Ok(()),
         },
-        |sample| match &mut samples_out {
-            Some(out) => {
-                let s = sample.state;
-                let contact = u8::from(sample.regime.in_contact());
-                out.row((sample.time, s.x, s.y, s.vx, s.vy, contact))
+        |sample| {
+            whirl.add(sample.time, &sample.state);
+            match (&mut samples_out, kinds.next()) {
+                (Some(out), Some(true)) => {
+                    let s = sample.state;
+                    let contact = u8::from(sample.regime.in_contact());
+                    let regime = sample.regime.name();
+                    out.row((sample.time, s.x, s.y, s.vx, s.vy, contact, regime))
+                }
+                _ => Ok(()),
             }
-            None => Ok(()),
         },
     )?;
+    whirl.add(end, &pass.last.state);
     let files = [events_out, samples_out]
         .into_iter()
         .flatten()
@@ -124,10 +145,44 @@ pub fn run(args: &Args) -> Result<()> {
         report,
         "switches: {} ({} contact starts, {} contact ends)",
         pass.switches,
-        pass.enters,
-        pass.switches - pass.enters
+        pass.count(EventKind::Enter),
+        pass.count(EventKind::Exit)
     );
     let _ = writeln!(report, "contact fraction: {}", pass.contact_fraction);
+    if friction {
+        let _ = writeln!(
+            report,
+            "friction: {} slip reversals, {} rolling starts, {} rolling ends",
+            pass.count(EventKind::Reverse),
+            pass.count(EventKind::Roll),
+            pass.count(EventKind::Slip)
+        );
+        let span = end - problem.start_time;
+        let [free, slipping, rolling] = pass.time_in;
+        let _ = writeln!(
+            report,
+            "time free {} ({:.1}%), slipping {} ({:.1}%), rolling {} ({:.1}%)",
+            num(free),
+            100.0 * free / span,
+            num(slipping),
+            100.0 * slipping / span,
+            num(rolling),
+            100.0 * rolling / span
+        );
+        let eta = problem.params.speed_ratio;
+        for (label, rate) in [
+            ("whole run", whirl.rate()),
+            ("second half", whirl.second_half_rate()),
+        ] {
+            let sense = if rate < 0.0 { "backward" } else { "forward" };
+            let _ = writeln!(
+                report,
+                "mean whirl rate ({label}): {} ({sense}, {} of the running speed)",
+                num(rate),
+                num(rate / eta)
+            );
+        }
+    }
     let _ = writeln!(
         report,
         "final state: x = {}, y = {}, vx = {}, vy = {} ({})",
@@ -152,4 +207,64 @@ pub fn run(args: &Args) -> Result<()> {
         }
     }
     print(&report)
+}
+
+/// The mean whirl rate dφ/dτ of the rotor's angle φ about the stator centre, from states at
+/// increasing times (each step of φ taken as the shortest turn, so the states must be closer
+/// than half a turn apart: the grid of `run`).
+struct Whirl {
+    centre: (f64, f64),
+    start: f64,
+    half: f64,
+    last: (f64, f64),
+    total: f64,
+    second_half: f64,
+    second_half_from: Option<f64>,
+    time: f64,
+}
+
+impl Whirl {
+    fn new(params: &Params, start: f64, initial: &State, end: f64) -> Self {
+        let centre = (params.offset_x, params.offset_y);
+        let angle = (initial.y - centre.1).atan2(initial.x - centre.0);
+        Whirl {
+            centre,
+            start,
+            half: 0.5 * (start + end),
+            last: (start, angle),
+            total: 0.0,
+            second_half: 0.0,
+            second_half_from: None,
+            time: start,
+        }
+    }
+
+    fn add(&mut self, time: f64, state: &State) {
+        if time <= self.last.0 {
+            return;
+        }
+        let angle = (state.y - self.centre.1).atan2(state.x - self.centre.0);
+        let mut d = angle - self.last.1;
+        if d > std::f64::consts::PI {
+            d -= std::f64::consts::TAU;
+        } else if d < -std::f64::consts::PI {
+            d += std::f64::consts::TAU;
+        }
+        self.total += d;
+        if time > self.half {
+            self.second_half_from.get_or_insert(self.last.0);
+            self.second_half += d;
+        }
+        self.last = (time, angle);
+        self.time = time;
+    }
+
+    fn rate(&self) -> f64 {
+        self.total / (self.time - self.start)
+    }
+
+    fn second_half_rate(&self) -> f64 {
+        let from = self.second_half_from.unwrap_or(self.half);
+        self.second_half / (self.time - from)
+    }
 }

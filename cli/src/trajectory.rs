@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use rotor_rub::{Event, Options, Problem, Propagate, Propagator, Sample};
+use rotor_rub::{Event, EventKind, Options, Problem, Propagate, Propagator, Regime, Sample};
 
 use crate::error::{CliError, Result};
 use crate::limits::{Tracker, fits_memory, memory_limit};
@@ -14,9 +14,11 @@ pub struct Pass {
     pub events: Vec<Event>,
     /// Number of switches.
     pub switches: u64,
-    /// Number of contact starts among them.
-    pub enters: u64,
-    /// Fraction of the run spent in contact.
+    /// Number of switches of each kind, in [`EventKind::ALL`] order.
+    pub kinds: [u64; EventKind::ALL.len()],
+    /// Time spent free, slipping (or in frictionless contact) and rolling.
+    pub time_in: [f64; 3],
+    /// Fraction of the run spent in contact (slipping or rolling).
     pub contact_fraction: f64,
     /// The state at the end time.
     pub last: Sample,
@@ -79,18 +81,25 @@ pub fn run(
     let max_kept = memory_limit() / 2 / std::mem::size_of::<Event>() as u64;
     let mut elapsed = Duration::ZERO;
     let mut events = Vec::new();
-    let (mut switches, mut enters, mut contact) = (0_u64, 0_u64, 0.0);
-    let (mut in_contact, mut since) = (initial_regime.in_contact(), start_time);
+    let mut switches = 0_u64;
+    let mut kinds = [0_u64; EventKind::ALL.len()];
+    let mut time_in = [0.0; 3];
+    let (mut regime, mut since) = (initial_regime, start_time);
     let mut step = |propagator: &mut Propagator, t: f64| {
         let started = Instant::now();
         let sample = advance_to(propagator, t, tracker, |e| {
             switches += 1;
-            if e.kind.regime_after().in_contact() {
-                enters += 1;
-            } else {
-                contact += e.time - since;
+            if let Some(n) = EventKind::ALL
+                .iter()
+                .position(|k| *k == e.kind)
+                .and_then(|i| kinds.get_mut(i))
+            {
+                *n += 1;
             }
-            (in_contact, since) = (e.kind.regime_after().in_contact(), e.time);
+            if let Some(spent) = time_in.get_mut(regime_index(regime)) {
+                *spent += e.time - since;
+            }
+            (regime, since) = (e.kind.regime_after(), e.time);
             if keep_events {
                 if switches > max_kept {
                     fits_memory("switches kept", switches, std::mem::size_of::<Event>())?;
@@ -107,18 +116,20 @@ pub fn run(
         on_sample(&sample)?;
     }
     let last = step(&mut propagator, end)?;
-    if in_contact {
-        contact += end - since;
+    if let Some(spent) = time_in.get_mut(regime_index(regime)) {
+        *spent += end - since;
     }
+    let [_, slipping, rolling] = time_in;
     let contact_fraction = if end > start_time {
-        contact / (end - start_time)
+        (slipping + rolling) / (end - start_time)
     } else {
         f64::from(u8::from(initial_regime.in_contact()))
     };
     Ok(Pass {
         events,
         switches,
-        enters,
+        kinds,
+        time_in,
         contact_fraction,
         last,
         elapsed,
@@ -190,6 +201,27 @@ pub fn uniform_at(start: f64, end: f64, count: u64, i: u64) -> f64 {
 /// callers check the sum first).
 pub fn period_times(first_period: u64, period: f64, count: u64) -> impl Iterator<Item = f64> {
     (first_period..first_period.saturating_add(count)).map(move |k| k as f64 * period)
+}
+
+/// The index of a regime in [`Pass::time_in`].
+pub fn regime_index(regime: Regime) -> usize {
+    match regime {
+        Regime::Free => 0,
+        Regime::Contact => 1,
+        Regime::Rolling => 2,
+    }
+}
+
+impl Pass {
+    /// The number of switches of `kind`.
+    pub fn count(&self, kind: EventKind) -> u64 {
+        EventKind::ALL
+            .iter()
+            .position(|k| *k == kind)
+            .and_then(|i| self.kinds.get(i))
+            .copied()
+            .unwrap_or(0)
+    }
 }
 
 #[cfg(test)]

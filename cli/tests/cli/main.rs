@@ -4,6 +4,7 @@ mod analyses;
 mod common;
 mod errors;
 mod fig2;
+mod friction;
 mod reliability;
 mod resonance;
 mod simulate;

@@ -56,7 +56,8 @@ fn contract(method: Method) {
     let (eh, events) = read_csv(&dir.path().join("e.csv"));
     let (sh, samples) = read_csv(&dir.path().join("s.csv"));
     assert_eq!(eh, ["tau", "kind", "x", "y", "vx", "vy"]);
-    assert_eq!(sh, ["tau", "x", "y", "vx", "vy", "contact"]);
+    // The original columns, in order, then `regime` (added with friction).
+    assert_eq!(sh, ["tau", "x", "y", "vx", "vy", "contact", "regime"]);
     assert_eq!(samples.len(), COUNT);
 
     // The same run through the library, with the same sequence of calls.
@@ -83,6 +84,7 @@ fn contract(method: Method) {
                 "0"
             }
         );
+        assert_eq!(row[6], s.regime.name());
     }
     advance_to(&mut propagator, end, |e| lib_events.push(*e)).unwrap();
     assert_eq!(num(&samples[COUNT - 1][0]), end);
