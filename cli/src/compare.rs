@@ -70,6 +70,7 @@ pub fn orbit(
         points: samples.iter().map(|s| (s.state.x, s.state.y)).collect(),
         enters: at(EventKind::Enter),
         exits: at(EventKind::Exit),
+        marks: crate::friction_fig::friction_marks(events, &window),
     }
 }
 

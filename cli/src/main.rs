@@ -5,6 +5,7 @@ mod analysis;
 mod compare;
 mod error;
 mod fig2;
+mod friction_fig;
 mod limits;
 mod merge;
 mod options;
@@ -84,6 +85,9 @@ enum Command {
     /// Amplitude spectrum of x and y, or of the whirl x + i y, in orders of the running speed
     #[command(after_help = UNITS)]
     Spectrum(spectrum::Args),
+    /// Coulomb friction: orbits with friction beside μ = 0, reversals and rolling marked
+    #[command(after_help = UNITS)]
+    Friction(friction_fig::Args),
     /// List the presets with every value
     #[command(after_help = UNITS)]
     Presets,
@@ -121,6 +125,7 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Poincare(args)) => poincare::run(&args),
         Some(Command::Spectrum(args)) => spectrum::run(&args),
+        Some(Command::Friction(args)) => friction_fig::run(&args),
         Some(Command::Presets) => {
             presets::run();
             Ok(())

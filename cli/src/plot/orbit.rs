@@ -19,6 +19,29 @@ pub struct Orbit {
     pub enters: Vec<(f64, f64)>,
     /// Where contacts end.
     pub exits: Vec<(f64, f64)>,
+    /// Further marked events (friction's reversals, rolling starts and ends).
+    pub marks: Vec<Mark>,
+}
+
+/// Events of one kind marked on an orbit.
+pub struct Mark {
+    /// Where they happen.
+    pub points: Vec<(f64, f64)>,
+    /// Marker colour.
+    pub color: RGBColor,
+    /// Marker shape.
+    pub shape: Shape,
+}
+
+/// A marker's shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// A triangle.
+    Triangle,
+    /// A cross.
+    Cross,
+    /// A square.
+    Square,
 }
 
 /// One panel: its title, the stator centre and the trajectories.
@@ -142,6 +165,29 @@ fn draw_panel<DB: DrawingBackend>(
             chart
                 .draw_series(points.iter().map(|&p| Circle::new(p, size, marker)))
                 .map_err(err)?;
+        }
+        for mark in &orbit.marks {
+            let style = mark.color.stroke_width(2);
+            match mark.shape {
+                Shape::Triangle => chart
+                    .draw_series(
+                        mark.points
+                            .iter()
+                            .map(|&p| TriangleMarker::new(p, 7, mark.color.filled())),
+                    )
+                    .map(|_| ()),
+                Shape::Cross => chart
+                    .draw_series(mark.points.iter().map(|&p| Cross::new(p, 6, style)))
+                    .map(|_| ()),
+                Shape::Square => {
+                    chart
+                        .draw_series(mark.points.iter().map(|&p| {
+                            EmptyElement::at(p) + Rectangle::new([(-5, -5), (5, 5)], style)
+                        }))
+                        .map(|_| ())
+                }
+            }
+            .map_err(err)?;
         }
     }
     Ok(())

@@ -144,3 +144,31 @@ fn compare_and_sweep_work_with_friction() {
     let (_, rows) = read_csv(&out);
     assert_eq!(rows.len(), 9);
 }
+
+#[test]
+fn friction_figure_is_drawn() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = stdout(&[
+        "friction",
+        "--plot-to",
+        "5",
+        "--out-dir",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(text.contains("rolling episodes"), "{text}");
+    for f in ["friction.svg", "friction.png"] {
+        let len = std::fs::metadata(dir.path().join(f)).unwrap().len();
+        assert!(len > 1000, "{f}: {len} bytes");
+    }
+    fails_with(
+        &[
+            "friction",
+            "--presets",
+            "paper",
+            "--out-dir",
+            dir.path().to_str().unwrap(),
+        ],
+        2,
+        &["no friction"],
+    );
+}
