@@ -120,6 +120,12 @@
 // Preset: the paper text's stiffnesses with zero offset ("paper-text").
 #define ROTOR_RUB_PRESET_PAPER_TEXT 1
 
+// Preset: Coulomb friction, backward whirl ("friction").
+#define ROTOR_RUB_PRESET_FRICTION 2
+
+// Preset: sustained dry whip, rolling ("dry-whip").
+#define ROTOR_RUB_PRESET_DRY_WHIP 3
+
 // Switches one step result holds; more are counted in `dropped_events`.
 #define ROTOR_RUB_EVENT_CAPACITY 4
 
@@ -239,7 +245,8 @@ size_t rotor_rub_stepper_size(void);
 size_t rotor_rub_stepper_align(void);
 
 // Fill `params` (required), `initial` and `start_time` (optional: null skips) from a preset
-// (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`).
+// (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`, `ROTOR_RUB_PRESET_FRICTION`,
+// `ROTOR_RUB_PRESET_DRY_WHIP`).
 //
 // Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `preset`;
 // `ROTOR_RUB_ERR_NULL` if `params` is null.

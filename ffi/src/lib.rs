@@ -94,7 +94,8 @@ pub extern "C" fn rotor_rub_stepper_align() -> usize {
 }
 
 /// Fill `params` (required), `initial` and `start_time` (optional: null skips) from a preset
-/// (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`).
+/// (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`, `ROTOR_RUB_PRESET_FRICTION`,
+/// `ROTOR_RUB_PRESET_DRY_WHIP`).
 ///
 /// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `preset`;
 /// `ROTOR_RUB_ERR_NULL` if `params` is null.
@@ -112,6 +113,8 @@ pub unsafe extern "C" fn rotor_rub_preset(
         let preset = match preset {
             ROTOR_RUB_PRESET_PAPER => Preset::Paper,
             ROTOR_RUB_PRESET_PAPER_TEXT => Preset::PaperText,
+            ROTOR_RUB_PRESET_FRICTION => Preset::Friction,
+            ROTOR_RUB_PRESET_DRY_WHIP => Preset::DryWhip,
             _ => return Err(ROTOR_RUB_ERR_INVALID_ARGUMENT),
         };
         if params.is_null() {

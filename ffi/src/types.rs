@@ -55,6 +55,10 @@ pub const ROTOR_RUB_EVENT_SLIP: i32 = 5;
 pub const ROTOR_RUB_PRESET_PAPER: i32 = 0;
 /// Preset: the paper text's stiffnesses with zero offset ("paper-text").
 pub const ROTOR_RUB_PRESET_PAPER_TEXT: i32 = 1;
+/// Preset: Coulomb friction, backward whirl ("friction").
+pub const ROTOR_RUB_PRESET_FRICTION: i32 = 2;
+/// Preset: sustained dry whip, rolling ("dry-whip").
+pub const ROTOR_RUB_PRESET_DRY_WHIP: i32 = 3;
 
 /// Switches one step result holds; more are counted in `dropped_events`.
 pub const ROTOR_RUB_EVENT_CAPACITY: usize = 4;

@@ -421,3 +421,76 @@ fn parameters_by_index_and_name() {
         assert_eq!(CStr::from_ptr(name.as_ptr()).to_bytes(), b"ecc");
     }
 }
+
+/// Friction through the C ABI (issue 12): the dry-whip preset rolls (ROLL, SLIP codes, regime
+/// ROLLING at the end) and the reversal case reverses (REVERSE), with no allocation.
+#[test]
+fn friction_through_the_c_abi() {
+    let mut params = RotorRubParams::from(rotor_rub::Preset::Paper.problem().params);
+    let (mut initial, mut t0) = (RotorRubState::default(), 0.0);
+    let mut config = RotorRubConfig {
+        dt: 0.0,
+        scheme: -1,
+        contact_substeps: 0,
+        max_substeps: 0,
+    };
+    let mut reversal = RotorRubParams::from(rotor_rub::Preset::Paper.problem().params);
+    reversal.speed_ratio = 2.0;
+    reversal.friction_coefficient = 0.2;
+    reversal.radius_ratio = 1.0;
+    let before = allocations();
+    // SAFETY: every pointer is valid.
+    unsafe {
+        assert_eq!(rotor_rub_config_default(&mut config), ROTOR_RUB_OK);
+        assert_eq!(
+            rotor_rub_preset(
+                ROTOR_RUB_PRESET_DRY_WHIP,
+                &mut params,
+                &mut initial,
+                &mut t0
+            ),
+            ROTOR_RUB_OK
+        );
+        for (p, steps, wanted) in [
+            (params, 60_000, [ROTOR_RUB_EVENT_ROLL, ROTOR_RUB_EVENT_SLIP]),
+            (
+                reversal,
+                30_000,
+                [ROTOR_RUB_EVENT_REVERSE, ROTOR_RUB_EVENT_ENTER],
+            ),
+        ] {
+            let mut stepper = blank();
+            let mut result = RotorRubStepResult::default();
+            assert_eq!(
+                rotor_rub_stepper_init(&mut stepper, &p, &initial, t0, &config),
+                ROTOR_RUB_OK
+            );
+            let mut seen = [0u32; 6];
+            for _ in 0..steps {
+                assert_eq!(
+                    rotor_rub_stepper_step(&mut stepper, config.dt, &mut result),
+                    ROTOR_RUB_OK
+                );
+                for e in result.events.iter().take(result.event_count as usize) {
+                    seen[e.kind as usize] += 1;
+                }
+            }
+            for kind in wanted {
+                assert!(seen[kind as usize] > 0, "event code {kind} seen: {seen:?}");
+            }
+            if p.friction_coefficient == 0.6 {
+                assert_eq!(result.regime, ROTOR_RUB_REGIME_ROLLING, "dry whip rolls on");
+            }
+        }
+        // Friction with a stator whose symmetric part is not definite is refused.
+        let mut bad = reversal;
+        bad.k_xy = 30.0;
+        bad.k_yx = 30.0;
+        let mut stepper = blank();
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &bad, &initial, t0, &config),
+            ROTOR_RUB_ERR_INVALID_PARAMS
+        );
+    }
+    assert_eq!(allocations(), before, "friction steps allocate");
+}

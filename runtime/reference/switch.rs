@@ -31,7 +31,7 @@ const MAX_TOUCHES: usize = 4;
 
 /// A switch function of a regime.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Function {
+pub enum Function {
     /// ±(z² − 1): contact starts or ends.
     Boundary,
     /// σw, slipping in direction σ: the slip velocity reaches 0.
@@ -74,6 +74,26 @@ impl Switches {
         s
     }
 
+    /// The friction function's offset (≤ 0) from the segment start.
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// As [`Switches::new`] with the friction function's offset given (a segment continued).
+    pub fn with_offset(params: &Params, regime: Regime, slip: f64, offset: f64) -> Self {
+        Switches {
+            params: *params,
+            regime,
+            slip,
+            offset,
+        }
+    }
+
+    /// The regime's switch functions: z = 1, then friction's if any.
+    pub fn functions(&self) -> [Option<Function>; 2] {
+        [Some(Function::Boundary), self.friction_function()]
+    }
+
     /// The friction switch function of the regime, if any.
     fn friction_function(&self) -> Option<Function> {
         match self.regime {
@@ -84,7 +104,7 @@ impl Switches {
     }
 
     /// The value (positive inside the regime) and its time derivative.
-    fn measure<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> (f64, f64) {
+    pub fn measure<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> (f64, f64) {
         if f == Function::Boundary {
             return inside_measure(&self.params, self.regime, y);
         }
@@ -109,7 +129,7 @@ impl Switches {
     }
 
     /// The event a crossing of `f` at `(t, y)` is, or `None` for a touch of w = 0.
-    fn classify<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> Option<EventKind> {
+    pub fn classify<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> Option<EventKind> {
         match f {
             Function::Boundary => Some(match self.regime {
                 Regime::Free => EventKind::Enter,
@@ -179,7 +199,7 @@ fn first_switch<const N: usize, D: Interpolant<N>>(
     mut rhs: impl FnMut(f64, &[f64; N]) -> [f64; N],
 ) -> Option<Found<N>> {
     let (t0, t1) = (dense.start(), dense.end());
-    let functions = [Some(Function::Boundary), switches.friction_function()];
+    let functions = switches.functions();
     let (mut from, mut y_from) = (t0, *y0);
     for _ in 0..=MAX_TOUCHES {
         let window = After { dense, start: from };

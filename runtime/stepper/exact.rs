@@ -1,11 +1,12 @@
 //! The exact path of a step: free pieces on the closed-form `FreeSegment`, contact sub-steps of
 //! exprb43/exprb2, switches located by the capped search of [`super::search`].
 
+use super::friction::Slip;
 use super::report::StepReport;
 use super::search::locate;
 use super::{Stepper, StepperError, check_bounded};
 use crate::analytic::free::FreeSegment;
-use crate::analytic::schemes::{SubStep, exprb2, exprb43};
+use crate::analytic::schemes::{SubStep, exprb2_into, exprb43_into};
 use crate::analytic::segment::{Point, Segment, point_of};
 use crate::analytic::switch::{Direction, Search};
 use crate::field;
@@ -23,20 +24,21 @@ impl Stepper {
         &self,
         dt: f64,
         report: &mut StepReport,
-    ) -> Result<(State, Regime), StepperError> {
+    ) -> Result<(State, Regime, Slip), StepperError> {
         let t0 = self.time;
         let nominal = dt / f64::from(self.config.contact_substeps);
         let mut budget = self.config.max_substeps;
         let (mut s, mut state, mut regime) = (0.0, self.state, self.regime);
+        let mut slip = self.slip;
         loop {
             let rem = dt - s;
             if rem <= 0.0 || rem.is_nan() {
-                return Ok((state, regime));
+                return Ok((state, regime, slip));
             }
             let t = t0 + s;
             match regime {
                 Regime::Free => match self.free_piece(t, state, rem, report) {
-                    Err(end) => return Ok((end, regime)),
+                    Err(end) => return Ok((end, regime, slip)),
                     Ok((se, p)) => {
                         report.events.push(Event {
                             time: t + se,
@@ -45,16 +47,45 @@ impl Stepper {
                         });
                         check_bounded(t + se, p.state)?;
                         (s, state, regime) = (s + se, p.state, Regime::Contact);
+                        slip =
+                            Slip::at(&self.params, regime, t + se, &state, Some(EventKind::Enter));
                     }
                 },
-                // Friction's rolling regime in the stepper: issue 12, in progress.
-                Regime::Rolling => return Ok((state, regime)),
-                Regime::Contact if budget == 0 => {
-                    // Cap exhausted: one last sub-step to the end, no exit search.
+                Regime::Contact | Regime::Rolling if budget == 0 => {
+                    // Cap exhausted: one last sub-step to the end, no switch search.
                     report.capped = true;
-                    let sub = self.substep(t, state, rem, report)?;
-                    let end_regime = field::regime_of(&self.params, t0 + dt, &sub.end);
-                    return Ok((sub.end, end_regime));
+                    let end = if regime == Regime::Rolling {
+                        self.rolling_substep(t, state, rem, &slip, report)?.0
+                    } else {
+                        self.substep(t, state, rem, slip.sigma, report)?.end
+                    };
+                    let end_regime = field::regime_of(&self.params, t0 + dt, &end);
+                    let slip = Slip::at(&self.params, end_regime, t0 + dt, &end, None);
+                    return Ok((end, end_regime, slip));
+                }
+                Regime::Rolling => {
+                    let k = whole_substeps(rem / nominal);
+                    let h = if budget == 1 && k > 1 {
+                        report.capped = true;
+                        rem
+                    } else {
+                        rem / f64::from(k)
+                    };
+                    budget -= 1;
+                    match self.rolling_substep(t, state, h, &slip, report)? {
+                        (_, Some((se, p, kind))) => {
+                            report.events.push(Event {
+                                time: t + se,
+                                kind,
+                                state: p,
+                            });
+                            regime = kind.regime_after();
+                            slip = Slip::at(&self.params, regime, t + se, &p, Some(kind));
+                            (s, state) = (s + se, p);
+                        }
+                        (end, None) if h == rem => return Ok((end, regime, slip)),
+                        (end, None) => (s, state) = (s + h, end),
+                    }
                 }
                 Regime::Contact => {
                     // Whole nominal sub-steps over the rest, equal lengths, no slivers.
@@ -66,17 +97,24 @@ impl Stepper {
                         rem / f64::from(k)
                     };
                     budget -= 1;
-                    let sub = self.substep(t, state, h, report)?;
-                    match self.exit_in(&sub, state, report) {
-                        Some((sx, p)) => {
+                    let sub = self.substep(t, state, h, slip.sigma, report)?;
+                    let exit = self
+                        .exit_in(&sub, state, report)
+                        .map(|(sx, p)| (sx, p.state, EventKind::Exit));
+                    let limit = exit.map_or(sub.length, |(sx, _, _)| sx);
+                    let found = self.slip_in(&sub, t, state, &slip, limit).or(exit);
+                    match found {
+                        Some((sx, p, kind)) => {
                             report.events.push(Event {
                                 time: t + sx,
-                                kind: EventKind::Exit,
-                                state: p.state,
+                                kind,
+                                state: p,
                             });
-                            (s, state, regime) = (s + sx, p.state, Regime::Free);
+                            regime = kind.regime_after();
+                            slip = Slip::at(&self.params, regime, t + sx, &p, Some(kind));
+                            (s, state) = (s + sx, p);
                         }
-                        None if h == rem => return Ok((sub.end, regime)),
+                        None if h == rem => return Ok((sub.end, regime, slip)),
                         None => (s, state) = (s + h, sub.end),
                     }
                 }
@@ -109,11 +147,13 @@ impl Stepper {
         t: f64,
         state: State,
         h: f64,
+        sigma: f64,
         report: &mut StepReport,
     ) -> Result<SubStep, StepperError> {
-        let sub = match self.config.scheme {
-            ContactScheme::Exprb2 => exprb2(&self.params, t, state, h),
-            ContactScheme::Exprb43 => exprb43(&self.params, t, state, h, 1.0),
+        let mut sub = SubStep::zeroed();
+        match self.config.scheme {
+            ContactScheme::Exprb2 => exprb2_into(&self.params, sigma, t, state, h, &mut sub),
+            ContactScheme::Exprb43 => exprb43_into(&self.params, sigma, t, state, h, 1.0, &mut sub),
         }
         .map_err(|_| PropagationError::SingularContact { time: t })?;
         check_bounded(t + h, sub.end)?;

@@ -25,6 +25,13 @@
 //!   with equal sub-steps of at most dt / `contact_substeps`; one that leaves contact continues
 //!   in exact free flight.
 //!
+//! * **Friction** (`docs/MODEL.md` §10, [`friction`]): a slipping contact sub-step is the
+//!   analytic method's slipping closed form, searched for the exit and for the slip velocity's
+//!   zero (`reverse`, `roll`) with the same kernel under the capped budget; a rolling sub-step is
+//!   one explicit DOP853 step of the rolling field with its exit and `slip` located on explicit
+//!   steps from its start. The slip direction and the switch offsets are carried from step to
+//!   step; μ = 0 runs the frictionless path, bit for bit.
+//!
 //! # Worst-case work per step
 //! At most `max_substeps` contact sub-steps with exit search, one final sub-step without it,
 //! and `max_substeps + 2` free pieces. Each exprb43 sub-step costs one linearization and eight
@@ -49,6 +56,7 @@
 //! `sin_cos`, six evaluations of the generated free formulas; measured ≈ 0.1 µs), once.
 
 mod exact;
+pub mod friction;
 mod report;
 pub mod search;
 mod transition;
@@ -141,6 +149,8 @@ pub struct Stepper {
     anchor_steps: u64,
     state: State,
     regime: Regime,
+    /// The slip direction of the current contact segment and its switch's constants.
+    slip: friction::Slip,
     /// (cos θ, sin θ) of the forcing at `time`.
     phasor: (f64, f64),
 }
@@ -153,7 +163,6 @@ impl Stepper {
     /// switch is reported at the start (`docs/MODEL.md` §6 cases 14–15).
     pub fn new(problem: &Problem, config: StepperConfig) -> Result<Self, StepperError> {
         problem.validate()?;
-        frictionless(&problem.params)?;
         config.validate()?;
         check_dt(config.dt, problem.start_time)?;
         let params = problem.params;
@@ -161,6 +170,7 @@ impl Stepper {
         let t0 = problem.start_time;
         check_bounded(t0, problem.initial)?;
         let (regime, state) = crate::driver::start_side(&params, t0, &problem.initial);
+        let slip = friction::Slip::at(&params, regime, t0, &state, None);
         Ok(Stepper {
             params,
             config,
@@ -171,6 +181,7 @@ impl Stepper {
             anchor_steps: 0,
             state,
             regime,
+            slip,
             phasor: phasor_at(&params, t0),
         })
     }
@@ -198,14 +209,15 @@ impl Stepper {
             Regime::Free => self.free_step(),
             Regime::Contact | Regime::Rolling => None,
         };
-        let (state, regime) = match fast {
-            Some(state) => (state, Regime::Free),
+        let (state, regime, slip) = match fast {
+            Some(state) => (state, Regime::Free, friction::Slip::NONE),
             None => self.exact_step(dt, &mut report)?,
         };
         self.anchor_steps += 1;
         self.time = self.anchor_time + self.anchor_steps as f64 * dt;
         self.state = state;
         self.regime = regime;
+        self.slip = slip;
         self.phasor = if self.anchor_steps.is_multiple_of(PHASOR_RESYNC) {
             phasor_at(&self.params, self.time)
         } else {
@@ -223,7 +235,6 @@ impl Stepper {
     /// no event is reported for that. On error nothing changes.
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
-        frictionless(params)?;
         self.params = *params;
         self.free = FreeConstants::new(params);
         self.transition = FreeTransition::new(params, &self.free, self.transition.dt());
@@ -231,6 +242,7 @@ impl Stepper {
         self.anchor_steps = 0;
         self.phasor = phasor_at(params, self.time);
         self.regime = field::regime_of(params, self.time, &self.state);
+        self.slip = friction::Slip::at(params, self.regime, self.time, &self.state, None);
         Ok(())
     }
 
@@ -301,16 +313,4 @@ fn check_bounded(time: f64, state: State) -> Result<(), StepperError> {
 fn phasor_at(params: &Params, t: f64) -> (f64, f64) {
     let (s, c) = math::sin_cos(math::wrap_angle(params.speed_ratio * t + params.phase));
     (c, s)
-}
-
-/// The stepper does not track slip yet (issue 12 in progress): friction is refused, never run
-/// as frictionless.
-fn frictionless(params: &Params) -> Result<(), StepperError> {
-    if params.friction_coefficient > 0.0 {
-        return Err(StepperError::InvalidConfig {
-            what: "friction_coefficient (the stepper supports friction_coefficient = 0 only)",
-            value: params.friction_coefficient,
-        });
-    }
-    Ok(())
 }
