@@ -47,13 +47,7 @@ pub fn acceleration_with_phasor(
     sin_theta: f64,
     s: &State,
 ) -> (f64, f64) {
-    let model = ModelParams::of(params);
-    let at = Position { x: s.x, y: s.y };
-    let rate = Velocity { vx: s.vx, vy: s.vy };
-    let phasor = Phasor {
-        ct: cos_theta,
-        st: sin_theta,
-    };
+    let (model, at, rate, phasor) = inputs(params, cos_theta, sin_theta, s);
     match regime {
         Regime::Free => {
             let a = coef::free_acceleration(&model, &at, &rate, &phasor);
@@ -170,15 +164,8 @@ pub fn friction_with_phasor(
     sin_theta: f64,
     s: &State,
 ) -> Friction {
-    let f = coef::friction_state(
-        &ModelParams::of(params),
-        &Position { x: s.x, y: s.y },
-        &Velocity { vx: s.vx, vy: s.vy },
-        &Phasor {
-            ct: cos_theta,
-            st: sin_theta,
-        },
-    );
+    let (model, at, rate, phasor) = inputs(params, cos_theta, sin_theta, s);
+    let f = coef::friction_state(&model, &at, &rate, &phasor);
     Friction {
         normal: f.normal,
         slip_velocity: f.slip_velocity,
@@ -235,14 +222,26 @@ pub fn rolling_rates_with_phasor(
     sin_theta: f64,
     s: &State,
 ) -> (f64, f64) {
-    let r = coef::rolling_rates(
-        &ModelParams::of(params),
-        &Position { x: s.x, y: s.y },
-        &Velocity { vx: s.vx, vy: s.vy },
-        &Phasor {
+    let (model, at, rate, phasor) = inputs(params, cos_theta, sin_theta, s);
+    let r = coef::rolling_rates(&model, &at, &rate, &phasor);
+    (r.normal_rate, r.lambda_rate)
+}
+
+/// The generated functions' inputs for a state and forcing direction.
+#[inline]
+fn inputs(
+    params: &Params,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> (ModelParams, Position, Velocity, Phasor) {
+    (
+        ModelParams::of(params),
+        Position { x: s.x, y: s.y },
+        Velocity { vx: s.vx, vy: s.vy },
+        Phasor {
             ct: cos_theta,
             st: sin_theta,
         },
-    );
-    (r.normal_rate, r.lambda_rate)
+    )
 }

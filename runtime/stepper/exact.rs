@@ -63,31 +63,7 @@ impl Stepper {
                     let slip = Slip::at(&self.params, end_regime, t0 + dt, &end, None);
                     return Ok((end, end_regime, slip));
                 }
-                Regime::Rolling => {
-                    let k = whole_substeps(rem / nominal);
-                    let h = if budget == 1 && k > 1 {
-                        report.capped = true;
-                        rem
-                    } else {
-                        rem / f64::from(k)
-                    };
-                    budget -= 1;
-                    match self.rolling_substep(t, state, h, &slip, report)? {
-                        (_, Some((se, p, kind))) => {
-                            report.events.push(Event {
-                                time: t + se,
-                                kind,
-                                state: p,
-                            });
-                            regime = kind.regime_after();
-                            slip = Slip::at(&self.params, regime, t + se, &p, Some(kind));
-                            (s, state) = (s + se, p);
-                        }
-                        (end, None) if h == rem => return Ok((end, regime, slip)),
-                        (end, None) => (s, state) = (s + h, end),
-                    }
-                }
-                Regime::Contact => {
+                Regime::Contact | Regime::Rolling => {
                     // Whole nominal sub-steps over the rest, equal lengths, no slivers.
                     let k = whole_substeps(rem / nominal);
                     let h = if budget == 1 && k > 1 {
@@ -97,12 +73,16 @@ impl Stepper {
                         rem / f64::from(k)
                     };
                     budget -= 1;
-                    let sub = self.substep(t, state, h, slip.sigma, report)?;
-                    let exit = self
-                        .exit_in(&sub, state, report)
-                        .map(|(sx, p)| (sx, p.state, EventKind::Exit));
-                    let limit = exit.map_or(sub.length, |(sx, _, _)| sx);
-                    let found = self.slip_in(&sub, t, state, &slip, limit).or(exit);
+                    let (end, found) = if regime == Regime::Rolling {
+                        self.rolling_substep(t, state, h, &slip, report)?
+                    } else {
+                        let sub = self.substep(t, state, h, slip.sigma, report)?;
+                        let exit = self
+                            .exit_in(&sub, state, report)
+                            .map(|(sx, p)| (sx, p.state, EventKind::Exit));
+                        let limit = exit.map_or(sub.length, |(sx, _, _)| sx);
+                        (sub.end, self.slip_in(&sub, t, state, &slip, limit).or(exit))
+                    };
                     match found {
                         Some((sx, p, kind)) => {
                             report.events.push(Event {
@@ -114,8 +94,8 @@ impl Stepper {
                             slip = Slip::at(&self.params, regime, t + sx, &p, Some(kind));
                             (s, state) = (s + sx, p);
                         }
-                        None if h == rem => return Ok((sub.end, regime, slip)),
-                        None => (s, state) = (s + h, sub.end),
+                        None if h == rem => return Ok((end, regime, slip)),
+                        None => (s, state) = (s + h, end),
                     }
                 }
             }
