@@ -187,6 +187,21 @@ proptest! {
         let _: LinearizedContact = lin;
     }
 
+    /// `max_contact_stiffness` bounds ‖Kl‖₂ of the slipping linearization too (the analytic
+    /// method's step cap): at random contact points, both slip directions.
+    #[test]
+    fn slipping_stiffness_stays_within_the_cap(s in any_situation()) {
+        let p = s.params();
+        let cap = rotor_rub::analytic::linear::max_contact_stiffness(&p);
+        let lin = coef::slipping_linearized_stiffness(
+            &s.model(),
+            &Position { x: s.q.x, y: s.q.y },
+            &Slip { sigma: s.sigma },
+        );
+        let norm = Matrix2::new(lin.fa1, lin.fb1, lin.fb2, lin.fa2).singular_values().max();
+        prop_assert!(norm <= cap * (1.0 + 1e-12), "‖Kl‖ = {norm} > cap {cap}");
+    }
+
     /// λ's derivation: w differentiated numerically along the slipping field is λ − μσN, and
     /// along the rolling field 0 (central difference in time, step 1e-5 along the tangent of the
     /// trajectory: error ~1e-10 relative).

@@ -54,6 +54,11 @@ pub(super) fn acceleration_gains(model: &ModelParams, kl: &LinearizedContact) ->
 /// norm is convex, so its supremum over w ∈ (0, 1] is at an end: J(1) at z = 1 and
 /// J(0) = 2 J(½) − J(1) from z = 2. (For the elastic law J = (1 − w) I + w n nᵀ: the bound is
 /// 1 + ‖K_s‖_F up to the singular-value margin.)
+///
+/// Slipping under friction adds μσ ∂(N t)/∂q to Kl (`docs/MODEL.md` §10). With N = (z − 1) nᵀK_s n,
+/// ∇N = (nᵀK_s n) n + ((z − 1)/z)(I − n nᵀ)(K_s + K_sᵀ) n, so |∇N| ≤ 3‖K_s‖₂, and
+/// ∂t/∂q = R(I − n nᵀ)/z has norm ≤ 1/z ≤ 1: ‖∂(N t)/∂q‖ ≤ |∇N| + |N|/z ≤ 4‖K_s‖₂ on z ≥ 1,
+/// added as 4μ‖K_s‖_F (0 at μ = 0).
 pub fn max_contact_stiffness(params: &Params) -> f64 {
     let mut model = ModelParams::of(params);
     let ks = frobenius([[model.kxx, model.kxy], [model.kyx, model.kyy]]);
@@ -77,7 +82,8 @@ pub fn max_contact_stiffness(params: &Params) -> f64 {
     (model.kxx, model.kxy, model.kyx, model.kyy) = (0.0, 0.0, 0.0, 0.0);
     let t = coef::taylor_terms(&model, &Position { x: 1.0, y: 0.0 });
     let k0 = coef::linearized_stiffness(&model, &t);
-    spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]]) + ks * j_norm
+    let friction = 4.0 * params.friction_coefficient * ks;
+    spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]]) + ks * j_norm + friction
 }
 
 /// The condition of the harmonic system (Kl − η² I + 2iνη I) Z = F (1, −i)ᵀ that gives the
