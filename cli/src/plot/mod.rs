@@ -163,6 +163,18 @@ pub fn legend<DB: DrawingBackend>(
             LegendMark::Ring(c) => area
                 .draw(&Circle::new((x + 15, y), 4, c.stroke_width(1)))
                 .map_err(err)?,
+            LegendMark::Triangle(c) => area
+                .draw(&TriangleMarker::new((x + 15, y), 7, c.filled()))
+                .map_err(err)?,
+            LegendMark::Cross(c) => area
+                .draw(&Cross::new((x + 15, y), 6, c.stroke_width(2)))
+                .map_err(err)?,
+            LegendMark::Square(c) => area
+                .draw(&Rectangle::new(
+                    [(x + 10, y - 5), (x + 20, y + 5)],
+                    c.stroke_width(2),
+                ))
+                .map_err(err)?,
         }
         let text_x = x + 36;
         area.draw(&Text::new(label.to_string(), (text_x, y - 8), font.clone()))
@@ -184,6 +196,12 @@ pub enum LegendMark {
     Dot(RGBColor),
     /// A hollow marker.
     Ring(RGBColor),
+    /// A filled triangle.
+    Triangle(RGBColor),
+    /// A cross.
+    Cross(RGBColor),
+    /// A hollow square.
+    Square(RGBColor),
 }
 
 #[cfg(test)]
