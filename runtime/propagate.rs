@@ -83,11 +83,6 @@ impl EventKind {
             EventKind::Roll => Regime::Rolling,
         }
     }
-
-    /// Whether the switch is one of z = 1 (`enter`, `exit`) rather than of friction.
-    pub const fn is_contact_switch(self) -> bool {
-        matches!(self, EventKind::Enter | EventKind::Exit)
-    }
 }
 
 /// A switch: time, kind and the state at the switch (where z = 1 for `enter`/`exit`, w = 0 for
