@@ -141,8 +141,13 @@ impl Tracker<'_> {
 }
 
 /// Bytes a command may fill with the data it keeps: half the physical memory (MemTotal in
-/// /proc/meminfo), 4 GiB where that is unknown.
+/// /proc/meminfo, read once per process), 4 GiB where that is unknown.
 pub fn memory_limit() -> u64 {
+    static LIMIT: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
+    *LIMIT.get_or_init(read_memory_limit)
+}
+
+fn read_memory_limit() -> u64 {
     let total = std::fs::read_to_string("/proc/meminfo")
         .ok()
         .and_then(|text| {

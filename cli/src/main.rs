@@ -1,32 +1,16 @@
 //! `rotor-rub`: command-line front end of the rotor-rub library. This file holds the command
 //! definition and the dispatch; each subcommand lives in its own module.
 
-mod analysis;
-mod compare;
-mod error;
-mod fig2;
-mod friction_fig;
-mod limits;
-mod merge;
-mod options;
-mod output;
-mod params;
-mod plot;
-mod poincare;
-mod presets;
-mod problem;
-mod shard;
-mod simulate;
-mod spectrum;
-mod sweep;
-mod trajectory;
-
 use std::process::ExitCode;
 
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use crate::error::{CliError, EXIT_INPUT, short_numbers};
+use rotor_rub_cli::error::{CliError, EXIT_INPUT, short_numbers};
+use rotor_rub_cli::{
+    compare, fig2, friction_fig, merge, output, params, poincare, presets, simulate, spectrum,
+    sweep,
+};
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
 piecewise-analytical simulation and numerical comparison.";

@@ -4,12 +4,12 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use rotor_rub::{Problem, State};
+use rotor_rub::{Options, Problem, State};
 
-use crate::analysis::classify::{POINT_TOLERANCE, classify, distinct_points};
+use crate::analysis::classify::{POINT_TOLERANCE, Response, classify, distinct_points};
 use crate::analysis::lyapunov::largest_exponent;
 use crate::error::{Result, num};
-use crate::limits::{LimitArgs, add_counts, fits_memory};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe};
 use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
 use crate::plot::{self, scatter::SectionFigure};
@@ -64,35 +64,23 @@ pub fn run(args: &Args) -> Result<()> {
         ],
         &[],
     )?;
-    let mut propagator = trajectory::start(&problem, &options)?;
     ensure_parent(&args.out)?;
     let mut out = CsvOut::create(&args.out, &["period", "x", "y", "vx", "vy"])?;
-    let period = problem.params.forcing_period();
-    let from = args.transient as f64 * period;
-    let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
-    trajectory::advance_to(&mut propagator, from, &mut tracker, |_| Ok(()))?;
-    let section = trajectory::section(
-        &mut propagator,
-        problem.params.speed_ratio,
+    let Section {
+        points,
+        lyapunov,
+        response,
+    } = section(
+        &problem,
+        &options,
+        args.transient,
         keep,
-        &mut tracker,
+        args.lyapunov,
+        &budget,
     )?;
-    let points: Vec<State> = section.iter().map(|s| s.state).collect();
     for (s, k) in points.iter().zip(args.transient..) {
         out.row((k, s.x, s.y, s.vx, s.vy))?;
     }
-    let lyapunov = match (args.lyapunov, points.first()) {
-        (true, Some(&initial)) => {
-            let start = Problem {
-                initial,
-                start_time: from,
-                ..problem
-            };
-            Some(largest_exponent(&start, &options, period, keep)?)
-        }
-        _ => None,
-    };
-    let response = classify(&points, lyapunov);
     let figure = SectionFigure {
         title: format!(
             "Poincaré section, η = {}, periods {}-{end_period}: {response}",
@@ -125,4 +113,57 @@ pub fn run(args: &Args) -> Result<()> {
         png.display()
     );
     print(&report)
+}
+
+/// A Poincaré section and what it says.
+pub struct Section {
+    /// The states at the forcing-period boundaries kept.
+    pub points: Vec<State>,
+    /// The largest Lyapunov exponent over the kept periods, when asked for.
+    pub lyapunov: Option<f64>,
+    /// The response class.
+    pub response: Response,
+}
+
+/// The section of `problem` over `keep` forcing periods after `transient` ones, with the largest
+/// Lyapunov exponent over the same periods when `lyapunov` is set (from the first kept point);
+/// the work is charged to `budget` (which the caller has planned).
+pub fn section(
+    problem: &Problem,
+    options: &Options,
+    transient: u64,
+    keep: usize,
+    lyapunov: bool,
+    budget: &Budget,
+) -> Result<Section> {
+    let mut propagator = trajectory::start(problem, options)?;
+    let period = problem.params.forcing_period();
+    let from = transient as f64 * period;
+    let end_period = transient.saturating_add(keep as u64);
+    let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
+    trajectory::advance_to(&mut propagator, from, &mut tracker, |_| Ok(()))?;
+    let samples = trajectory::section(
+        &mut propagator,
+        problem.params.speed_ratio,
+        keep,
+        &mut tracker,
+    )?;
+    let points: Vec<State> = samples.iter().map(|s| s.state).collect();
+    let lyapunov = match (lyapunov, points.first()) {
+        (true, Some(&initial)) => {
+            let start = Problem {
+                initial,
+                start_time: from,
+                ..*problem
+            };
+            Some(largest_exponent(&start, options, period, keep)?)
+        }
+        _ => None,
+    };
+    let response = classify(&points, lyapunov);
+    Ok(Section {
+        points,
+        lyapunov,
+        response,
+    })
 }

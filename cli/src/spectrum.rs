@@ -4,9 +4,11 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
+use rotor_rub::{Options, Problem};
+
 use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
 use crate::error::{CliError, Result, num};
-use crate::limits::{LimitArgs, add_counts, fits_memory};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe, parse_positive};
 use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
 use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
@@ -61,19 +63,7 @@ pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
     let options = args.method.options()?;
     let end_period = add_counts(("--transient", args.transient), ("--periods", args.periods))?;
-    let n = args
-        .periods
-        .checked_mul(args.samples_per_period)
-        .ok_or_else(|| {
-            CliError::input(format!(
-                "--periods {} × --samples-per-period {} is more than {} samples: use fewer",
-                args.periods,
-                args.samples_per_period,
-                u64::MAX
-            ))
-        })?;
-    // x and y, their transforms and the FFT's buffers: about 64 bytes per sample.
-    let n = fits_memory("--periods × --samples-per-period (samples)", n, 64)?;
+    let n = sample_count(args.periods, args.samples_per_period)?;
     let budget = args.limits.budget();
     budget.plan("--periods × --samples-per-period", n as u64)?;
     let [svg, png] = plot::beside(&args.out);
@@ -85,7 +75,6 @@ pub fn run(args: &Args) -> Result<()> {
         ],
         &[],
     )?;
-    let mut propagator = trajectory::start(&problem, &options)?;
     ensure_parent(&args.out)?;
     let header: &[&str] = if args.whirl {
         &["order", "whirl"]
@@ -93,17 +82,14 @@ pub fn run(args: &Args) -> Result<()> {
         &["order", "x", "y"]
     };
     let mut out = CsvOut::create(&args.out, header)?;
-    let period = problem.params.forcing_period();
-    let start = args.transient as f64 * period;
-    let dt = period / args.samples_per_period as f64;
-    let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
-    let (mut x, mut y) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    for i in 0..n {
-        let t = start + i as f64 * dt;
-        let s = trajectory::advance_to(&mut propagator, t, &mut tracker, |_| Ok(()))?.state;
-        x.push(s.x);
-        y.push(s.y);
-    }
+    let (x, y) = signal(
+        &problem,
+        &options,
+        args.transient,
+        args.periods,
+        args.samples_per_period,
+        &budget,
+    )?;
     let order = |bin: f64| bin / args.periods as f64;
     let (curves, lines) = if args.whirl {
         let w = whirl_amplitudes(&x, &y);
@@ -182,4 +168,44 @@ pub fn run(args: &Args) -> Result<()> {
         png.display()
     );
     print(&report)
+}
+
+/// The number of samples of `periods` forcing periods at `per_period` samples each, refused when
+/// it overflows or does not fit in memory.
+pub fn sample_count(periods: u64, per_period: u64) -> Result<usize> {
+    let n = periods.checked_mul(per_period).ok_or_else(|| {
+        CliError::input(format!(
+            "--periods {periods} × --samples-per-period {per_period} is more than {} samples: use fewer",
+            u64::MAX
+        ))
+    })?;
+    // x and y, their transforms and the FFT's buffers: about 64 bytes per sample.
+    fits_memory("--periods × --samples-per-period (samples)", n, 64)
+}
+
+/// x and y at `per_period` uniform samples per forcing period over `periods` forcing periods after
+/// `transient` ones (the window the spectrum analyses), the work charged to `budget`.
+pub fn signal(
+    problem: &Problem,
+    options: &Options,
+    transient: u64,
+    periods: u64,
+    per_period: u64,
+    budget: &Budget,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let n = sample_count(periods, per_period)?;
+    let end_period = add_counts(("--transient", transient), ("--periods", periods))?;
+    let mut propagator = trajectory::start(problem, options)?;
+    let period = problem.params.forcing_period();
+    let start = transient as f64 * period;
+    let dt = period / per_period as f64;
+    let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
+    let (mut x, mut y) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for i in 0..n {
+        let t = start + i as f64 * dt;
+        let s = trajectory::advance_to(&mut propagator, t, &mut tracker, |_| Ok(()))?.state;
+        x.push(s.x);
+        y.push(s.y);
+    }
+    Ok((x, y))
 }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
-use rotor_rub::{Options, Parameter, Problem};
+use rotor_rub::{Options, Parameter, Problem, State};
 
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
@@ -96,37 +96,51 @@ pub struct Args {
     pub no_plot: bool,
 }
 
-/// The Poincaré rows of one parameter value.
-fn section(
+/// The Poincaré section of one problem: the states at the forcing-period boundaries
+/// `transient .. transient + keep`, the work charged to `budget`.
+pub fn section(
     problem: &Problem,
     options: &Options,
-    args: &Args,
+    transient: u64,
+    keep: u64,
     budget: &Budget,
-    value: f64,
-) -> Result<Vec<Row>> {
+) -> Result<Vec<State>> {
     let mut propagator = trajectory::start(problem, options)?;
     let period = problem.params.forcing_period();
-    let start = args.transient as f64 * period;
-    let mut tracker = budget.run(
-        problem.start_time,
-        (args.transient + args.keep) as f64 * period,
-    );
+    let start = transient as f64 * period;
+    let mut tracker = budget.run(problem.start_time, (transient + keep) as f64 * period);
     trajectory::advance_to(&mut propagator, start, &mut tracker, |_| Ok(()))?;
-    let keep = usize::try_from(args.keep).unwrap_or(usize::MAX);
+    let keep = usize::try_from(keep).unwrap_or(usize::MAX);
     let points = trajectory::section(
         &mut propagator,
         problem.params.speed_ratio,
         keep,
         &mut tracker,
     )?;
-    Ok(points
-        .iter()
-        .zip(args.transient..)
-        .map(|(sample, k)| {
-            let s = sample.state;
-            (value, k, s.x, s.y, s.vx, s.vy)
+    Ok(points.iter().map(|sample| sample.state).collect())
+}
+
+/// [`section`] of every problem, in parallel (rayon's pool of the caller), one result per
+/// problem in their order; `done` is called as each finishes (a progress bar). Each problem's
+/// result depends on it alone: any split of `problems` gives the same bits.
+pub fn sections<K: Sync>(
+    problems: &[(K, Problem)],
+    options: &Options,
+    transient: u64,
+    keep: u64,
+    budget: &Budget,
+    label: impl Fn(&K) -> String + Sync,
+    done: impl Fn() + Sync,
+) -> Vec<Result<Vec<State>>> {
+    problems
+        .par_iter()
+        .map(|(key, problem)| {
+            let r = section(problem, options, transient, keep, budget)
+                .map_err(|e| e.context(&label(key)));
+            done();
+            r
         })
-        .collect())
+        .collect()
 }
 
 /// Sort rows into file order: value ascending, then period.
@@ -235,21 +249,26 @@ pub fn run(args: &Args) -> Result<()> {
     let mut file = AtomicFile::create(&args.out)?;
 
     let bar = progress(problems.len());
-    let results: Vec<Result<Vec<Row>>> = problems
-        .par_iter()
-        .map(|(v, p)| {
-            let r = section(p, &options, args, &budget, *v)
-                .map_err(|e| e.context(&format!("{} = {}", args.param, num(*v))));
-            bar.inc(1);
-            r
-        })
-        .collect();
+    let results = sections(
+        &problems,
+        &options,
+        args.transient,
+        args.keep,
+        &budget,
+        |v| format!("{} = {}", args.param, num(*v)),
+        || bar.inc(1),
+    );
     bar.finish_and_clear();
 
     let mut rows = Vec::new();
-    for r in results {
+    for ((v, _), r) in problems.iter().zip(results) {
         match r {
-            Ok(r) => rows.extend(r),
+            Ok(points) => rows.extend(
+                points
+                    .iter()
+                    .zip(args.transient..)
+                    .map(|(s, k)| (*v, k, s.x, s.y, s.vx, s.vy)),
+            ),
             // A refused run (over --max-work) stops the sweep even with --skip-errors.
             Err(e) if args.skip_errors && e.code != crate::error::EXIT_INPUT => {
                 warn(&format!("skipped {e}"));

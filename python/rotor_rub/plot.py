@@ -1,0 +1,152 @@
+"""Plots of rotor-rub results with matplotlib (an optional dependency: ``pip install
+'rotor_rub[plot]'``).
+
+Each function draws on ``ax`` (a new figure's axes when None) and returns the axes, so plots
+compose and save as usual (``ax.figure.savefig("orbit.png")``). Text uses matplotlib's bundled
+DejaVu fonts, never the system's.
+
+- :func:`orbit`: the orbit (x, y) of a :class:`rotor_rub.Run`, the clearance circle around the
+  stator centre, contact starts and ends marked (reversals, rolling starts and ends with
+  friction).
+- :func:`bifurcation`: the Poincaré x of a :class:`rotor_rub.Sweep` against the swept value.
+- :func:`poincare`: the points of a :class:`rotor_rub.Section` in the (x, y) plane.
+- :func:`spectrum`: a :class:`rotor_rub.Spectrum`; a whirl spectrum shades backward (negative
+  orders) and forward whirl in two colours.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Optional, Tuple
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from . import Run, Section, Spectrum, Sweep
+
+__all__ = ["orbit", "bifurcation", "poincare", "spectrum"]
+
+#: Marker and colour per event kind (as the CLI's figures: starts red, ends green).
+EVENT_STYLE = {
+    "enter": ("o", "tab:red", "contact start"),
+    "exit": ("o", "tab:green", "contact end"),
+    "reverse": ("^", "tab:purple", "slip reversal"),
+    "roll": ("x", "black", "rolling start"),
+    "slip": ("s", "tab:orange", "rolling end"),
+}
+
+
+def _axes(ax: Optional["Axes"], size: Tuple[float, float] = (6.0, 6.0)) -> "Axes":
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    _, new = plt.subplots(figsize=size)
+    return new
+
+
+def orbit(
+    run: "Run",
+    ax: Optional["Axes"] = None,
+    *,
+    offset: Tuple[float, float] = (0.0, 0.0),
+    from_time: Optional[float] = None,
+    events: bool = True,
+    **line: Any,
+) -> "Axes":
+    """The orbit of ``run`` (its samples), the clearance circle of radius 1 around the stator
+    centre ``offset`` (the problem's ``offset_x``, ``offset_y``), and its switches marked by
+    kind. ``from_time`` drops what comes before (a transient)."""
+    ax = _axes(ax)
+    t = run.samples.time
+    keep = np.ones_like(t, dtype=bool) if from_time is None else t >= from_time
+    state = run.samples.state[keep]
+    line.setdefault("lw", 0.8)
+    line.setdefault("color", "tab:blue")
+    ax.plot(state[:, 0], state[:, 1], label="orbit", **line)
+    angle = np.linspace(0.0, 2.0 * np.pi, 361)
+    ax.plot(offset[0] + np.cos(angle), offset[1] + np.sin(angle), color="0.5", lw=0.8,
+            ls="--", label="clearance")
+    if events and len(run.events):
+        ev_keep = (np.ones(len(run.events), dtype=bool) if from_time is None
+                   else run.events.time >= from_time)
+        for kind, (marker, color, label) in EVENT_STYLE.items():
+            at = ev_keep & (run.events.kind == kind)
+            if at.any():
+                s = run.events.state[at]
+                ax.scatter(s[:, 0], s[:, 1], marker=marker, color=color, s=18, zorder=3,
+                           label=label)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (clearances)")
+    ax.set_ylabel("y (clearances)")
+    ax.set_title(f"Orbit, {run.method}")
+    ax.legend(loc="upper right", fontsize="small")
+    return ax
+
+
+def bifurcation(sweep: "Sweep", ax: Optional["Axes"] = None, *, component: int = 0,
+                **points: Any) -> "Axes":
+    """Bifurcation diagram: the Poincaré ``component`` (0 x, 1 y, 2 vx, 3 vy) against the first
+    swept parameter's value, one dot per kept period."""
+    ax = _axes(ax, (8.0, 5.0))
+    points.setdefault("s", 2)
+    points.setdefault("color", "tab:blue")
+    ax.scatter(sweep.value, sweep.state[:, component], linewidths=0, **points)
+    ax.set_xlabel(sweep.params[0])
+    ax.set_ylabel(["x", "y", "vx", "vy"][component] + " at the forcing-period boundaries")
+    ax.set_title(f"Bifurcation diagram over {sweep.params[0]}")
+    return ax
+
+
+def poincare(section: "Section", ax: Optional["Axes"] = None, **points: Any) -> "Axes":
+    """The Poincaré section in the (x, y) plane, titled with its response class."""
+    ax = _axes(ax)
+    points.setdefault("s", 8)
+    points.setdefault("color", "tab:blue")
+    ax.scatter(section.state[:, 0], section.state[:, 1], **points)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (clearances)")
+    ax.set_ylabel("y (clearances)")
+    title = f"Poincaré section: {section.response}"
+    if section.lyapunov is not None:
+        title += f", λ₁ = {section.lyapunov:.4f}"
+    ax.set_title(title)
+    return ax
+
+
+def spectrum(spec: "Spectrum", ax: Optional["Axes"] = None, *, max_order: float = 4.0,
+             log: bool = True) -> "Axes":
+    """Amplitude against order (multiples of the running speed), up to ``max_order``. A whirl
+    spectrum is drawn two-sided: backward whirl (negative orders) and forward whirl in two
+    colours; otherwise x and y."""
+    ax = _axes(ax, (8.0, 4.5))
+    order = spec.order
+    if spec.whirl is not None:
+        amp = spec.whirl
+        shown = np.abs(order) <= max_order
+        top = float(amp[shown].max()) if shown.any() else 1.0
+        # Lines rise from a floor six decades below the largest peak (log scale) or from 0.
+        floor = top * 1e-6 if log else 0.0
+        for side, color, label in ((order < 0, "tab:red", "backward whirl"),
+                                   (order >= 0, "tab:blue", "forward whirl")):
+            sel = side & shown
+            ax.vlines(order[sel], floor, np.maximum(amp[sel], floor), color=color, lw=1.0,
+                      label=label)
+        ax.set_xlim(-max_order, max_order)
+        if log:
+            ax.set_ylim(floor, top * 2.0)
+        ax.axvline(0.0, color="0.6", lw=0.6)
+    else:
+        sel = order <= max_order
+        for values, color, label in ((spec.x, "tab:blue", "x"), (spec.y, "tab:orange", "y")):
+            if values is not None:
+                ax.plot(order[sel], values[sel], color=color, lw=1.0, label=label)
+        ax.set_xlim(0.0, max_order)
+    if log:
+        ax.set_yscale("log")
+    ax.set_xlabel("order (multiples of the running speed)")
+    ax.set_ylabel("amplitude (clearances)")
+    ax.set_title("Whirl spectrum" if spec.whirl is not None else "Amplitude spectrum")
+    ax.legend(fontsize="small")
+    return ax

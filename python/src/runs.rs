@@ -1,0 +1,274 @@
+//! One-problem runs for Python: `simulate`, `poincare`, `spectrum`. Each builds its inputs as the
+//! CLI does, releases the GIL while it propagates, and returns a dict of numpy arrays that the
+//! Python layer (`rotor_rub/__init__.py`) wraps in typed results.
+
+use std::path::PathBuf;
+
+use numpy::IntoPyArray;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rotor_rub::{EventKind, Method, Regime, State};
+use rotor_rub_cli::analysis::classify::distinct_points;
+use rotor_rub_cli::analysis::spectrum::{real_amplitudes, whirl_amplitudes};
+use rotor_rub_cli::limits::{add_counts, fits_memory};
+use rotor_rub_cli::options::{describe, parse_positive};
+use rotor_rub_cli::trajectory::{self, uniform_times};
+use rotor_rub_cli::{poincare as section, spectrum as fft};
+
+use crate::errors::{cli, input};
+use crate::inputs;
+
+/// `(n, 4)` array of states.
+pub fn states<'py>(py: Python<'py>, states: &[State]) -> PyResult<Bound<'py, PyAny>> {
+    rows(py, states.iter().map(|s| s.to_array()), states.len())
+}
+
+/// `(n, 4)` array from `n` rows (one allocation, handed to numpy without a copy).
+pub fn rows<'py>(
+    py: Python<'py>,
+    rows: impl Iterator<Item = [f64; 4]>,
+    n: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let mut flat = Vec::with_capacity(4 * n);
+    for row in rows {
+        flat.extend_from_slice(&row);
+    }
+    let array = numpy::ndarray::Array2::from_shape_vec((flat.len() / 4, 4), flat)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py).into_any())
+}
+
+/// The index of `kind` in [`EventKind::ALL`] (`rotor_rub.EVENT_KINDS`).
+pub fn kind_code(kind: EventKind) -> u8 {
+    EventKind::ALL
+        .iter()
+        .position(|k| *k == kind)
+        .map_or(u8::MAX, |i| i as u8)
+}
+
+/// The index of `regime` in `rotor_rub.REGIMES` (free, contact, rolling).
+pub fn regime_code(regime: Regime) -> u8 {
+    trajectory::regime_index(regime) as u8
+}
+
+/// Samples in numpy's layout: times, states row-major (n × 4), regime codes. (Codes, not
+/// names: a numpy string array costs about 10 µs per thousand samples to hand over.)
+struct Columns {
+    time: Vec<f64>,
+    state: Vec<f64>,
+    regime: Vec<u8>,
+}
+
+impl Columns {
+    fn with_capacity(n: usize) -> Self {
+        Columns {
+            time: Vec::with_capacity(n),
+            state: Vec::with_capacity(4 * n),
+            regime: Vec::with_capacity(n),
+        }
+    }
+
+    fn push(&mut self, s: &rotor_rub::Sample) {
+        self.time.push(s.time);
+        self.state.extend_from_slice(&s.state.to_array());
+        self.regime.push(regime_code(s.regime));
+    }
+}
+
+/// The end time from `t_end` or `periods` (default 20 forcing periods), as `--t-end`/`--periods`.
+fn end_time(t_end: Option<f64>, periods: Option<f64>, period: f64) -> PyResult<f64> {
+    let positive = |name: &str, x: f64| {
+        parse_positive(&format!("{x:e}")).map_err(|e| input(format!("{name}: {e}")))
+    };
+    match (t_end, periods) {
+        (Some(_), Some(_)) => Err(input(
+            "give t_end or periods, not both (they both set the run length)",
+        )),
+        (Some(t), None) => positive("t_end", t),
+        (None, p) => Ok(positive("periods", p.unwrap_or(20.0))? * period),
+    }
+}
+
+/// One run: every switch and `samples` uniform samples from the start to the end time.
+#[pyfunction]
+#[pyo3(signature = (*, preset=None, config=None, t_end=None, periods=None, method=None, tol=None,
+    contact_scheme=None, step=None, samples=1001, max_work=None, params=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    preset: Option<&str>,
+    config: Option<PathBuf>,
+    t_end: Option<f64>,
+    periods: Option<f64>,
+    method: Option<&str>,
+    tol: Option<f64>,
+    contact_scheme: Option<&str>,
+    step: Option<f64>,
+    samples: i64,
+    max_work: Option<f64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let problem = inputs::problem(preset, config, params)?;
+    let options = inputs::options(method, Method::Analytic, tol, contact_scheme, step)?;
+    let end = end_time(t_end, periods, problem.params.forcing_period())?;
+    if samples == 1 {
+        return Err(input(
+            "samples: 1 is out of range: it must be 0 (none) or an integer >= 2",
+        ));
+    }
+    let count = inputs::count("samples", samples, 0)?;
+    let count =
+        fits_memory("samples", count, std::mem::size_of::<rotor_rub::Sample>()).map_err(cli)?;
+    let budget = inputs::budget(max_work)?;
+    budget.plan("samples", count as u64).map_err(cli)?;
+    let propagator = trajectory::start(&problem, &options).map_err(cli)?;
+    let start = problem.start_time;
+    // Samples go straight into numpy's column layout as they come (no list of samples).
+    let mut columns = Columns::with_capacity(count);
+    let pass = py
+        .detach(|| {
+            let mut tracker = budget.run(start, end);
+            trajectory::run(
+                propagator,
+                end,
+                uniform_times(start, end, count),
+                &mut tracker,
+                true,
+                |_| Ok(()),
+                |s| {
+                    columns.push(s);
+                    Ok(())
+                },
+            )
+        })
+        .map_err(cli)?;
+    let out = PyDict::new(py);
+    let event_states: Vec<State> = pass.events.iter().map(|e| e.state).collect();
+    let times: Vec<f64> = pass.events.iter().map(|e| e.time).collect();
+    let kinds: Vec<u8> = pass.events.iter().map(|e| kind_code(e.kind)).collect();
+    out.set_item("event_time", times.into_pyarray(py))?;
+    out.set_item("event_kind", kinds.into_pyarray(py))?;
+    out.set_item("event_state", states(py, &event_states)?)?;
+    let n = columns.time.len();
+    let state = numpy::ndarray::Array2::from_shape_vec((n, 4), columns.state)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    out.set_item("sample_time", columns.time.into_pyarray(py))?;
+    out.set_item("sample_state", state.into_pyarray(py))?;
+    out.set_item("sample_regime", columns.regime.into_pyarray(py))?;
+    out.set_item("start_time", start)?;
+    out.set_item("end_time", end)?;
+    out.set_item(
+        "end_state",
+        pass.last.state.to_array().to_vec().into_pyarray(py),
+    )?;
+    out.set_item("time_in", pass.time_in)?;
+    out.set_item("contact_fraction", pass.contact_fraction)?;
+    out.set_item("elapsed", pass.elapsed.as_secs_f64())?;
+    out.set_item("method", describe(&options))?;
+    out.set_item("forcing_period", problem.params.forcing_period())?;
+    Ok(out)
+}
+
+/// The Poincaré section over `keep` forcing periods after `transient`, with its response class
+/// and, when asked, the largest Lyapunov exponent.
+#[pyfunction]
+#[pyo3(signature = (*, preset=None, config=None, transient=200, keep=100, lyapunov=false,
+    method=None, tol=None, contact_scheme=None, step=None, max_work=None, params=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn poincare<'py>(
+    py: Python<'py>,
+    preset: Option<&str>,
+    config: Option<PathBuf>,
+    transient: i64,
+    keep: i64,
+    lyapunov: bool,
+    method: Option<&str>,
+    tol: Option<f64>,
+    contact_scheme: Option<&str>,
+    step: Option<f64>,
+    max_work: Option<f64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let problem = inputs::problem(preset, config, params)?;
+    let options = inputs::options(method, Method::Hybrid, tol, contact_scheme, step)?;
+    let transient = inputs::count("transient", transient, 0)?;
+    let keep = inputs::count("keep", keep, 1)?;
+    add_counts(("--transient", transient), ("--keep", keep)).map_err(cli)?;
+    let kept = fits_memory("--keep", keep, std::mem::size_of::<State>() * 2).map_err(cli)?;
+    let budget = inputs::budget(max_work)?;
+    let lyapunov_work = if lyapunov { keep } else { 0 };
+    budget
+        .plan("--keep", keep.saturating_add(lyapunov_work))
+        .map_err(cli)?;
+    trajectory::start(&problem, &options).map_err(cli)?;
+    let result = py
+        .detach(|| section::section(&problem, &options, transient, kept, lyapunov, &budget))
+        .map_err(cli)?;
+    let out = PyDict::new(py);
+    let periods: Vec<u64> = (transient..transient + keep).collect();
+    out.set_item("period", periods.into_pyarray(py))?;
+    out.set_item("state", states(py, &result.points)?)?;
+    out.set_item("response", result.response.to_string())?;
+    out.set_item("lyapunov", result.lyapunov)?;
+    out.set_item("distinct", distinct_points(&result.points))?;
+    out.set_item("method", describe(&options))?;
+    Ok(out)
+}
+
+/// Amplitude spectrum over `periods` forcing periods after `transient`, in orders of the running
+/// speed: of x and y, or of the whirl x + i y (negative orders: backward whirl).
+#[pyfunction]
+#[pyo3(signature = (*, preset=None, config=None, transient=100, periods=60,
+    samples_per_period=64, whirl=false, method=None, tol=None, contact_scheme=None, step=None,
+    max_work=None, params=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn spectrum<'py>(
+    py: Python<'py>,
+    preset: Option<&str>,
+    config: Option<PathBuf>,
+    transient: i64,
+    periods: i64,
+    samples_per_period: i64,
+    whirl: bool,
+    method: Option<&str>,
+    tol: Option<f64>,
+    contact_scheme: Option<&str>,
+    step: Option<f64>,
+    max_work: Option<f64>,
+    params: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let problem = inputs::problem(preset, config, params)?;
+    let options = inputs::options(method, Method::Hybrid, tol, contact_scheme, step)?;
+    let transient = inputs::count("transient", transient, 0)?;
+    let periods = inputs::count("periods", periods, 1)?;
+    let per_period = inputs::count("samples_per_period", samples_per_period, 2)?;
+    add_counts(("--transient", transient), ("--periods", periods)).map_err(cli)?;
+    let n = fft::sample_count(periods, per_period).map_err(cli)?;
+    let budget = inputs::budget(max_work)?;
+    budget
+        .plan("--periods × --samples-per-period", n as u64)
+        .map_err(cli)?;
+    trajectory::start(&problem, &options).map_err(cli)?;
+    let (x, y) = py
+        .detach(|| fft::signal(&problem, &options, transient, periods, per_period, &budget))
+        .map_err(cli)?;
+    let order = |bin: f64| bin / periods as f64;
+    let out = PyDict::new(py);
+    if whirl {
+        let (orders, amps): (Vec<f64>, Vec<f64>) = py
+            .detach(|| whirl_amplitudes(&x, &y))
+            .into_iter()
+            .map(|(k, a)| (order(k as f64), a))
+            .unzip();
+        out.set_item("order", orders.into_pyarray(py))?;
+        out.set_item("whirl", amps.into_pyarray(py))?;
+    } else {
+        let (ax, ay) = py.detach(|| (real_amplitudes(&x), real_amplitudes(&y)));
+        let orders: Vec<f64> = (0..ax.len()).map(|k| order(k as f64)).collect();
+        out.set_item("order", orders.into_pyarray(py))?;
+        out.set_item("x", ax.into_pyarray(py))?;
+        out.set_item("y", ay.into_pyarray(py))?;
+    }
+    out.set_item("method", describe(&options))?;
+    Ok(out)
+}
