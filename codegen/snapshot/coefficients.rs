@@ -64,6 +64,12 @@
 //                               after:    26 add    34 mul    1 div   1 sqrt   0 trans
 // rolling_rates                before:  1232 add   734 mul  149 div 149 sqrt   0 trans
 //                               after:    68 add   187 mul    2 div   1 sqrt   0 trans
+// speed_change_force           before:     0 add     4 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
+// held_speed_forcing           before:     0 add     3 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     3 mul    0 div   0 sqrt   0 trans
+// varying_speed_unbalance      before:     2 add    10 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     9 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
 /// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
@@ -373,6 +379,14 @@ pub struct ForcedBasis {
 pub struct Slip {
     /// σ = ±1, the sign of the slip velocity w
     pub sigma: f64,
+}
+/// A running speed that changes in time (`docs/MODEL.md` §14): the unbalance η_m ρ̂ and the speed's rate η' = dη/dτ.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SpeedChange {
+    /// η_m ρ̂, the unbalance's radius (mass ratio times eccentricity ratio)
+    pub unbalance: f64,
+    /// η' = dη/dτ, the rate of the speed ratio
+    pub speed_rate: f64,
 }
 /// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
 ///
@@ -1553,5 +1567,68 @@ pub fn rolling_rates(
             - t3 * t21
                 * (t3 * vx * vx + t0 * t3 * t24 + t3 * vy * vy + t1 * t3 * t25
                     - 0.5 * t0 * t3 * t6 * vx * t7 - 0.5 * t1 * t3 * t6 * vy * t7),
+    }
+}
+/// The part of the unbalance forcing a changing speed adds to F (cos θ, sin θ): −η_m ρ̂ η' (−sin θ, cos θ), the unbalance lagging behind (or running ahead of) the rotor's rotation.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: η' times the partial derivative by η' of the model's `unbalance_at_varying_speed` (linear in η').
+#[inline]
+#[must_use]
+pub fn speed_change_force(phasor: &Phasor, speed: &SpeedChange) -> Force {
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let unbalance = speed.unbalance;
+    let speed_rate = speed.speed_rate;
+    Force {
+        fx: st * speed_rate * unbalance,
+        fy: -ct * speed_rate * unbalance,
+    }
+}
+/// Outputs of [`held_speed_forcing`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeldForcing {
+    /// a_c = η_m ρ̂ η², the cos θ coefficient of the x forcing
+    pub in_phase: f64,
+    /// a_s = η_m ρ̂ η', the sin θ coefficient of the x forcing
+    pub quadrature: f64,
+}
+/// The unbalance forcing with η and η' held constant as one rotating harmonic: x = a_c cos θ + a_s sin θ, y = a_c sin θ − a_s cos θ, i.e. A (cos(θ − δ), sin(θ − δ)), A = √(a_c² + a_s²), δ = atan2(a_s, a_c).
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: the coefficients of cos θ and sin θ in the x component of the model's `unbalance_at_varying_speed`; the y component is checked to be the same harmonic a quarter turn on.
+#[inline]
+#[must_use]
+pub fn held_speed_forcing(model: &ModelParams, speed: &SpeedChange) -> HeldForcing {
+    let eta = model.eta;
+    let unbalance = speed.unbalance;
+    let speed_rate = speed.speed_rate;
+    HeldForcing {
+        in_phase: eta * eta * unbalance,
+        quadrature: speed_rate * unbalance,
+    }
+}
+/// The unbalance forcing η_m ρ̂ (η² (cos θ, sin θ) − η' (−sin θ, cos θ)) at a changing speed.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: the model's `unbalance_at_varying_speed`.
+/// Test-only: checks the derivation against the paper's form; the runtime does not use it.
+#[doc(hidden)]
+#[inline]
+#[must_use]
+pub fn varying_speed_unbalance(
+    model: &ModelParams,
+    phasor: &Phasor,
+    speed: &SpeedChange,
+) -> Force {
+    let eta = model.eta;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let unbalance = speed.unbalance;
+    let speed_rate = speed.speed_rate;
+    let t0 = eta * eta;
+    Force {
+        fx: -(-(st * speed_rate * unbalance) - ct * t0 * unbalance),
+        fy: -(ct * speed_rate * unbalance - st * t0 * unbalance),
     }
 }

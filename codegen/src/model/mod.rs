@@ -7,6 +7,9 @@
 //!       [`unbalance`]      [`damping`] [`restoring`] [`elastic_contact`] [`friction`] [slipping]
 //! ```
 //!
+//! At a running speed that changes, the unbalance term is [`unbalance_at_varying_speed`],
+//! η_m ρ̂ (η² (cos θ, sin θ) − η' (−sin θ, cos θ)) with θ' = η; [`unbalance`] is its η' = 0 case.
+//!
 //! with g(q) = (1 − 1/z)(u, v) ([`contact_function`]), (u, v) = q − ε̂, z = |(u, v)|, the
 //! normal force N = nᵀK_s g ([`normal_force`]) and the frame n, t ([`contact_frame`]); rolling
 //! replaces μσN by the tangential force λ that keeps the slip velocity at 0 (`friction.rs`). [`Model::contact_pieces`] sums
@@ -17,6 +20,7 @@
 //! every generated formula follows from it.
 //!
 //! [`unbalance`]: Model::unbalance
+//! [`unbalance_at_varying_speed`]: Model::unbalance_at_varying_speed
 //! [`damping`]: Model::damping
 //! [`restoring`]: Model::restoring
 //! [`elastic_contact`]: Model::elastic_contact
@@ -31,6 +35,7 @@ mod free;
 mod friction;
 mod linearization;
 mod polynomial;
+mod speed;
 pub mod symbols;
 mod tools;
 
@@ -60,6 +65,7 @@ pub fn derive_all() -> Model {
     polynomial::derive(&mut m);
     field::derive(&mut m);
     friction::derive(&mut m);
+    speed::derive(&mut m);
     m
 }
 
@@ -261,10 +267,38 @@ impl Model {
         residual
     }
 
-    /// The unbalance forcing F (cos θ, sin θ).
+    /// The unbalance forcing F (cos θ, sin θ) at a constant running speed: the case η' = 0 of
+    /// [`Model::unbalance_at_varying_speed`], with F = η_m ρ̂ η² (`speed.rs` checks the two agree
+    /// when the build runs).
     pub(crate) fn unbalance(&mut self, phasor: Vec2) -> Vec2 {
         let f = self.var("f");
         [self.graph.mul(f, phasor[0]), self.graph.mul(f, phasor[1])]
+    }
+
+    /// The unbalance forcing at a running speed η(τ) that changes at the rate η' (`docs/MODEL.md`
+    /// §14): the unbalance sits at η_m ρ̂ (cos θ, sin θ) from the rotor centre, θ' = η, and
+    /// pulls on the rotor with minus its acceleration,
+    ///
+    /// ```text
+    /// −η_m ρ̂ d²/dτ² (cos θ, sin θ) = η_m ρ̂ (η² (cos θ, sin θ) − η' (−sin θ, cos θ)).
+    /// ```
+    ///
+    /// Speeding up (η' > 0) the unbalance lags and drags the rotor backwards along its whirl.
+    /// Returned with the rates it was differentiated with (θ' = η, η' = `eta_rate`).
+    pub(crate) fn unbalance_at_varying_speed(&mut self) -> (Vec2, Rates) {
+        let mut rates = Rates::new();
+        let phasor = self.forcing_phasor(&mut rates);
+        let (eta, rate) = (self.sym("eta"), self.var("eta_rate"));
+        rates.insert(eta, rate);
+        let unbalance = self.var("unb");
+        let g = &mut self.graph;
+        let forcing = phasor.map(|c| {
+            let position = g.mul(unbalance, c);
+            let velocity = derivative(g, position, &rates);
+            let acceleration = derivative(g, velocity, &rates);
+            g.neg(acceleration)
+        });
+        (forcing, rates)
     }
 
     /// The stator stiffness matrix K_s.

@@ -312,6 +312,23 @@ pub const GROUPS: &[Group] = &[
         doc: "The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §10).",
         fields: &[("sigma", "sigma", "σ = ±1, the sign of the slip velocity w")],
     },
+    Group {
+        ty: "SpeedChange",
+        arg: "speed",
+        doc: "A running speed that changes in time (`docs/MODEL.md` §14): the unbalance η_m ρ̂ and the speed's rate η' = dη/dτ.",
+        fields: &[
+            (
+                "unb",
+                "unbalance",
+                "η_m ρ̂, the unbalance's radius (mass ratio times eccentricity ratio)",
+            ),
+            (
+                "eta_rate",
+                "speed_rate",
+                "η' = dη/dτ, the rate of the speed ratio",
+            ),
+        ],
+    },
 ];
 
 /// Symbols that only live inside derivations (unknowns, variables substituted away).
