@@ -7,7 +7,9 @@
 //! the contact force in the contact regime. Comparisons of methods stay independent because the test suites keep
 //! their own hand-written field (`tests/generated/field.rs`, `tests/reference`).
 
-use crate::coefficients::{self as coef, ModelParams, Phasor, Position, Slip, Velocity};
+use crate::coefficients::{
+    self as coef, ModelParams, Phasor, Position, Slip, SpeedChange, Velocity,
+};
 use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::{EventKind, Regime};
@@ -70,6 +72,29 @@ pub fn acceleration_with_phasor(
             (a.ax, a.ay)
         }
     }
+}
+
+/// The force a changing running speed adds to the unbalance forcing F (cos θ, sin θ)
+/// (`docs/MODEL.md` §14): −η_m ρ̂ η' (−sin θ, cos θ), generated from the model's
+/// `unbalance_at_varying_speed`. It acts in every regime (it is part of the forcing).
+#[inline]
+pub fn speed_change_force(
+    params: &Params,
+    speed_rate: f64,
+    cos_theta: f64,
+    sin_theta: f64,
+) -> (f64, f64) {
+    let f = coef::speed_change_force(
+        &Phasor {
+            ct: cos_theta,
+            st: sin_theta,
+        },
+        &SpeedChange {
+            unbalance: params.mass_ratio * params.eccentricity_ratio,
+            speed_rate,
+        },
+    );
+    (f.fx, f.fy)
 }
 
 /// The regime's vector field s' = (x', y', x'', y'') at time τ.

@@ -181,6 +181,11 @@ impl HybridPropagator {
     /// start time.
     pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
         problem.validate()?;
+        Self::start(problem, tol)
+    }
+
+    /// As [`HybridPropagator::new`] without checking the problem (see [`Registered::resume`]).
+    fn start(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
         Method::Hybrid.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
@@ -212,6 +217,10 @@ impl Registered for HybridPropagator {
 
     fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
         HybridPropagator::new(problem, options.tolerance())
+    }
+
+    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        HybridPropagator::start(problem, options.tolerance())
     }
 }
 

@@ -27,9 +27,11 @@ pub mod method;
 pub mod params;
 pub mod propagate;
 pub mod reference;
+pub mod speed;
 pub mod stepper;
 #[cfg(feature = "proptest")]
 pub mod strategies;
+pub mod variable_speed;
 
 pub use method::{ContactScheme, Method, Options, Propagator};
 pub use params::{ParamError, Parameter, Params, Preset, Problem, State};

@@ -58,6 +58,12 @@ pub fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)
 }
 
+/// The angle of the point (x, y), `atan2(y, x)` in (−π, π].
+#[inline]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    libm::atan2(y, x)
+}
+
 /// Fused multiply-add `a·b + c` with one rounding.
 #[inline]
 pub fn mul_add(a: f64, b: f64, c: f64) -> f64 {

@@ -68,6 +68,12 @@ pub trait Registered: Propagate + Sized {
     const INFO: MethodInfo;
     /// Start the method on `problem` with validated `options`.
     fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError>;
+    /// Continue a run from a state it reached: as [`Registered::build`], but the problem's
+    /// initial state and start time are not checked against the parameter table's start
+    /// ranges (a run may leave them); the state is checked for divergence only. The caller has
+    /// validated the parameters (a speed held over a step of a speed profile,
+    /// [`crate::variable_speed`]).
+    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError>;
 }
 
 macro_rules! registry {
@@ -102,6 +108,12 @@ macro_rules! registry {
             fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
                 Ok(match options.method {
                     $(Method::$variant => Inner::$variant(<$ty>::build(problem, options)?),)+
+                })
+            }
+
+            fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+                Ok(match options.method {
+                    $(Method::$variant => Inner::$variant(<$ty>::resume(problem, options)?),)+
                 })
             }
 
@@ -291,6 +303,14 @@ impl Propagator {
         problem.validate()?;
         options.validate()?;
         Inner::build(problem, options).map(Propagator)
+    }
+
+    /// Continue a run at a state it reached (see [`Registered::resume`]): validates the
+    /// parameters and the options, not the state against the table's start ranges.
+    pub fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        problem.params.validate()?;
+        options.validate()?;
+        Inner::resume(problem, options).map(Propagator)
     }
 }
 

@@ -47,3 +47,46 @@ pub extern "C" fn rotor_rub_probe_stepper(steps: u32) -> i64 {
     }
     switches
 }
+
+/// Runs the paper preset up from η = 0.8 to 1.2 at dη/dτ = 1e-3 and back (a ramp's points held
+/// on the stack, no heap) with `method_code` (0 analytic, 1 hybrid, 2 dop853), one row per
+/// forcing period; returns the number of switches, or −1 on error.
+#[unsafe(no_mangle)]
+pub extern "C" fn rotor_rub_probe_runup(method_code: u32) -> i64 {
+    use rotor_rub::Method;
+    use rotor_rub::speed::{Ramp, RampPace};
+    use rotor_rub::variable_speed::{Revolutions, VariableSpeedOptions, VariableSpeedPropagator};
+    let method = match method_code {
+        0 => Method::Analytic,
+        1 => Method::Hybrid,
+        _ => Method::Dop853,
+    };
+    let problem = Preset::Paper.problem();
+    let ramp = Ramp {
+        start_time: 0.0,
+        from: 0.8,
+        to: 1.2,
+        pace: RampPace::Rate(1e-3),
+        settle_periods: 0.0,
+        dwell_periods: 0.0,
+        one_way: false,
+    };
+    let Ok(points) = ramp.points() else {
+        return -1;
+    };
+    let Ok(profile) = points.profile() else {
+        return -1;
+    };
+    let options = VariableSpeedOptions::new(Options::with_method(method));
+    let Ok(mut p) = VariableSpeedPropagator::new(&problem, profile, &options) else {
+        return -1;
+    };
+    let mut switches = 0i64;
+    for row in Revolutions::new(&mut p, profile, problem.params.phase, 64) {
+        match row {
+            Ok(r) => switches += i64::from(r.enters + r.exits),
+            Err(_) => return -1,
+        }
+    }
+    switches
+}

@@ -289,6 +289,17 @@ impl AnalyticPropagator {
         fixed_step: Option<f64>,
     ) -> Result<Self, PropagationError> {
         problem.validate()?;
+        Self::start(problem, scheme, tol, fixed_step)
+    }
+
+    /// As [`AnalyticPropagator::new`] without checking the problem (see
+    /// [`Registered::resume`]).
+    fn start(
+        problem: &Problem,
+        scheme: ContactScheme,
+        tol: f64,
+        fixed_step: Option<f64>,
+    ) -> Result<Self, PropagationError> {
         Method::Analytic.check_tolerance(tol)?;
         if let Some(step) = fixed_step {
             check_step(step)?;
@@ -327,6 +338,15 @@ impl Registered for AnalyticPropagator {
 
     fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
         AnalyticPropagator::new(
+            problem,
+            options.contact_scheme,
+            options.tolerance(),
+            options.step,
+        )
+    }
+
+    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        AnalyticPropagator::start(
             problem,
             options.contact_scheme,
             options.tolerance(),

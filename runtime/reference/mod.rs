@@ -50,8 +50,8 @@ pub use events::{
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;
 pub use propagator::{
-    BASE_STEP_BUDGET, Dop853Propagator, REFERENCE_BUDGET, ReferencePropagator, ReferenceSolver,
-    Rk45Propagator, STEPS_PER_TIME_UNIT,
+    BASE_STEP_BUDGET, Dop853Propagator, FieldFamily, REFERENCE_BUDGET, ReferencePropagator,
+    ReferenceSolver, Rk45Propagator, STEPS_PER_TIME_UNIT,
 };
 pub use rk45::{Rk45, Rk45Dense};
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};

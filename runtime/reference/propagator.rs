@@ -28,6 +28,7 @@
 
 use super::dop853::Dop853;
 use super::integrator::{AcceptedStep, Integrator, Stats};
+use super::ode::OdeSystem;
 use super::rk45::Rk45;
 use super::scheme::{Interpolant, Scheme, Tolerance};
 use super::switch::{Switches, switch_in_step};
@@ -51,11 +52,40 @@ pub const REFERENCE_BUDGET: StepBudget = StepBudget {
     per_time_unit: STEPS_PER_TIME_UNIT,
 };
 
+/// The fields a [`ReferenceSolver`] integrates: one 4-state system per regime and slip
+/// direction. The model's parameters are one ([`RotorSystem`], constant speed); a speed profile's
+/// piece is another (`variable_speed::RampField`).
+pub trait FieldFamily: Copy {
+    /// The system of one regime.
+    type System: OdeSystem<4>;
+    /// The field of `regime` with slip direction `slip`.
+    fn system(&self, regime: Regime, slip: f64) -> Self::System;
+    /// The parameters the switch functions use; their speed ratio sets the largest step.
+    fn params(&self) -> &Params;
+}
+
+impl FieldFamily for Params {
+    type System = RotorSystem;
+
+    #[inline]
+    fn system(&self, regime: Regime, slip: f64) -> RotorSystem {
+        RotorSystem {
+            params: *self,
+            regime,
+            slip,
+        }
+    }
+
+    fn params(&self) -> &Params {
+        self
+    }
+}
+
 /// One integrator for both regimes: a switch restarts it on the other regime's field, so the
 /// free and the contact solver of [`crate::driver::Solvers`] are the same object.
 #[derive(Clone, Copy, Debug)]
-pub struct ReferenceSolver<S: Scheme<4>> {
-    params: Params,
+pub struct ReferenceSolver<S: Scheme<4>, F: FieldFamily = Params> {
+    field: F,
     regime: Regime,
     slip: f64,
     switches: Switches,
@@ -75,11 +105,22 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
         state: State,
         tol: f64,
     ) -> Self {
-        let sys = RotorSystem {
-            params: *params,
-            regime,
-            slip,
-        };
+        Self::with_field(*params, regime, slip, t0, state, tol)
+    }
+}
+
+impl<S: Scheme<4>, F: FieldFamily> ReferenceSolver<S, F> {
+    /// As [`ReferenceSolver::new`] on any family of fields.
+    pub fn with_field(
+        field: F,
+        regime: Regime,
+        slip: f64,
+        t0: f64,
+        state: State,
+        tol: f64,
+    ) -> Self {
+        let sys = field.system(regime, slip);
+        let params = field.params();
         let integrator = Integrator::new(
             &sys,
             t0,
@@ -88,7 +129,7 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
             max_step(params),
         );
         ReferenceSolver {
-            params: *params,
+            field,
             regime,
             slip,
             switches: Switches::new(params, regime, slip, t0, &state.to_array()),
@@ -98,22 +139,23 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
         }
     }
 
-    fn system(&self) -> RotorSystem {
-        RotorSystem {
-            params: self.params,
-            regime: self.regime,
-            slip: self.slip,
-        }
+    fn system(&self) -> F::System {
+        self.field.system(self.regime, self.slip)
+    }
+
+    /// Work counters of the integration so far.
+    pub fn stats(&self) -> Stats {
+        self.integrator.stats()
     }
 }
 
-impl<S: Scheme<4>> Solvers for ReferenceSolver<S> {
+impl<S: Scheme<4>, F: FieldFamily> Solvers for ReferenceSolver<S, F> {
     fn solver(&mut self, _regime: Regime) -> &mut dyn SegmentSolver {
         self
     }
 }
 
-impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
+impl<S: Scheme<4>, F: FieldFamily> SegmentSolver for ReferenceSolver<S, F> {
     /// Switch the field and restart the integration at the switch.
     fn start(
         &mut self,
@@ -124,7 +166,7 @@ impl<S: Scheme<4>> SegmentSolver for ReferenceSolver<S> {
     ) -> Result<(), PropagationError> {
         self.regime = regime;
         self.slip = slip;
-        self.switches = Switches::new(&self.params, regime, slip, time, &state.to_array());
+        self.switches = Switches::new(self.field.params(), regime, slip, time, &state.to_array());
         self.step = None;
         self.pending = None;
         let sys = self.system();
@@ -192,6 +234,12 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
     /// tolerance.
     pub fn new(problem: &Problem, method: Method, tol: f64) -> Result<Self, PropagationError> {
         problem.validate()?;
+        Self::start(problem, method, tol)
+    }
+
+    /// As [`ReferencePropagator::new`] without checking the problem (see
+    /// [`Registered::resume`]).
+    fn start(problem: &Problem, method: Method, tol: f64) -> Result<Self, PropagationError> {
         method.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
@@ -289,6 +337,10 @@ macro_rules! reference_propagator {
 
             fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
                 $name::new(problem, options.tolerance())
+            }
+
+            fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+                ReferencePropagator::start(problem, $method, options.tolerance()).map($name)
             }
         }
 

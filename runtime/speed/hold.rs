@@ -1,0 +1,99 @@
+//! A changing speed held constant over a step (`docs/MODEL.md` §14): how the closed-form methods
+//! (the analytic method and the fixed-step stepper) run a speed profile.
+//!
+//! Over a step [t0, t1] the speed is held at its mean η_h = (θ(t1) − θ(t0))/(t1 − t0), so the
+//! forcing phase is exact at both ends of every step and its error inside a step is at most
+//! |η'| (t1 − t0)²/8; the rate is held too (η'_h = (η(t1) − η(t0))/(t1 − t0), exactly η' on a
+//! linear piece). With η and η' constant the unbalance forcing
+//! η_m ρ̂ (η² (cos θ, sin θ) − η' (−sin θ, cos θ)) is one harmonic of frequency η_h,
+//! A (cos(θ − δ), sin(θ − δ)) with A = η_m ρ̂ √(η_h⁴ + η'_h²), δ = atan2(η'_h, η_h²) (the
+//! generated `held_speed_forcing`): the constant-speed closed forms apply exactly to it, with the
+//! unbalance scaled to A/η_h² and the phase moved by −δ. What is left out is only the change of
+//! η within the step: an amplitude error of relative size ≈ 2|η'|(t1 − t0)/η that averages out
+//! over the step, and the phase error above.
+
+use super::piece::SpeedPiece;
+use crate::coefficients::{self as coef, ModelParams, SpeedChange};
+use crate::math;
+use crate::params::{Parameter, Params};
+
+/// The speed and rate held over one step, with the phase that goes with them:
+/// θ(τ) ≈ η_h τ + c_h on the step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeldSpeed {
+    /// η_h: the mean speed ratio over the step.
+    pub speed_ratio: f64,
+    /// η'_h: the rate held over the step.
+    pub rate: f64,
+    /// c_h: the phase constant, θ ≈ η_h τ + c_h.
+    pub phase_constant: f64,
+}
+
+impl HeldSpeed {
+    /// A piece's speed as it is: exact (and the constant-speed phase, bit for bit) when the
+    /// piece holds its speed (η' = 0).
+    pub fn of_piece(piece: &SpeedPiece) -> Self {
+        HeldSpeed {
+            speed_ratio: piece.speed_ratio,
+            rate: piece.rate,
+            phase_constant: piece.phase_constant,
+        }
+    }
+
+    /// The speed held over [t0, t1] from the speed and phase at both ends (taken from the
+    /// pieces holding them).
+    pub fn between(start: (&SpeedPiece, f64), end: (&SpeedPiece, f64)) -> Self {
+        let ((p0, t0), (p1, t1)) = (start, end);
+        let length = t1 - t0;
+        let (theta0, theta1) = (p0.phase_at(t0), p1.phase_at(t1));
+        let speed_ratio = (theta1 - theta0) / length;
+        HeldSpeed {
+            speed_ratio,
+            rate: (p1.speed_at(t1) - p0.speed_at(t0)) / length,
+            phase_constant: theta0 - speed_ratio * t0,
+        }
+    }
+
+    /// The constant-speed parameters whose forcing is this held forcing: `base` with the held
+    /// speed, the unbalance scaled to carry the rate's force (eccentricity ratio
+    /// ρ̂ √(1 + (η'_h/η_h²)²)) and the phase moved by its lag δ. With η'_h = 0 only the speed
+    /// and the phase change (the phase constant itself when it lies in the parameter table's
+    /// range, else reduced to [0, 2π)). The result is not validated: the scaled eccentricity
+    /// can leave its range at very low speeds (checked by the caller).
+    pub fn params(&self, base: &Params) -> Params {
+        let at_speed = Params {
+            speed_ratio: self.speed_ratio,
+            ..*base
+        };
+        if self.rate == 0.0 {
+            return Params {
+                phase: phase_parameter(self.phase_constant),
+                ..at_speed
+            };
+        }
+        let forcing = coef::held_speed_forcing(
+            &ModelParams::of(&at_speed),
+            &SpeedChange {
+                unbalance: base.mass_ratio * base.eccentricity_ratio,
+                speed_rate: self.rate,
+            },
+        );
+        let amplitude = math::hypot(forcing.in_phase, forcing.quadrature);
+        let lag = math::atan2(forcing.quadrature, forcing.in_phase);
+        Params {
+            eccentricity_ratio: amplitude / (base.mass_ratio * self.speed_ratio * self.speed_ratio),
+            phase: phase_parameter(self.phase_constant - lag),
+            ..at_speed
+        }
+    }
+}
+
+/// A phase constant as the `phase` parameter: itself inside the table's range, else reduced to
+/// [0, 2π) (the same forcing direction).
+fn phase_parameter(phase: f64) -> f64 {
+    if Parameter::Phase.info().range.contains(phase) {
+        phase
+    } else {
+        math::wrap_angle(phase)
+    }
+}

@@ -1,0 +1,95 @@
+//! The equations of motion on one piece of a speed profile (`docs/MODEL.md` §14), as the
+//! systems the numerical integrators take: the constant-speed field at the speed η(τ) and phase
+//! θ(τ) of the piece, plus the force of the speed's change (generated, `speed_change_force`).
+//! On a piece that holds its speed this is the constant-speed field, bit for bit.
+
+use crate::field;
+use crate::math;
+use crate::params::{Params, State};
+use crate::propagate::Regime;
+use crate::reference::{FieldFamily, OdeSystem};
+use crate::speed::SpeedPiece;
+
+/// The fields of one profile piece, by regime ([`FieldFamily`] of the reference solver).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampField {
+    /// The model's parameters (their speed ratio and phase are not used by the field).
+    model: Params,
+    /// `model` at the piece's highest speed: what the switch functions and the step limit
+    /// see (a quarter of the shortest forcing period on the piece bounds the step).
+    params: Params,
+    piece: SpeedPiece,
+}
+
+impl RampField {
+    /// The fields of `piece` for the model `params`.
+    pub fn new(params: &Params, piece: SpeedPiece) -> Self {
+        let end_speed = if piece.end.is_finite() {
+            piece.speed_at(piece.end)
+        } else {
+            piece.speed_ratio
+        };
+        RampField {
+            model: *params,
+            params: Params {
+                speed_ratio: piece.speed_ratio.max(end_speed),
+                ..*params
+            },
+            piece,
+        }
+    }
+
+    /// The piece.
+    pub fn piece(&self) -> &SpeedPiece {
+        &self.piece
+    }
+}
+
+impl FieldFamily for RampField {
+    type System = RampSystem;
+
+    #[inline]
+    fn system(&self, regime: Regime, _slip: f64) -> RampSystem {
+        RampSystem {
+            params: self.model,
+            regime,
+            piece: self.piece,
+        }
+    }
+
+    fn params(&self) -> &Params {
+        &self.params
+    }
+}
+
+/// One regime's field on a profile piece, on `[x, y, x', y']` (frictionless: variable speed with
+/// friction is refused before a run starts).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampSystem {
+    /// The model's parameters.
+    pub params: Params,
+    /// Which field.
+    pub regime: Regime,
+    /// The speed profile's piece.
+    pub piece: SpeedPiece,
+}
+
+impl OdeSystem<4> for RampSystem {
+    #[inline]
+    fn rhs(&self, t: f64, y: &[f64; 4]) -> [f64; 4] {
+        let state = State::from_array(*y);
+        let params = Params {
+            speed_ratio: self.piece.speed_at(t),
+            ..self.params
+        };
+        let (sin_t, cos_t) = math::sin_cos(self.piece.phase_at(t));
+        let (mut ax, mut ay) =
+            field::acceleration_with_phasor(&params, self.regime, 0.0, cos_t, sin_t, &state);
+        if self.piece.rate != 0.0 {
+            let (fx, fy) = field::speed_change_force(&params, self.piece.rate, cos_t, sin_t);
+            ax += fx;
+            ay += fy;
+        }
+        [state.vx, state.vy, ax, ay]
+    }
+}

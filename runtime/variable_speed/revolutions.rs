@@ -1,0 +1,359 @@
+//! What a run does in each turn of the unbalance (a forcing period at a changing speed): the
+//! orbit's largest and smallest radius, the time in contact, the whirl and the switches —
+//! the rows of a run-up diagram (`docs/MODEL.md` §14).
+//!
+//! Revolution k spans the forcing phase θ from θ_0 + 2πk to θ_0 + 2π(k + 1), θ_0 the phase where
+//! the tracking starts; at a constant speed these are the forcing periods of the Poincaré
+//! section. Each revolution is sampled at equal steps of phase, and every switch inside it is a
+//! node too. The radius r = |q| (from the rotor's rest position) is interpolated between nodes
+//! by the cubic Hermite polynomial of r² through their values and slopes 2 q·q' (r² is C¹ across
+//! switches), so its extremes are found to fourth order in the node spacing rather than only at
+//! the samples.
+
+use core::f64::consts::{PI, TAU};
+
+use crate::math;
+use crate::params::State;
+use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime};
+use crate::speed::{SpeedPiece, SpeedProfile};
+
+/// Which way the speed went over a revolution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SpeedDirection {
+    /// The speed rose (run-up).
+    Up,
+    /// The speed fell (coast-down).
+    Down,
+    /// The speed was the same at both ends.
+    Hold,
+}
+
+impl SpeedDirection {
+    /// `up`, `down` or `hold`, as written in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SpeedDirection::Up => "up",
+            SpeedDirection::Down => "down",
+            SpeedDirection::Hold => "hold",
+        }
+    }
+}
+
+/// Which way the orbit turned over a revolution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum WhirlDirection {
+    /// With the rotor's spin (counter-clockwise).
+    Forward,
+    /// Against it.
+    Backward,
+    /// Neither clearly: |whirl| below [`WHIRL_THRESHOLD`] (a flat orbit, or one that reverses).
+    Mixed,
+}
+
+impl WhirlDirection {
+    /// `forward`, `backward` or `mixed`, as written in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            WhirlDirection::Forward => "forward",
+            WhirlDirection::Backward => "backward",
+            WhirlDirection::Mixed => "mixed",
+        }
+    }
+}
+
+/// |whirl| below which a revolution's whirl counts as [`WhirlDirection::Mixed`]: an ellipse of
+/// axis ratio 1:20 traversed once has whirl 0.1.
+pub const WHIRL_THRESHOLD: f64 = 0.1;
+
+/// One revolution of a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Revolution {
+    /// k, counted from the start of the tracking.
+    pub index: u64,
+    /// When it starts.
+    pub start: f64,
+    /// When it ends.
+    pub end: f64,
+    /// Its mean speed ratio 2π/(end − start).
+    pub speed_ratio: f64,
+    /// η(end) − η(start).
+    pub speed_change: f64,
+    /// The largest |q| (clearances from the rotor's rest position).
+    pub max_radius: f64,
+    /// The smallest |q|.
+    pub min_radius: f64,
+    /// The fraction of the revolution spent in contact.
+    pub contact_fraction: f64,
+    /// The orbit's signed area about its own mean position over π times its mean squared
+    /// distance from it: +1 for one forward circle, −1 for one backward circle, 2ab/(a² + b²)
+    /// for an ellipse of semi-axes a, b traversed forward once, n for n turns.
+    pub whirl: f64,
+    /// Contacts that started.
+    pub enters: u32,
+    /// Contacts that ended.
+    pub exits: u32,
+}
+
+impl Revolution {
+    /// Which way the speed went.
+    pub fn direction(&self) -> SpeedDirection {
+        if self.speed_change > 0.0 {
+            SpeedDirection::Up
+        } else if self.speed_change < 0.0 {
+            SpeedDirection::Down
+        } else {
+            SpeedDirection::Hold
+        }
+    }
+
+    /// Which way the orbit turned.
+    pub fn whirl_direction(&self) -> WhirlDirection {
+        if self.whirl > WHIRL_THRESHOLD {
+            WhirlDirection::Forward
+        } else if self.whirl < -WHIRL_THRESHOLD {
+            WhirlDirection::Backward
+        } else {
+            WhirlDirection::Mixed
+        }
+    }
+}
+
+/// The sums one revolution accumulates, node by node.
+struct Accumulator {
+    start: f64,
+    last: (f64, State),
+    first_position: (f64, f64),
+    max_sq: f64,
+    min_sq: f64,
+    contact: f64,
+    /// ∮ (x dy − y dx), trapezoidal.
+    moment: f64,
+    /// ∫ x dτ, ∫ y dτ, ∫ |q|² dτ, trapezoidal.
+    integrals: [f64; 3],
+    enters: u32,
+    exits: u32,
+}
+
+impl Accumulator {
+    fn new(time: f64, state: State) -> Self {
+        let r2 = state.x * state.x + state.y * state.y;
+        Accumulator {
+            start: time,
+            last: (time, state),
+            first_position: (state.x, state.y),
+            max_sq: r2,
+            min_sq: r2,
+            contact: 0.0,
+            moment: 0.0,
+            integrals: [0.0; 3],
+            enters: 0,
+            exits: 0,
+        }
+    }
+
+    /// The next node: `regime` held since the last one.
+    fn node(&mut self, time: f64, state: State, regime: Regime) {
+        let (t0, a) = self.last;
+        let h = time - t0;
+        if h > 0.0 {
+            let (lo, hi) = hermite_extremes(squared_radius(&a), squared_radius(&state), h);
+            self.max_sq = self.max_sq.max(hi);
+            self.min_sq = self.min_sq.min(lo);
+            if regime.in_contact() {
+                self.contact += h;
+            }
+            self.moment +=
+                0.5 * ((a.x + state.x) * (state.y - a.y) - (a.y + state.y) * (state.x - a.x));
+            let r2 = |s: &State| s.x * s.x + s.y * s.y;
+            for (sum, (u, v)) in self.integrals.iter_mut().zip([
+                (a.x, state.x),
+                (a.y, state.y),
+                (r2(&a), r2(&state)),
+            ]) {
+                *sum += 0.5 * (u + v) * h;
+            }
+        }
+        self.last = (time, state);
+    }
+
+    fn finish(&self, index: u64, speed_change: f64) -> Revolution {
+        let (end, last) = self.last;
+        let length = end - self.start;
+        let [ix, iy, ir] = self.integrals.map(|v| v / length);
+        let spread = ir - (ix * ix + iy * iy);
+        let (dx, dy) = (
+            last.x - self.first_position.0,
+            last.y - self.first_position.1,
+        );
+        let area = 0.5 * (self.moment - ix * dy + iy * dx);
+        let whirl = if spread > 1e-300 {
+            area / (PI * spread)
+        } else {
+            0.0
+        };
+        Revolution {
+            index,
+            start: self.start,
+            end,
+            speed_ratio: TAU / length,
+            speed_change,
+            max_radius: math::sqrt(self.max_sq),
+            min_radius: math::sqrt(self.min_sq.max(0.0)),
+            contact_fraction: self.contact / length,
+            whirl,
+            enters: self.enters,
+            exits: self.exits,
+        }
+    }
+}
+
+/// (r², d(r²)/dτ) of a state.
+fn squared_radius(s: &State) -> (f64, f64) {
+    (s.x * s.x + s.y * s.y, 2.0 * (s.x * s.vx + s.y * s.vy))
+}
+
+/// The smallest and largest value on [0, h] of the cubic Hermite polynomial through
+/// (value, slope) pairs `a` at 0 and `b` at h.
+fn hermite_extremes(a: (f64, f64), b: (f64, f64), h: f64) -> (f64, f64) {
+    let (fa, da) = (a.0, a.1 * h);
+    let (fb, db) = (b.0, b.1 * h);
+    // p(s) = fa + da s + c2 s² + c3 s³ on s ∈ [0, 1].
+    let c2 = 3.0 * (fb - fa) - 2.0 * da - db;
+    let c3 = 2.0 * (fa - fb) + da + db;
+    let p = |s: f64| fa + s * (da + s * (c2 + s * c3));
+    let (mut lo, mut hi) = (fa.min(fb), fa.max(fb));
+    // p'(s) = da + 2 c2 s + 3 c3 s² = 0.
+    let (qa, qb, qc) = (3.0 * c3, 2.0 * c2, da);
+    let mut consider = |s: f64| {
+        if s > 0.0 && s < 1.0 {
+            let v = p(s);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    };
+    if qa == 0.0 {
+        if qb != 0.0 {
+            consider(-qc / qb);
+        }
+    } else {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc >= 0.0 {
+            let root = math::sqrt(disc);
+            let q = -0.5 * (qb + if qb < 0.0 { -root } else { root });
+            if q != 0.0 {
+                consider(q / qa);
+                consider(qc / q);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// The revolutions of a run on a speed profile, one at a time (see the module documentation).
+pub struct Revolutions<'p, 'a, P: ?Sized> {
+    propagator: &'p mut P,
+    profile: SpeedProfile<'a>,
+    cursor: SpeedPiece,
+    phase_origin: f64,
+    samples: u32,
+    next_index: u64,
+    count: u64,
+}
+
+impl<'p, 'a, P: Propagate + ?Sized> Revolutions<'p, 'a, P> {
+    /// The revolutions of `propagator` (running on `profile`, forcing phase φ0 = `phase` as in
+    /// [`SpeedProfile::first_piece`]) from its current time until the profile's end (whole
+    /// revolutions only), each sampled at `samples` equal steps of phase (at least 8; the
+    /// whirl needs less than half a whirl turn between samples).
+    pub fn new(propagator: &'p mut P, profile: SpeedProfile<'a>, phase: f64, samples: u32) -> Self {
+        let now = propagator.time();
+        let cursor = profile.piece_holding(profile.first_piece(phase), now);
+        let phase_origin = cursor.phase_at(now);
+        let last = profile.piece_holding(cursor, profile.end());
+        let turns = (last.phase_at(profile.end()) - phase_origin) / TAU;
+        // A rounding below a whole number of turns still counts that turn.
+        let count = libm::floor(turns + 1e-9).max(0.0) as u64;
+        Revolutions {
+            propagator,
+            profile,
+            cursor,
+            phase_origin,
+            samples: samples.max(8),
+            next_index: 0,
+            count,
+        }
+    }
+
+    /// The number of revolutions the iteration yields in all.
+    pub fn count(&self) -> u64 {
+        self.count
+    }
+
+    /// The time at which the phase reaches θ_0 + 2π·`turns`.
+    fn time_of(&mut self, turns: f64) -> f64 {
+        let phase = self.phase_origin + TAU * turns;
+        loop {
+            if let Some(t) = self.cursor.time_of_phase(phase) {
+                return t;
+            }
+            match self.profile.next_piece(&self.cursor) {
+                Some(next) => self.cursor = next,
+                None => return self.cursor.end,
+            }
+        }
+    }
+
+    /// The next revolution, passing each switch inside it to `on_event`; `None` after the last.
+    pub fn next_with(
+        &mut self,
+        mut on_event: impl FnMut(&Event),
+    ) -> Option<Result<Revolution, PropagationError>> {
+        if self.next_index >= self.count {
+            return None;
+        }
+        let index = self.next_index;
+        self.next_index += 1;
+        let start = self.propagator.time();
+        let speed_start = self
+            .profile
+            .piece_holding(self.cursor, start)
+            .speed_at(start);
+        let mut acc = Accumulator::new(start, self.propagator.state());
+        let n = f64::from(self.samples);
+        for j in 1..=self.samples {
+            let t = self.time_of(index as f64 + f64::from(j) / n).max(start);
+            let mut regime = self.propagator.regime();
+            loop {
+                match self.propagator.advance(t) {
+                    Ok(Some(event)) => {
+                        acc.node(event.time, event.state, regime);
+                        match event.kind {
+                            EventKind::Enter => acc.enters += 1,
+                            EventKind::Exit => acc.exits += 1,
+                            _ => {}
+                        }
+                        regime = event.kind.regime_after();
+                        on_event(&event);
+                    }
+                    Ok(None) => break,
+                    Err(e) => {
+                        self.next_index = self.count;
+                        return Some(Err(e));
+                    }
+                }
+            }
+            acc.node(t, self.propagator.state(), regime);
+        }
+        let end = self.propagator.time();
+        let speed_end = self.profile.piece_holding(self.cursor, end).speed_at(end);
+        Some(Ok(acc.finish(index, speed_end - speed_start)))
+    }
+}
+
+impl<P: Propagate + ?Sized> Iterator for Revolutions<'_, '_, P> {
+    type Item = Result<Revolution, PropagationError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        self.next_with(|_| {})
+    }
+}
