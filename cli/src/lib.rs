@@ -18,6 +18,7 @@ pub mod plot;
 pub mod poincare;
 pub mod presets;
 pub mod problem;
+pub mod runup;
 pub mod shard;
 pub mod simulate;
 pub mod spectrum;

@@ -8,8 +8,8 @@ use clap::{Parser, Subcommand};
 
 use rotor_rub_cli::error::{CliError, EXIT_INPUT, short_numbers};
 use rotor_rub_cli::{
-    compare, fig2, friction_fig, merge, output, params, poincare, presets, simulate, spectrum,
-    sweep,
+    compare, fig2, friction_fig, merge, output, params, poincare, presets, runup, simulate,
+    spectrum, sweep,
 };
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
@@ -72,6 +72,11 @@ enum Command {
     /// Coulomb friction: orbits with friction beside μ = 0, reversals and rolling marked
     #[command(after_help = UNITS)]
     Friction(friction_fig::Args),
+    /// Run-up and coast-down through resonance: per forcing period the speed, orbit radii,
+    /// contact, whirl and switches; amplitude against speed for both directions (jumps,
+    /// hysteresis)
+    #[command(after_help = UNITS)]
+    Runup(runup::Args),
     /// List the presets with every value
     #[command(after_help = UNITS)]
     Presets,
@@ -110,6 +115,7 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Poincare(args)) => poincare::run(&args),
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Friction(args)) => friction_fig::run(&args),
+        Some(Command::Runup(args)) => runup::run(&args),
         Some(Command::Presets) => {
             presets::run();
             Ok(())

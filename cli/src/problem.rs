@@ -10,7 +10,8 @@ use rotor_rub::{Parameter, Preset, Problem};
 
 use crate::error::{CliError, Result};
 
-/// Largest config file read (1 MiB): a parameter file is a few hundred bytes.
+/// Largest config or speed-profile file read (1 MiB): a parameter file is a few hundred bytes,
+/// a speed profile of 1 MiB holds some 40 000 points.
 pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// Where a problem comes from: preset < config < --set.
@@ -127,23 +128,25 @@ pub fn parse_config(text: &str) -> Result<Config, String> {
     Ok(config)
 }
 
-/// Read a config file: a regular file of at most [`MAX_CONFIG_BYTES`], UTF-8 text.
-fn read_capped(path: &Path) -> Result<String, String> {
+/// Read an input file (a `kind`, e.g. `config`, written as `format`, e.g. `TOML`): a regular
+/// file of at most [`MAX_CONFIG_BYTES`], UTF-8 text.
+pub fn read_capped(path: &Path, kind: &str, format: &str) -> Result<String, String> {
+    let not_regular = || format!("not a regular file (a {kind} must be a plain {format} file)");
     // Checked before opening: opening a FIFO would block until a writer appears.
     let before = std::fs::metadata(path).map_err(|e| format!("cannot read the file: {e}"))?;
     if !before.is_file() {
-        return Err("not a regular file (a config must be a plain TOML file)".into());
+        return Err(not_regular());
     }
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read the file: {e}"))?;
     let meta = file
         .metadata()
         .map_err(|e| format!("cannot read the file: {e}"))?;
     if !meta.is_file() {
-        return Err("not a regular file (a config must be a plain TOML file)".into());
+        return Err(not_regular());
     }
     if meta.len() > MAX_CONFIG_BYTES {
         return Err(format!(
-            "the file has {} bytes, more than the {MAX_CONFIG_BYTES} a config may have",
+            "the file has {} bytes, more than the {MAX_CONFIG_BYTES} a {kind} may have",
             meta.len()
         ));
     }
@@ -154,7 +157,7 @@ fn read_capped(path: &Path) -> Result<String, String> {
         .map_err(|e| format!("cannot read the file: {e}"))?;
     if bytes.len() as u64 > MAX_CONFIG_BYTES {
         return Err(format!(
-            "the file is larger than the {MAX_CONFIG_BYTES} bytes a config may have"
+            "the file is larger than the {MAX_CONFIG_BYTES} bytes a {kind} may have"
         ));
     }
     String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text: {e}"))
@@ -162,7 +165,7 @@ fn read_capped(path: &Path) -> Result<String, String> {
 
 fn read_config(path: &Path) -> Result<Config> {
     let fail = |m: String| CliError::input(format!("--config {}: {m}", path.display()));
-    parse_config(&read_capped(path).map_err(fail)?).map_err(fail)
+    parse_config(&read_capped(path, "config", "TOML").map_err(fail)?).map_err(fail)
 }
 
 /// Which layer set a parameter, for error messages.

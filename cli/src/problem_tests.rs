@@ -48,13 +48,13 @@ fn config_parses_every_settable_parameter() {
 fn config_reads_only_small_regular_files() {
     let dir = tempfile::tempdir().unwrap();
     assert!(
-        read_capped(dir.path())
+        read_capped(dir.path(), "config", "TOML")
             .unwrap_err()
             .contains("regular file")
     );
     #[cfg(unix)]
     assert!(
-        read_capped(Path::new("/dev/zero"))
+        read_capped(Path::new("/dev/zero"), "config", "TOML")
             .unwrap_err()
             .contains("regular file")
     );
@@ -64,21 +64,33 @@ fn config_reads_only_small_regular_files() {
         let fifo = dir.path().join("fifo.toml");
         let made = std::process::Command::new("mkfifo").arg(&fifo).status();
         if made.is_ok_and(|s| s.success()) {
-            assert!(read_capped(&fifo).unwrap_err().contains("regular file"));
+            assert!(
+                read_capped(&fifo, "config", "TOML")
+                    .unwrap_err()
+                    .contains("regular file")
+            );
         }
     }
     let big = dir.path().join("big.toml");
     std::fs::write(&big, vec![b'#'; MAX_CONFIG_BYTES as usize + 1]).unwrap();
-    assert!(read_capped(&big).unwrap_err().contains("more than"));
+    assert!(
+        read_capped(&big, "config", "TOML")
+            .unwrap_err()
+            .contains("more than")
+    );
     let exact = dir.path().join("exact.toml");
     std::fs::write(&exact, vec![b'#'; MAX_CONFIG_BYTES as usize]).unwrap();
     assert_eq!(
-        read_capped(&exact).unwrap().len(),
+        read_capped(&exact, "config", "TOML").unwrap().len(),
         MAX_CONFIG_BYTES as usize
     );
     let binary = dir.path().join("binary.toml");
     std::fs::write(&binary, [0xff, 0xfe, 0x00]).unwrap();
-    assert!(read_capped(&binary).unwrap_err().contains("UTF-8"));
+    assert!(
+        read_capped(&binary, "config", "TOML")
+            .unwrap_err()
+            .contains("UTF-8")
+    );
 }
 
 /// Near-valid `--set` arguments: a real or mangled name, a separator, a number-like value.

@@ -1,8 +1,8 @@
 //! A running speed that changes in time (`docs/MODEL.md` §14): the speed ratio η(τ) as a
 //! piecewise-linear profile ([`SpeedProfile`], from points or from a [`Ramp`]), the forcing
 //! phase θ = ∫η of each linear piece ([`SpeedPiece`]), and the speed held constant over a step
-//! for the closed-form methods ([`HeldSpeed`]). Propagation on a profile is in
-//! [`crate::variable_speed`].
+//! for the closed-form methods ([`HeldSpeed`]), and named run-up programs ([`RunupPreset`]).
+//! Propagation on a profile is in [`crate::variable_speed`].
 //!
 //! ```
 //! use rotor_rub::speed::{Ramp, RampPace};
@@ -26,11 +26,13 @@
 
 mod hold;
 mod piece;
+mod presets;
 mod profile;
 mod ramp;
 
 pub use hold::HeldSpeed;
 pub use piece::SpeedPiece;
+pub use presets::RunupPreset;
 pub use profile::{
     MAX_SPEED_RATE, Quantity, RAMP_RATE_RANGE, SpeedPoint, SpeedProfile, SpeedProfileError,
     speed_range, time_range,

@@ -10,7 +10,9 @@
 //! there (to within its curvature over a window); at a jump they are apart by the jump's size.
 //! The boundary where they are furthest apart, by at least `min_step` of the larger of the two
 //! levels (and `min_absolute`), is a jump; its speed is the speed between revolutions i − 1 and
-//! i. Further jumps are searched for away from the windows of those already found. Fitting over
+//! i, and it is reported from the extreme of the window before to the opposite extreme of the
+//! window after (a jump down: from the highest radius before to the lowest after), the levels
+//! a plot shows. Further jumps are searched for away from the windows of those already found. Fitting over
 //! windows keeps the revolution-to-revolution variation of chaotic, quasi-periodic or
 //! period-n rubbing from counting as jumps, and the lines follow the steep but continuous
 //! flanks of the resonance curve.
@@ -24,9 +26,11 @@ pub struct Jump {
     pub speed_ratio: f64,
     /// The index, in the revolutions searched, of the first revolution after the step.
     pub position: usize,
-    /// The largest radius just before, from the line fitted to the window before.
+    /// The level it jumps from: the largest radius over the window before (the smallest, for
+    /// a jump up).
     pub before: f64,
-    /// The largest radius just after, from the line fitted to the window after.
+    /// The level it jumps to: the smallest radius over the window after (the largest, for a
+    /// jump up).
     pub after: f64,
 }
 
@@ -121,6 +125,22 @@ pub fn find_jumps(revolutions: &[Revolution], search: &JumpSearch) -> Jumps {
             break;
         };
         let speed = |k: usize| revolutions.get(k).map_or(f64::NAN, |r| r.speed_ratio);
+        let window = |range: core::ops::Range<usize>| {
+            revolutions
+                .get(range)
+                .unwrap_or(&[])
+                .iter()
+                .map(|r| r.max_radius)
+        };
+        let (from, to) = (
+            window(position.saturating_sub(w)..position),
+            window(position..position + w),
+        );
+        let (before, after) = if after < before {
+            (from.fold(before, f64::max), to.fold(after, f64::min))
+        } else {
+            (from.fold(before, f64::min), to.fold(after, f64::max))
+        };
         if let Some(slot) = found.list.get_mut(found.len) {
             *slot = Jump {
                 speed_ratio: 0.5 * (speed(position.saturating_sub(1)) + speed(position)),

@@ -284,8 +284,9 @@ impl<'p, 'a, P: Propagate + ?Sized> Revolutions<'p, 'a, P> {
         }
     }
 
-    /// The number of revolutions the iteration yields in all.
-    pub fn count(&self) -> u64 {
+    /// The number of revolutions the iteration yields in all (not `Iterator::count`, which
+    /// would run them).
+    pub fn total(&self) -> u64 {
         self.count
     }
 

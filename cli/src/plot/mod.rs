@@ -3,6 +3,7 @@
 //! machine without system fonts.
 
 pub mod orbit;
+pub mod runup;
 pub mod scatter;
 pub mod spectrum;
 
@@ -175,6 +176,12 @@ pub fn legend<DB: DrawingBackend>(
                     c.stroke_width(2),
                 ))
                 .map_err(err)?,
+            LegendMark::Shade(c) => area
+                .draw(&Rectangle::new(
+                    [(x + 4, y - 7), (x + 26, y + 7)],
+                    c.mix(0.25).filled(),
+                ))
+                .map_err(err)?,
         }
         let text_x = x + 36;
         area.draw(&Text::new(label.to_string(), (text_x, y - 8), font.clone()))
@@ -202,6 +209,8 @@ pub enum LegendMark {
     Cross(RGBColor),
     /// A hollow square.
     Square(RGBColor),
+    /// A shaded area.
+    Shade(RGBColor),
 }
 
 #[cfg(test)]

@@ -7,5 +7,6 @@ mod fig2;
 mod friction;
 mod reliability;
 mod resonance;
+mod runup;
 mod simulate;
 mod sweep;

@@ -1,0 +1,394 @@
+//! `rotor-rub runup`: the rotor run up through its critical speed and back down (or either, or
+//! along any speed profile), one row per forcing period — speed, the orbit's largest and
+//! smallest radius, contact fraction, whirl, switches — and the amplitude against the speed for
+//! both directions on one chart with the rubbing speeds shaded and the jumps marked
+//! (`docs/MODEL.md` §14).
+
+mod analysis;
+mod files;
+mod profile_csv;
+mod program;
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rotor_rub::Method;
+use rotor_rub::params::Number;
+use rotor_rub::speed::{RunupPreset, SpeedProfile};
+use rotor_rub::variable_speed::{
+    DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SpeedDirection, VariableSpeedError,
+    VariableSpeedOptions, VariableSpeedPropagator,
+};
+
+use self::analysis::{Branch, largest_difference};
+use self::files::{RunEvent, events_beside, events_file, rows_file};
+use self::program::{SpeedArgs, parse_program, program_help};
+use crate::error::{CliError, Result};
+use crate::limits::{LimitArgs, fits_memory};
+use crate::options::{MethodArgs, Survey, at_least, describe};
+use crate::output::{check_distinct, commit_all, ensure_parent, print};
+use crate::plot::runup::{COAST_DOWN, Curve, RUN_UP, RunupFigure};
+use crate::plot::{self, LegendMark};
+use crate::problem::ProblemArgs;
+
+/// Run-up and coast-down through resonance.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[arg(long, value_name = "NAME", default_value = "paper-hysteresis", value_parser = parse_program, help = program_help())]
+    pub program: RunupPreset,
+
+    #[command(flatten)]
+    pub problem: ProblemArgs,
+
+    #[command(flatten)]
+    pub speed: SpeedArgs,
+
+    #[command(flatten)]
+    pub method: MethodArgs<Survey>,
+
+    /// Held-speed steps per forcing period of --method analytic where the speed changes (the
+    /// closed forms hold η and dη/dτ over each; error second order in the step) [default: 32]
+    #[arg(long, value_name = "N", value_parser = at_least(1))]
+    pub speed_holds: Option<u64>,
+
+    /// Samples per forcing period for the radii (refined between samples) and the whirl
+    #[arg(long, value_name = "N", default_value_t = 64, value_parser = at_least(8))]
+    pub samples_per_period: u64,
+
+    #[command(flatten)]
+    pub limits: LimitArgs,
+
+    /// Output CSV, one row per forcing period: direction (up, down, hold), period, start, end,
+    /// speed_ratio (mean over the period), speed_change, max_radius, min_radius (|q|,
+    /// clearances), contact_fraction, whirl (signed orbit area over π times its mean squared
+    /// radius: +1 one forward circle), whirl_direction, enters, exits. The plot goes next to it
+    /// (.svg, .png)
+    #[arg(long, value_name = "FILE.csv", default_value = "out/runup.csv")]
+    pub out: PathBuf,
+
+    /// Every switch: time, speed_ratio, period, direction, kind, x, y, vx, vy [default:
+    /// <out's stem>-events.csv next to --out]
+    #[arg(long, value_name = "FILE.csv")]
+    pub events: Option<PathBuf>,
+
+    /// Do not draw the plot
+    #[arg(long)]
+    pub no_plot: bool,
+}
+
+/// A progress bar on stderr, hidden when stderr is not a terminal.
+fn progress(len: u64) -> ProgressBar {
+    let target = if std::io::stderr().is_terminal() {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    };
+    let bar = ProgressBar::with_draw_target(Some(len), target);
+    if let Ok(style) = ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} forcing periods, η = {msg}, {elapsed} elapsed, ETA {eta}",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// The error of a run that cannot start: the runtime's message, exit 2 (bad input) unless the
+/// method failed at the start state.
+fn cannot_start(e: VariableSpeedError) -> CliError {
+    match e {
+        VariableSpeedError::Invalid(e) => CliError::propagation("", e),
+        e => CliError::input(e.to_string()),
+    }
+}
+
+/// The held-speed steps per period (an input error for another method or out of range).
+fn speed_holds(args: &Args) -> Result<u32> {
+    match args.speed_holds {
+        None => Ok(DEFAULT_SPEED_HOLDS),
+        Some(_) if args.method.method != Method::Analytic => Err(CliError::input(format!(
+            "--speed-holds applies only to --method analytic, not to --method {}",
+            args.method.method.name()
+        ))),
+        Some(n) => u32::try_from(n).map_err(|_| {
+            CliError::input(format!(
+                "--speed-holds {n} is out of range: it must be in {}",
+                rotor_rub::variable_speed::SPEED_HOLDS_RANGE
+            ))
+        }),
+    }
+}
+
+/// Run the command.
+pub fn run(args: &Args) -> Result<()> {
+    let mut problem_args = args.problem.clone();
+    if problem_args.preset.is_none() && problem_args.config.is_none() {
+        problem_args.preset = Some(args.program.rotor());
+    }
+    let mut problem = problem_args.build()?;
+    let options = VariableSpeedOptions {
+        options: args.method.options()?,
+        speed_holds: speed_holds(args)?,
+    };
+    let speed = args.speed.program(args.program)?;
+    let profile = SpeedProfile::new(&speed.points).map_err(|e| CliError::input(e.to_string()))?;
+    problem.start_time = profile.start();
+
+    let events_path = args
+        .events
+        .clone()
+        .unwrap_or_else(|| events_beside(&args.out));
+    let [svg, png] = plot::beside(&args.out);
+    let mut outputs = vec![
+        ("--out", args.out.as_path()),
+        ("--events", events_path.as_path()),
+    ];
+    if !args.no_plot {
+        outputs.extend([("the plot", svg.as_path()), ("the plot", png.as_path())]);
+    }
+    check_distinct(&outputs, &[])?;
+
+    let mut propagator =
+        VariableSpeedPropagator::new(&problem, profile, &options).map_err(cannot_start)?;
+    let samples = u32::try_from(args.samples_per_period).unwrap_or(u32::MAX);
+    let mut revolutions = Revolutions::new(&mut propagator, profile, problem.params.phase, samples);
+    let count = revolutions.total();
+    if count == 0 {
+        return Err(CliError::input(
+            "the speed program is shorter than one forcing period: nothing to tabulate",
+        ));
+    }
+    fits_memory(
+        "forcing periods",
+        count,
+        std::mem::size_of::<Revolution>() + 200,
+    )?;
+    let budget = args.limits.budget();
+    budget.plan(
+        "the forcing periods × --samples-per-period",
+        count.saturating_mul(args.samples_per_period),
+    )?;
+    let mut tracker = budget.run(profile.start(), profile.end());
+    ensure_parent(&args.out)?;
+    ensure_parent(&events_path)?;
+
+    let started = Instant::now();
+    let bar = progress(count);
+    let mut rows = Vec::new();
+    let mut events = Vec::new();
+    let mut cursor = profile.first_piece(problem.params.phase);
+    let mut pending = Vec::new();
+    while let Some(row) = revolutions.next_with(|e| pending.push(*e)) {
+        let row = row.map_err(|e| CliError::propagation("", e))?;
+        for event in pending.drain(..) {
+            tracker.switch(event.time)?;
+            cursor = profile.piece_holding(cursor, event.time);
+            events.push(RunEvent {
+                event,
+                speed_ratio: cursor.speed_at(event.time),
+                period: row.index,
+                direction: row.direction(),
+            });
+        }
+        bar.set_message(format!("{:.3}", row.speed_ratio));
+        bar.inc(1);
+        rows.push(row);
+    }
+    bar.finish_and_clear();
+    let elapsed = started.elapsed();
+
+    let up = Branch::of(&rows, SpeedDirection::Up);
+    let down = Branch::of(&rows, SpeedDirection::Down);
+    let mut files = vec![
+        rows_file(&args.out, &rows)?,
+        events_file(&events_path, &events)?,
+    ];
+    if !args.no_plot {
+        let figure = figure(
+            &problem,
+            &speed.description,
+            &describe(&options.options),
+            [&up, &down],
+        );
+        files.extend(plot::render(&figure, &svg, &png)?);
+    }
+    commit_all(files)?;
+
+    let mut report = String::new();
+    let _ = writeln!(report, "speed: {}", speed.description);
+    let _ = writeln!(
+        report,
+        "method: {}{}",
+        describe(&options.options),
+        if options.options.method == Method::Analytic {
+            format!(
+                ", speed held over {} steps per forcing period",
+                options.speed_holds
+            )
+        } else {
+            String::new()
+        }
+    );
+    for branch in [&up, &down] {
+        summarize(&mut report, branch);
+    }
+    let size = |j: &&rotor_rub::variable_speed::Jump| (j.after - j.before).abs();
+    let falls = up
+        .jumps
+        .iter()
+        .filter(|j| j.after < j.before)
+        .max_by(|a, b| size(a).total_cmp(&size(b)));
+    let rises = down
+        .jumps
+        .iter()
+        .filter(|j| j.after > j.before)
+        .max_by(|a, b| size(a).total_cmp(&size(b)));
+    if let (Some(fall), Some(rise)) = (falls, rises) {
+        let _ = writeln!(
+            report,
+            "hysteresis loop: from η = {:.4} (the coast-down jumps up) to η = {:.4} (the run-up jumps down)",
+            rise.speed_ratio, fall.speed_ratio
+        );
+    }
+    if let Some((speed, a, b)) = largest_difference(&up, &down) {
+        let _ = writeln!(
+            report,
+            "hysteresis: largest difference of the largest radius, run-up {} vs coast-down {} clearances at η = {:.4}",
+            short(a),
+            short(b),
+            speed
+        );
+    }
+    let _ = writeln!(
+        report,
+        "{} forcing periods, {} switches, run time {:.2} s",
+        rows.len(),
+        events.len(),
+        elapsed.as_secs_f64()
+    );
+    let _ = writeln!(
+        report,
+        "wrote {} and {}",
+        args.out.display(),
+        events_path.display()
+    );
+    if !args.no_plot {
+        let _ = writeln!(
+            report,
+            "plot written to {} and {}",
+            svg.display(),
+            png.display()
+        );
+    }
+    print(&report)
+}
+
+/// A radius for the report: four significant digits.
+fn short(x: f64) -> String {
+    format!("{x:.4}")
+}
+
+/// One branch's lines of the report.
+fn summarize(report: &mut String, branch: &Branch) {
+    if branch.rows.is_empty() {
+        return;
+    }
+    let (first, last) = (
+        branch.rows.first().map_or(0.0, |r| r.speed_ratio),
+        branch.rows.last().map_or(0.0, |r| r.speed_ratio),
+    );
+    let peak = branch
+        .rows
+        .iter()
+        .max_by(|a, b| a.max_radius.total_cmp(&b.max_radius));
+    let _ = write!(
+        report,
+        "{}: η {:.3} -> {:.3} over {} forcing periods, rubbing in {:.0} % of them",
+        branch.label(),
+        first,
+        last,
+        branch.rows.len(),
+        100.0 * branch.rubbing_fraction()
+    );
+    if let Some(p) = peak {
+        let _ = write!(
+            report,
+            ", largest radius {} at η = {:.4}",
+            short(p.max_radius),
+            p.speed_ratio
+        );
+    }
+    report.push('\n');
+    if branch.jumps.is_empty() {
+        let _ = writeln!(report, "  no jump");
+    }
+    for j in &branch.jumps {
+        let _ = writeln!(
+            report,
+            "  jump at η = {:.4}: largest radius {} -> {}",
+            j.speed_ratio,
+            short(j.before),
+            short(j.after)
+        );
+    }
+}
+
+/// The run-up diagram of the two branches.
+fn figure(
+    problem: &rotor_rub::Problem,
+    speed: &str,
+    method: &str,
+    branches: [&Branch; 2],
+) -> RunupFigure {
+    let p = &problem.params;
+    // Plain symbols: the embedded font has no combining circumflex.
+    let title = format!(
+        "Run-up and coast-down: K = ({}, {}, {}, {}), stator offset ({}, {}), ν = {}, η_m = {}, ρ = {}",
+        Number(p.k_xx),
+        Number(p.k_xy),
+        Number(p.k_yx),
+        Number(p.k_yy),
+        Number(p.offset_x),
+        Number(p.offset_y),
+        Number(p.damping_ratio),
+        Number(p.mass_ratio),
+        Number(p.eccentricity_ratio)
+    );
+    let mut legend = Vec::new();
+    let mut curves = Vec::new();
+    for (branch, color) in branches.into_iter().zip([RUN_UP, COAST_DOWN]) {
+        if branch.rows.is_empty() {
+            continue;
+        }
+        legend.push((LegendMark::Line(color), branch.label().to_string()));
+        legend.push((
+            LegendMark::Shade(color),
+            format!("rubs ({})", branch.label()),
+        ));
+        curves.push(Curve {
+            color,
+            points: branch
+                .rows
+                .iter()
+                .map(|r| (r.speed_ratio, r.max_radius, r.min_radius))
+                .collect(),
+            contact: branch.contact_intervals(),
+            jumps: branch
+                .jumps
+                .iter()
+                .map(|j| (j.speed_ratio, j.before, j.after))
+                .collect(),
+        });
+    }
+    legend.push((LegendMark::Triangle(RUN_UP), "jump".to_string()));
+    RunupFigure {
+        title,
+        subtitle: format!(
+            "{speed}; {method}; thick: largest radius, thin: smallest radius per forcing period"
+        ),
+        legend,
+        curves,
+    }
+}
