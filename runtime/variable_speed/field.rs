@@ -15,8 +15,10 @@ use crate::speed::SpeedPiece;
 pub struct RampField {
     /// The model's parameters (their speed ratio and phase are not used by the field).
     model: Params,
-    /// `model` at the piece's highest speed: what the switch functions and the step limit
-    /// see (a quarter of the shortest forcing period on the piece bounds the step).
+    /// `model` at the piece's highest speed and with its phase constant: what the switch
+    /// functions and the step limit see (a quarter of the shortest forcing period on the piece
+    /// bounds the step; on a piece that holds its speed these are its exact speed and phase,
+    /// which friction's switch functions use).
     params: Params,
     piece: SpeedPiece,
 }
@@ -33,6 +35,7 @@ impl RampField {
             model: *params,
             params: Params {
                 speed_ratio: piece.speed_ratio.max(end_speed),
+                phase: piece.phase_constant,
                 ..*params
             },
             piece,
@@ -49,10 +52,11 @@ impl FieldFamily for RampField {
     type System = RampSystem;
 
     #[inline]
-    fn system(&self, regime: Regime, _slip: f64) -> RampSystem {
+    fn system(&self, regime: Regime, slip: f64) -> RampSystem {
         RampSystem {
             params: self.model,
             regime,
+            slip,
             piece: self.piece,
         }
     }
@@ -62,14 +66,17 @@ impl FieldFamily for RampField {
     }
 }
 
-/// One regime's field on a profile piece, on `[x, y, x', y']` (frictionless: variable speed with
-/// friction is refused before a run starts).
+/// One regime's field on a profile piece, on `[x, y, x', y']`. (Friction is taken only on a
+/// profile that holds its speed — a changing speed with friction is refused before a run
+/// starts — where this is the constant-speed field with friction, bit for bit.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RampSystem {
     /// The model's parameters.
     pub params: Params,
     /// Which field.
     pub regime: Regime,
+    /// The slip direction σ of slipping contact (±1), 0 when none is tracked.
+    pub slip: f64,
     /// The speed profile's piece.
     pub piece: SpeedPiece,
 }
@@ -84,7 +91,7 @@ impl OdeSystem<4> for RampSystem {
         };
         let (sin_t, cos_t) = math::sin_cos(self.piece.phase_at(t));
         let (mut ax, mut ay) =
-            field::acceleration_with_phasor(&params, self.regime, 0.0, cos_t, sin_t, &state);
+            field::acceleration_with_phasor(&params, self.regime, self.slip, cos_t, sin_t, &state);
         if self.piece.rate != 0.0 {
             let (fx, fy) = field::speed_change_force(&params, self.piece.rate, cos_t, sin_t);
             ax += fx;

@@ -49,6 +49,7 @@ fn the_field_on_a_ramp_carries_the_unbalance_reaction() {
             let system = RampSystem {
                 params,
                 regime: Regime::Free,
+                slip: 0.0,
                 piece,
             };
             let [_, _, ax, ay] = system.rhs(tau, &[0.0; 4]);
@@ -79,6 +80,7 @@ fn the_field_in_contact_adds_the_same_force_to_the_constant_speed_field() {
     let system = RampSystem {
         params,
         regime: Regime::Contact,
+        slip: 0.0,
         piece,
     };
     let [_, _, ax, ay] = system.rhs(tau, &state.to_array());

@@ -46,9 +46,16 @@ fn fingerprint(p: &mut dyn Propagate) -> String {
     out
 }
 
+/// The paper's stators and the friction presets (a held speed takes friction), at three speeds
+/// and two starts.
 fn problems() -> Vec<(String, Problem)> {
     let mut out = Vec::new();
-    for (name, preset) in [("paper", Preset::Paper), ("paper-text", Preset::PaperText)] {
+    for (name, preset) in [
+        ("paper", Preset::Paper),
+        ("paper-text", Preset::PaperText),
+        ("friction", Preset::Friction),
+        ("dry-whip", Preset::DryWhip),
+    ] {
         for eta in [1.0, 1.5, 2.5] {
             for (start, initial) in [
                 ("start", State::new(0.1, 0.1, 0.0, 0.0)),
@@ -81,6 +88,7 @@ fn variants() -> Vec<Options> {
 #[test]
 fn a_held_speed_reproduces_the_constant_speed_run_bit_for_bit() {
     let mut compared = 0;
+    let mut kinds = std::collections::BTreeSet::new();
     for (name, problem) in problems() {
         let eta = problem.params.speed_ratio;
         // The profile's own speed; the problem's is not used on a profile.
@@ -103,6 +111,12 @@ fn a_held_speed_reproduces_the_constant_speed_run_bit_for_bit() {
             .unwrap();
             let a = fingerprint(&mut constant);
             let b = fingerprint(&mut variable);
+            kinds.extend(
+                a.lines()
+                    .filter_map(|l| l.strip_prefix("event "))
+                    .filter_map(|l| l.split(' ').next())
+                    .map(String::from),
+            );
             assert!(a.contains("event"), "{name}: no switch to compare");
             assert!(
                 a == b,
@@ -113,7 +127,13 @@ fn a_held_speed_reproduces_the_constant_speed_run_bit_for_bit() {
             compared += 1;
         }
     }
-    assert_eq!(compared, 12 * 5);
+    assert_eq!(compared, 24 * 5);
+    // Friction's switches were compared too.
+    eprintln!("switches compared: {kinds:?}");
+    assert!(
+        kinds.contains("roll") && kinds.contains("slip"),
+        "{kinds:?}"
+    );
 }
 
 #[test]
