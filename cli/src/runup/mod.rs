@@ -5,9 +5,11 @@
 //! (`docs/MODEL.md` §14).
 
 mod analysis;
+mod figure;
 mod files;
 mod profile_csv;
 mod program;
+mod report;
 
 use std::fmt::Write as _;
 use std::io::IsTerminal;
@@ -16,22 +18,20 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rotor_rub::Method;
-use rotor_rub::params::Number;
 use rotor_rub::speed::{RunupPreset, SpeedProfile};
 use rotor_rub::variable_speed::{
     DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SpeedDirection, VariableSpeedError,
     VariableSpeedOptions, VariableSpeedPropagator,
 };
 
-use self::analysis::{Branch, largest_difference};
+use self::analysis::Branch;
 use self::files::{RunEvent, events_beside, events_file, rows_file};
 use self::program::{SpeedArgs, parse_program, program_help};
 use crate::error::{CliError, Result};
 use crate::limits::{LimitArgs, fits_memory};
 use crate::options::{MethodArgs, Survey, at_least, describe};
 use crate::output::{check_distinct, commit_all, ensure_parent, print};
-use crate::plot::runup::{COAST_DOWN, Curve, RUN_UP, RunupFigure};
-use crate::plot::{self, LegendMark};
+use crate::plot;
 use crate::problem::ProblemArgs;
 
 /// Run-up and coast-down through resonance.
@@ -171,8 +171,6 @@ pub fn run(args: &Args) -> Result<()> {
         count.saturating_mul(args.samples_per_period),
     )?;
     let mut tracker = budget.run(profile.start(), profile.end());
-    ensure_parent(&args.out)?;
-    ensure_parent(&events_path)?;
 
     let started = Instant::now();
     let bar = progress(count);
@@ -201,12 +199,15 @@ pub fn run(args: &Args) -> Result<()> {
 
     let up = Branch::of(&rows, SpeedDirection::Up);
     let down = Branch::of(&rows, SpeedDirection::Down);
+    // Directories are made only once the run has succeeded.
+    ensure_parent(&args.out)?;
+    ensure_parent(&events_path)?;
     let mut files = vec![
         rows_file(&args.out, &rows)?,
         events_file(&events_path, &events)?,
     ];
     if !args.no_plot {
-        let figure = figure(
+        let figure = figure::figure(
             &problem,
             &speed.description,
             &describe(&options.options),
@@ -216,51 +217,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     commit_all(files)?;
 
-    let mut report = String::new();
-    let _ = writeln!(report, "speed: {}", speed.description);
-    let _ = writeln!(
-        report,
-        "method: {}{}",
-        describe(&options.options),
-        if options.options.method == Method::Analytic {
-            format!(
-                ", speed held over {} steps per forcing period",
-                options.speed_holds
-            )
-        } else {
-            String::new()
-        }
-    );
-    for branch in [&up, &down] {
-        summarize(&mut report, branch);
-    }
-    let size = |j: &&rotor_rub::variable_speed::Jump| (j.after - j.before).abs();
-    let falls = up
-        .jumps
-        .iter()
-        .filter(|j| j.after < j.before)
-        .max_by(|a, b| size(a).total_cmp(&size(b)));
-    let rises = down
-        .jumps
-        .iter()
-        .filter(|j| j.after > j.before)
-        .max_by(|a, b| size(a).total_cmp(&size(b)));
-    if let (Some(fall), Some(rise)) = (falls, rises) {
-        let _ = writeln!(
-            report,
-            "hysteresis loop: from η = {:.4} (the coast-down jumps up) to η = {:.4} (the run-up jumps down)",
-            rise.speed_ratio, fall.speed_ratio
-        );
-    }
-    if let Some((speed, a, b)) = largest_difference(&up, &down) {
-        let _ = writeln!(
-            report,
-            "hysteresis: largest difference of the largest radius, run-up {} vs coast-down {} clearances at η = {:.4}",
-            short(a),
-            short(b),
-            speed
-        );
-    }
+    let mut report = report::summary(&speed.description, &options, [&up, &down]);
     let _ = writeln!(
         report,
         "{} forcing periods, {} switches, run time {:.2} s",
@@ -283,112 +240,4 @@ pub fn run(args: &Args) -> Result<()> {
         );
     }
     print(&report)
-}
-
-/// A radius for the report: four significant digits.
-fn short(x: f64) -> String {
-    format!("{x:.4}")
-}
-
-/// One branch's lines of the report.
-fn summarize(report: &mut String, branch: &Branch) {
-    if branch.rows.is_empty() {
-        return;
-    }
-    let (first, last) = (
-        branch.rows.first().map_or(0.0, |r| r.speed_ratio),
-        branch.rows.last().map_or(0.0, |r| r.speed_ratio),
-    );
-    let peak = branch
-        .rows
-        .iter()
-        .max_by(|a, b| a.max_radius.total_cmp(&b.max_radius));
-    let _ = write!(
-        report,
-        "{}: η {:.3} -> {:.3} over {} forcing periods, rubbing in {:.0} % of them",
-        branch.label(),
-        first,
-        last,
-        branch.rows.len(),
-        100.0 * branch.rubbing_fraction()
-    );
-    if let Some(p) = peak {
-        let _ = write!(
-            report,
-            ", largest radius {} at η = {:.4}",
-            short(p.max_radius),
-            p.speed_ratio
-        );
-    }
-    report.push('\n');
-    if branch.jumps.is_empty() {
-        let _ = writeln!(report, "  no jump");
-    }
-    for j in &branch.jumps {
-        let _ = writeln!(
-            report,
-            "  jump at η = {:.4}: largest radius {} -> {}",
-            j.speed_ratio,
-            short(j.before),
-            short(j.after)
-        );
-    }
-}
-
-/// The run-up diagram of the two branches.
-fn figure(
-    problem: &rotor_rub::Problem,
-    speed: &str,
-    method: &str,
-    branches: [&Branch; 2],
-) -> RunupFigure {
-    let p = &problem.params;
-    // Plain symbols: the embedded font has no combining circumflex.
-    let title = format!(
-        "Run-up and coast-down: K = ({}, {}, {}, {}), stator offset ({}, {}), ν = {}, η_m = {}, ρ = {}",
-        Number(p.k_xx),
-        Number(p.k_xy),
-        Number(p.k_yx),
-        Number(p.k_yy),
-        Number(p.offset_x),
-        Number(p.offset_y),
-        Number(p.damping_ratio),
-        Number(p.mass_ratio),
-        Number(p.eccentricity_ratio)
-    );
-    let mut legend = Vec::new();
-    let mut curves = Vec::new();
-    for (branch, color) in branches.into_iter().zip([RUN_UP, COAST_DOWN]) {
-        if branch.rows.is_empty() {
-            continue;
-        }
-        legend.push((LegendMark::Line(color), branch.label().to_string()));
-        legend.push((
-            LegendMark::Shade(color),
-            format!("rubs ({})", branch.label()),
-        ));
-        curves.push(Curve {
-            color,
-            points: branch
-                .rows
-                .iter()
-                .map(|r| (r.speed_ratio, r.max_radius, r.min_radius))
-                .collect(),
-            contact: branch.contact_intervals(),
-            jumps: branch
-                .jumps
-                .iter()
-                .map(|j| (j.speed_ratio, j.before, j.after))
-                .collect(),
-        });
-    }
-    legend.push((LegendMark::Triangle(RUN_UP), "jump".to_string()));
-    RunupFigure {
-        title,
-        subtitle: format!(
-            "{speed}; {method}; thick: largest radius, thin: smallest radius per forcing period"
-        ),
-        legend,
-        curves,
-    }
 }
