@@ -8,6 +8,7 @@
 mod field;
 mod jumps;
 mod options;
+mod period;
 mod propagator;
 mod revolutions;
 mod segment;
