@@ -21,7 +21,7 @@
 include!(concat!(env!("OUT_DIR"), "/coefficients.rs"));
 
 impl ModelParams {
-    /// The paper's symbols of `params` (ν, η, F, K̂, ε̂, μ, ρ_R).
+    /// The paper's symbols of `params` (ν, η, F, K̂, ε̂, μ, ρ_R, u).
     #[inline]
     pub fn of(params: &crate::params::Params) -> Self {
         ModelParams {
@@ -36,6 +36,8 @@ impl ModelParams {
             ey: params.offset_y,
             mu: params.friction_coefficient,
             rho_r: params.radius_ratio,
+            force_x: params.force_x,
+            force_y: params.force_y,
         }
     }
 }

@@ -50,7 +50,7 @@ pub fn acceleration_with_phasor(
     s: &State,
 ) -> (f64, f64) {
     let (model, at, rate, phasor) = inputs(params, cos_theta, sin_theta, s);
-    match regime {
+    let (ax, ay) = match regime {
         Regime::Free => {
             let a = coef::free_acceleration(&model, &at, &rate, &phasor);
             (a.ax, a.ay)
@@ -67,11 +67,19 @@ pub fn acceleration_with_phasor(
             let f = coef::slipping_contact_force(&model, &at, &Slip { sigma: slip });
             (a.ax - f.fx, a.ay - f.fy)
         }
+        // The rolling field has the input force inside G (it changes λ).
         Regime::Rolling => {
             let a = coef::rolling_acceleration(&model, &at, &rate, &phasor);
-            (a.ax, a.ay)
+            return (a.ax, a.ay);
         }
+    };
+    if model.force_x == 0.0 && model.force_y == 0.0 {
+        return (ax, ay);
     }
+    // A constant input force adds its acceleration in free flight and slipping contact
+    // (`docs/MODEL.md` §15); without one nothing is added, so the field keeps its bits.
+    let u = coef::input_acceleration(&model);
+    (ax + u.ax, ay + u.ay)
 }
 
 /// The force a changing running speed adds to the unbalance forcing F (cos θ, sin θ)

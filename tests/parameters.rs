@@ -24,6 +24,8 @@ fn slot<'a>(p: &'a mut Problem, name: &str) -> &'a mut f64 {
         "offset_y" => &mut q.offset_y,
         "friction_coefficient" => &mut q.friction_coefficient,
         "radius_ratio" => &mut q.radius_ratio,
+        "force_x" => &mut q.force_x,
+        "force_y" => &mut q.force_y,
         "x0" => &mut p.initial.x,
         "y0" => &mut p.initial.y,
         "vx0" => &mut p.initial.vx,
@@ -35,8 +37,8 @@ fn slot<'a>(p: &'a mut Problem, name: &str) -> &'a mut f64 {
 
 #[test]
 fn access_by_name_reaches_the_named_field() {
-    assert_eq!(Parameter::COUNT, 18);
-    assert_eq!(Parameter::MODEL_COUNT, 13);
+    assert_eq!(Parameter::COUNT, 20);
+    assert_eq!(Parameter::MODEL_COUNT, 15);
     for (i, p) in Parameter::ALL.into_iter().enumerate() {
         assert_eq!(Parameter::from_name(p.name()), Some(p));
         assert_eq!(p.is_model(), i < Parameter::MODEL_COUNT, "{p}");

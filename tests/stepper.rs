@@ -266,6 +266,7 @@ fn exprb2_and_substeps_converge() {
             scheme: ContactScheme::Exprb2,
             contact_substeps: substeps,
             max_substeps: 4 * substeps,
+            ..StepperConfig::default()
         };
         let mut s = Stepper::new(&problem, config).unwrap();
         for _ in 0..300 {
@@ -297,6 +298,7 @@ proptest! {
             scheme: if exprb2 { ContactScheme::Exprb2 } else { ContactScheme::Exprb43 },
             contact_substeps: substeps,
             max_substeps: 4 * substeps,
+            ..StepperConfig::default()
         };
         let Ok(mut stepper) = Stepper::new(&problem, config) else {
             return Ok(());

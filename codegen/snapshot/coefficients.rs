@@ -22,6 +22,8 @@
 //                               after:     2 add     2 mul    0 div   0 sqrt   0 trans
 // free_forced_eval             before:    53 add    66 mul    0 div   0 sqrt   0 trans
 //                               after:    25 add    25 mul    0 div   0 sqrt   0 trans
+// input_static_deflection      before:     0 add     0 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 // contact_particular           before:   111 add   290 mul    6 div   0 sqrt   0 trans
 //                               after:    23 add    87 mul    2 div   0 sqrt   0 trans
 // contact_particular_eval      before:     6 add    12 mul    0 div   0 sqrt   0 trans
@@ -38,6 +40,8 @@
 //                               after:     2 add     2 mul    0 div   0 sqrt   0 trans
 // contact_homogeneous_eval     before:    64 add    74 mul    0 div   0 sqrt   0 trans
 //                               after:    27 add    40 mul    0 div   0 sqrt   0 trans
+// input_contact_constant       before:     4 add     8 mul    2 div   0 sqrt   0 trans
+//                               after:     3 add     8 mul    1 div   0 sqrt   0 trans
 // polynomial_particular        before:   220 add   424 mul   76 div   0 sqrt   0 trans
 //                               after:    19 add    52 mul    1 div   0 sqrt   0 trans
 // polynomial_eval              before:    10 add    22 mul    0 div   0 sqrt   0 trans
@@ -46,6 +50,8 @@
 //                               after:     6 add    10 mul    1 div   1 sqrt   0 trans
 // free_acceleration            before:     4 add     6 mul    0 div   0 sqrt   0 trans
 //                               after:     4 add     6 mul    0 div   0 sqrt   0 trans
+// input_acceleration           before:     0 add     0 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 // contact_remainder            before:    38 add    20 mul    4 div   4 sqrt   0 trans
 //                               after:    14 add    14 mul    1 div   1 sqrt   0 trans
 // linear_acceleration          before:     6 add     8 mul    0 div   0 sqrt   0 trans
@@ -58,12 +64,12 @@
 //                               after:    53 add   126 mul    2 div   1 sqrt   0 trans
 // slipping_remainder           before:   138 add    74 mul   18 div  18 sqrt   0 trans
 //                               after:    19 add    34 mul    1 div   1 sqrt   0 trans
-// friction_state               before:   138 add    72 mul   19 div  19 sqrt   0 trans
-//                               after:    21 add    43 mul    1 div   1 sqrt   0 trans
-// rolling_acceleration         before:   212 add   114 mul   28 div  28 sqrt   0 trans
-//                               after:    26 add    34 mul    1 div   1 sqrt   0 trans
-// rolling_rates                before:  1232 add   734 mul  149 div 149 sqrt   0 trans
-//                               after:    68 add   187 mul    2 div   1 sqrt   0 trans
+// friction_state               before:   140 add    72 mul   19 div  19 sqrt   0 trans
+//                               after:    23 add    43 mul    1 div   1 sqrt   0 trans
+// rolling_acceleration         before:   218 add   114 mul   28 div  28 sqrt   0 trans
+//                               after:    30 add    34 mul    1 div   1 sqrt   0 trans
+// rolling_rates                before:  1254 add   734 mul  149 div 149 sqrt   0 trans
+//                               after:    72 add   187 mul    2 div   1 sqrt   0 trans
 // speed_change_force           before:     0 add     4 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
 // held_speed_forcing           before:     0 add     3 mul    0 div   0 sqrt   0 trans
@@ -97,6 +103,10 @@ pub struct ModelParams {
     pub mu: f64,
     /// ρ_R = R/δ, rotor radius over radial clearance
     pub rho_r: f64,
+    /// u_x, external input force (per unit mass), x: constant over a step
+    pub force_x: f64,
+    /// u_y, external input force (per unit mass), y: constant over a step
+    pub force_y: f64,
 }
 /// A rotor position (x, y): the point a formula is evaluated or linearized at.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -715,6 +725,17 @@ pub fn free_forced_eval(
         dh: 2.0 * t10 * t12 + 2.0 * t11 * t13,
     }
 }
+/// The static deflection of free flight under a constant input force u: the constant solution of q'' + 2νq' + q = u.
+///
+/// Source: docs/MODEL.md §15.
+/// Derivation: constant ansatz substituted into the free equations of motion with the input force as the only forcing, solved for the constants.
+#[inline]
+#[must_use]
+pub fn input_static_deflection(model: &ModelParams) -> Position {
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    Position { x: force_x, y: force_y }
+}
 /// Particular solution of the linearized contact equations: xp = c11 cos θ + c22 sin θ + c55, yp = c33 cos θ + c44 sin θ + c66.
 ///
 /// Source: docs/MODEL.md §5 (particular part), eqs. (8)–(9).
@@ -1007,6 +1028,25 @@ pub fn contact_homogeneous_eval(
         vy: decay * (q0y * t10 + cc * w0y + cd * t7 - t11 * t6) - nu * decay * t8,
     }
 }
+/// The constant response Kl⁻¹u of the linearized contact equations to a constant input force u, added to the particular constants c55, c66.
+///
+/// Source: docs/MODEL.md §15, §5.
+/// Derivation: constant ansatz substituted into q'' + 2νq' + Kl q = u, solved by Cramer's rule.
+#[inline]
+#[must_use]
+pub fn input_contact_constant(model: &ModelParams, kl: &LinearizedContact) -> Position {
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let t0 = 1.0 / (fa1 * fa2 - fb1 * fb2);
+    Position {
+        x: t0 * (force_x * fa2 - force_y * fb1),
+        y: t0 * (force_y * fa1 - force_x * fb2),
+    }
+}
 /// Cubic particular solution of q'' + 2νq' + Kl q = a0 + a1 s + a2 s² + a3 s³.
 ///
 /// Source: docs/MODEL.md §8 (φ-terms as polynomial particular solutions).
@@ -1141,6 +1181,20 @@ pub fn free_acceleration(
     Acceleration {
         ax: ct * f - 2.0 * nu * vx - x,
         ay: st * f - 2.0 * nu * vy - y,
+    }
+}
+/// The acceleration the input force u adds to every regime's field: q'' += u.
+///
+/// Source: docs/MODEL.md §15.
+/// Derivation: the model's acceleration with the input force as its only piece.
+#[inline]
+#[must_use]
+pub fn input_acceleration(model: &ModelParams) -> Acceleration {
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    Acceleration {
+        ax: force_x,
+        ay: force_y,
     }
 }
 /// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) of the Taylor-linearized contact field, as a force on the acceleration (zero at the linearization point).
@@ -1413,6 +1467,8 @@ pub fn friction_state(
     let ex = model.ex;
     let ey = model.ey;
     let rho_r = model.rho_r;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
@@ -1429,8 +1485,10 @@ pub fn friction_state(
         normal: t0 * t2 * (t0 * t3 * kxx + t1 * t3 * kxy)
             + t1 * t2 * (t0 * t3 * kyx + t1 * t3 * kyy),
         slip_velocity: t4 + t5 + eta * rho_r,
-        lambda: t0 * t2 * (st * f - 2.0 * nu * vy - y - t0 * t3 * kyx - t1 * t3 * kyy)
-            - t1 * t2 * (ct * f - 2.0 * nu * vx - x - t0 * t3 * kxx - t1 * t3 * kxy)
+        lambda: t0 * t2
+            * (st * f + force_y - 2.0 * nu * vy - y - t0 * t3 * kyx - t1 * t3 * kyy)
+            - t1 * t2
+                * (ct * f + force_x - 2.0 * nu * vx - x - t0 * t3 * kxx - t1 * t3 * kxy)
             - t2 * (t4 + t5) * (t0 * t2 * vx + t1 * t2 * vy),
     }
 }
@@ -1454,6 +1512,8 @@ pub fn rolling_acceleration(
     let kyy = model.kyy;
     let ex = model.ex;
     let ey = model.ey;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
@@ -1474,11 +1534,12 @@ pub fn rolling_acceleration(
     let t11 = -y;
     let t12 = -t3 * t6 * kyx;
     let t13 = -t4 * t6 * kyy;
-    let t14 = t3 * t5 * (t9 + t10 + t11 + t12 + t13) - t4 * t5 * (t0 + t1 + t2 + t7 + t8)
+    let t14 = t3 * t5 * (t9 + force_y + t10 + t11 + t12 + t13)
+        - t4 * t5 * (t0 + force_x + t1 + t2 + t7 + t8)
         - t5 * (t3 * t5 * vy - t4 * t5 * vx) * (t3 * t5 * vx + t4 * t5 * vy);
     Acceleration {
-        ax: t0 + t1 + t2 + t7 + t8 + t4 * t5 * t14,
-        ay: t9 + t10 + t11 + t12 + t13 - t3 * t5 * t14,
+        ax: t0 + force_x + t1 + t2 + t7 + t8 + t4 * t5 * t14,
+        ay: t9 + force_y + t10 + t11 + t12 + t13 - t3 * t5 * t14,
     }
 }
 /// Outputs of [`rolling_rates`].
@@ -1510,6 +1571,8 @@ pub fn rolling_rates(
     let kyy = model.kyy;
     let ex = model.ex;
     let ey = model.ey;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
@@ -1530,18 +1593,18 @@ pub fn rolling_rates(
     let t11 = -x;
     let t12 = -t0 * t4 * kxx;
     let t13 = -t1 * t4 * kxy;
-    let t14 = t9 + t10 + t11 + t12 + t13;
+    let t14 = t9 + force_x + t10 + t11 + t12 + t13;
     let t15 = st * f;
     let t16 = -2.0 * nu * vy;
     let t17 = -y;
     let t18 = -t0 * t4 * kyx;
     let t19 = -t1 * t4 * kyy;
-    let t20 = t15 + t16 + t17 + t18 + t19;
+    let t20 = t15 + force_y + t16 + t17 + t18 + t19;
     let t21 = t0 * t3 * vy - t1 * t3 * vx;
     let t22 = t0 * t3 * vx + t1 * t3 * vy;
     let t23 = t0 * t3 * t20 - t1 * t3 * t14 - t3 * t21 * t22;
-    let t24 = t9 + t10 + t11 + t12 + t13 + t1 * t3 * t23;
-    let t25 = t15 + t16 + t17 + t18 + t19 - t0 * t3 * t23;
+    let t24 = t9 + force_x + t10 + t11 + t12 + t13 + t1 * t3 * t23;
+    let t25 = t15 + force_y + t16 + t17 + t18 + t19 - t0 * t3 * t23;
     FrictionRates {
         normal_rate: t3 * t5 * vx
             + t0 * t3

@@ -1,6 +1,12 @@
 /* The paper preset for 100 forcing periods in fixed steps dt = 1e-3 through the C ABI: collects
  * the contact switch times and prints them, with a checkpoint state every 1000 steps.
  *
+ * `paper control KP KD` runs the same fixed-rate loop with a controller, as a rig would: each
+ * cycle measures the state of the last step, computes a PD force towards the stator centre,
+ * f = -KP (q - offset) - KD q', applies it for the next step (rotor_rub_stepper_set_input_force),
+ * and steps with a hard work budget (on_cap = FAIL: a step that would exceed its bounded work is
+ * refused and retried as two half steps instead of overrunning).
+ *
  * Build (after `cargo build -p rotor-rub-ffi`, from the repository root; the library sits in
  * the target directory's profile folder):
  *   cc -O2 -Iffi/include ffi/examples/paper.c target/debug/librotor_rub_ffi.a \
@@ -10,10 +16,12 @@
  * Output lines (numbers with 17 significant digits):
  *   state <step> <time> <x> <y> <vx> <vy> <regime>     every CHECK_EVERY steps
  *   switch <index> <enter|exit> <time> <x> <y> <vx> <vy>
- *   summary <steps> <switches> <dropped> <capped steps>
+ *   summary <steps> <switches> <dropped> <capped steps> <steps split for the budget>
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "rotor_rub.h"
 
@@ -30,7 +38,9 @@ static int fail(const char *what, int32_t code) {
     return 1;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
+    int control = argc >= 4 && strcmp(argv[1], "control") == 0;
+    const double kp = control ? atof(argv[2]) : 0.0, kd = control ? atof(argv[3]) : 0.0;
     RotorRubParams params;
     RotorRubState initial;
     double start_time;
@@ -42,6 +52,7 @@ int main(void) {
     rc = rotor_rub_config_default(&config);
     if (rc != ROTOR_RUB_OK) return fail("config", rc);
     config.dt = dt;
+    if (control) config.on_cap = ROTOR_RUB_ON_CAP_FAIL;
 
     /* Caller-owned memory: no allocation anywhere. */
     static RotorRubStepper stepper;
@@ -55,18 +66,40 @@ int main(void) {
     const double period = 2.0 * acos(-1.0) / params.speed_ratio;
     const long steps = (long)ceil(PERIODS * period / dt - 1e-9);
     size_t count = 0;
-    unsigned long dropped = 0, capped = 0;
+    unsigned long dropped = 0, capped = 0, split = 0;
+    RotorRubState measured = initial;
     for (long k = 1; k <= steps; ++k) {
         RotorRubStepResult r;
-        rc = rotor_rub_stepper_step(&stepper, dt, &r);
-        if (rc != ROTOR_RUB_OK) return fail("step", rc);
-        for (uint32_t i = 0; i < r.event_count && count < MAX_SWITCHES; ++i, ++count) {
-            switch_time[count] = r.events[i].time;
-            switch_kind[count] = r.events[i].kind;
-            switch_state[count] = r.events[i].state;
+        if (control) {
+            /* The controller: PD towards the stator centre, from the last measured state. */
+            const double fx = -kp * (measured.x - params.offset_x) - kd * measured.vx;
+            const double fy = -kp * (measured.y - params.offset_y) - kd * measured.vy;
+            rc = rotor_rub_stepper_set_input_force(&stepper, fx, fy);
+            if (rc != ROTOR_RUB_OK) return fail("input force", rc);
         }
-        dropped += r.dropped_events;
-        capped += r.capped;
+        /* A step of dt; if it would exceed its bounded work, two half steps instead. */
+        RotorRubStepResult parts[2];
+        int n = 1;
+        rc = rotor_rub_stepper_step(&stepper, dt, &parts[0]);
+        if (rc == ROTOR_RUB_ERR_BUDGET_EXCEEDED) {
+            ++split;
+            n = 2;
+            rc = rotor_rub_stepper_step(&stepper, 0.5 * dt, &parts[0]);
+            if (rc == ROTOR_RUB_OK) rc = rotor_rub_stepper_step(&stepper, 0.5 * dt, &parts[1]);
+        }
+        if (rc != ROTOR_RUB_OK) return fail("step", rc);
+        for (int p = 0; p < n; ++p) {
+            const RotorRubStepResult *q = &parts[p];
+            for (uint32_t i = 0; i < q->event_count && count < MAX_SWITCHES; ++i, ++count) {
+                switch_time[count] = q->events[i].time;
+                switch_kind[count] = q->events[i].kind;
+                switch_state[count] = q->events[i].state;
+            }
+            dropped += q->dropped_events;
+            capped += q->capped;
+        }
+        r = parts[n - 1];
+        measured = r.state;
         if (k % CHECK_EVERY == 0) {
             printf("state %ld %.17g %.17g %.17g %.17g %.17g %d\n", k, r.time, r.state.x,
                    r.state.y, r.state.vx, r.state.vy, (int)r.regime);
@@ -78,6 +111,6 @@ int main(void) {
                switch_kind[i] == ROTOR_RUB_EVENT_ENTER ? "enter" : "exit", switch_time[i], s->x,
                s->y, s->vx, s->vy);
     }
-    printf("summary %ld %zu %lu %lu\n", steps, count, dropped, capped);
+    printf("summary %ld %zu %lu %lu %lu\n", steps, count, dropped, capped, split);
     return 0;
 }

@@ -35,20 +35,24 @@
 #define ROTOR_RUB_PARAMETER_FRICTION_COEFFICIENT 11
 /* radius_ratio (ρ_R): rotor radius over radial clearance, R/δ (the rotor spins counter-clockwise at η); valid range (0, 100000]. */
 #define ROTOR_RUB_PARAMETER_RADIUS_RATIO 12
+/* force_x (u_x): external force on the rotor per unit mass, x, clearances·ω_n² (a bearing, a controller, a static load; the FMU's input fx); valid range [-1000, 1000]. */
+#define ROTOR_RUB_PARAMETER_FORCE_X 13
+/* force_y (u_y): external force on the rotor per unit mass, y, clearances·ω_n² (the FMU's input fy); valid range [-1000, 1000]. */
+#define ROTOR_RUB_PARAMETER_FORCE_Y 14
 /* x0 (x̃0): initial position x, clearances; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_X0 13
+#define ROTOR_RUB_PARAMETER_X0 15
 /* y0 (ỹ0): initial position y, clearances; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_Y0 14
+#define ROTOR_RUB_PARAMETER_Y0 16
 /* vx0 (x̃0'): initial velocity x', clearances per unit τ; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_VX0 15
+#define ROTOR_RUB_PARAMETER_VX0 17
 /* vy0 (ỹ0'): initial velocity y', clearances per unit τ; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_VY0 16
+#define ROTOR_RUB_PARAMETER_VY0 18
 /* start_time (τ0): time of the initial state; valid range [-1e6, 1e6]. */
-#define ROTOR_RUB_PARAMETER_START_TIME 17
+#define ROTOR_RUB_PARAMETER_START_TIME 19
 
 
 // Number of table entries: model parameters, initial state and start time.
-#define ROTOR_RUB_PARAMETER_COUNT 18
+#define ROTOR_RUB_PARAMETER_COUNT 20
 
 // Success.
 #define ROTOR_RUB_OK 0
@@ -83,6 +87,19 @@
 
 // An internal error was caught at the boundary (a bug: please report it).
 #define ROTOR_RUB_ERR_INTERNAL 10
+
+// A step would have exceeded its bounded work (`on_cap` = `ROTOR_RUB_ON_CAP_FAIL`): refused,
+// the stepper is unchanged.
+#define ROTOR_RUB_ERR_BUDGET_EXCEEDED 11
+
+// A value given to a setter is invalid (not finite or outside its range).
+#define ROTOR_RUB_ERR_INVALID_VALUE 12
+
+// On a cap: finish the step less accurately and flag it (`capped`, `search_capped`).
+#define ROTOR_RUB_ON_CAP_DEGRADE 0
+
+// On a cap: refuse the step with `ROTOR_RUB_ERR_BUDGET_EXCEEDED`.
+#define ROTOR_RUB_ON_CAP_FAIL 1
 
 // Contact scheme: exprb2 (second order, cheaper).
 #define ROTOR_RUB_SCHEME_EXPRB2 0
@@ -130,7 +147,7 @@
 #define ROTOR_RUB_EVENT_CAPACITY 4
 
 // Size of `RotorRubStepper` in 64-bit words.
-#define ROTOR_RUB_STEPPER_WORDS 128
+#define ROTOR_RUB_STEPPER_WORDS 160
 
 // Model parameters (dimensionless, as in the paper). Valid ranges: `rotor_rub_parameter_info`
 // (the Rust parameter table, listed by `rotor-rub params`).
@@ -161,6 +178,11 @@ typedef struct RotorRubParams {
   double friction_coefficient;
   // ρ_R: rotor radius over radial clearance.
   double radius_ratio;
+  // u_x: external input force, x (per unit mass); `rotor_rub_stepper_set_input_force`
+  // changes it cheaply between steps.
+  double force_x;
+  // u_y: external input force, y.
+  double force_y;
 } RotorRubParams;
 
 // A state (x, y, x', y').
@@ -185,6 +207,9 @@ typedef struct RotorRubConfig {
   uint32_t contact_substeps;
   // Cap on contact sub-steps in one step call, >= contact_substeps (default 8).
   uint32_t max_substeps;
+  // What a step does at a cap: `ROTOR_RUB_ON_CAP_DEGRADE` (default) or
+  // `ROTOR_RUB_ON_CAP_FAIL` (the step returns `ROTOR_RUB_ERR_BUDGET_EXCEEDED`).
+  uint32_t on_cap;
 } RotorRubConfig;
 
 // Caller-owned storage for one stepper: place it anywhere (stack, static, pool), initialise it
@@ -258,7 +283,8 @@ int32_t rotor_rub_preset(int32_t preset,
                          struct RotorRubState *initial,
                          double *start_time);
 
-// Fill `config` with the defaults (dt = 1e-3, exprb43, 1 contact sub-step, cap 8).
+// Fill `config` with the defaults (dt = 1e-3, exprb43, 1 contact sub-step, cap 8, degrade on a
+// cap).
 //
 // Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `config` is null.
 //
@@ -351,6 +377,30 @@ int32_t rotor_rub_stepper_state(const struct RotorRubStepper *stepper,
 // `stepper` is null or valid initialised stepper memory; `params` null or valid for writes.
 int32_t rotor_rub_stepper_params(const struct RotorRubStepper *stepper,
                                  struct RotorRubParams *params);
+
+// Apply the external input force (`fx`, `fy`) from the current time on, held constant until the
+// next call (what a magnetic bearing or a controller applies; `docs/MODEL.md` §15). Cheap: the
+// precomputed free-flight map is kept. On error nothing changes.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_VALUE` if
+// a component is not finite or outside [-1000, 1000] (`force_x`, `force_y` in the table).
+//
+// # Safety
+// `stepper` as for `rotor_rub_stepper_step`.
+int32_t rotor_rub_stepper_set_input_force(struct RotorRubStepper *stepper, double fx, double fy);
+
+// Change the running speed ratio η from the current time on with a continuous forcing phase
+// (the phase parameter is re-based); the unbalance amplitude follows η². Recomputes the
+// free-flight map when η changes. On error nothing changes.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_VALUE` if
+// `speed_ratio` is not finite or outside [0.001, 100].
+//
+// # Safety
+// `stepper` as for `rotor_rub_stepper_step`.
+int32_t rotor_rub_stepper_set_speed_ratio(struct RotorRubStepper *stepper, double speed_ratio);
 
 // The table index of the parameter named `name` (e.g. "speed_ratio"), written to `index`.
 //

@@ -31,10 +31,12 @@
     )
 )]
 
+mod inputs;
 mod parameters;
 mod raw;
 mod types;
 
+pub use inputs::*;
 pub use parameters::*;
 pub use types::*;
 
@@ -59,7 +61,7 @@ pub extern "C" fn rotor_rub_error_message(code: i32) -> *const c_char {
             c"invalid parameters or initial state (see rotor_rub_problem_validate for which)"
         }
         ROTOR_RUB_ERR_INVALID_CONFIG => {
-            c"invalid configuration (scheme; 1 <= contact_substeps <= max_substeps <= 1024)"
+            c"invalid configuration (scheme; on_cap; 1 <= contact_substeps <= max_substeps <= 1024)"
         }
         ROTOR_RUB_ERR_INVALID_STEP => {
             c"invalid step: dt must be finite, in (0, 1], and large enough to advance the time"
@@ -70,6 +72,12 @@ pub extern "C" fn rotor_rub_error_message(code: i32) -> *const c_char {
         ROTOR_RUB_ERR_SINGULAR_CONTACT => c"the linearized contact system is singular or resonant",
         ROTOR_RUB_ERR_INVALID_ARGUMENT => c"unknown enumeration value (preset or scheme)",
         ROTOR_RUB_ERR_INTERNAL => c"internal error caught at the C boundary (a bug)",
+        ROTOR_RUB_ERR_BUDGET_EXCEEDED => {
+            c"the step would exceed its bounded work (on_cap = FAIL): refused, the stepper is unchanged"
+        }
+        ROTOR_RUB_ERR_INVALID_VALUE => {
+            c"invalid value: not finite or outside its range (rotor_rub_parameter_info gives the range)"
+        }
         _ => c"unknown error code",
     };
     message.as_ptr()
@@ -131,7 +139,8 @@ pub unsafe extern "C" fn rotor_rub_preset(
     })
 }
 
-/// Fill `config` with the defaults (dt = 1e-3, exprb43, 1 contact sub-step, cap 8).
+/// Fill `config` with the defaults (dt = 1e-3, exprb43, 1 contact sub-step, cap 8, degrade on a
+/// cap).
 ///
 /// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `config` is null.
 ///

@@ -11,7 +11,7 @@ use crate::raw::{Buffer, guard, read, write};
 use crate::types::*;
 
 /// Number of table entries: model parameters, initial state and start time.
-pub const ROTOR_RUB_PARAMETER_COUNT: usize = 18;
+pub const ROTOR_RUB_PARAMETER_COUNT: usize = 20;
 const _: () = assert!(ROTOR_RUB_PARAMETER_COUNT == Parameter::COUNT);
 
 fn parameter(index: i32) -> Result<Parameter, i32> {

@@ -38,6 +38,7 @@ pub(crate) fn error_code(e: &StepperError) -> i32 {
         }
         StepperError::InvalidConfig { .. } => ROTOR_RUB_ERR_INVALID_CONFIG,
         StepperError::InvalidStep { .. } => ROTOR_RUB_ERR_INVALID_STEP,
+        StepperError::BudgetExceeded { .. } => ROTOR_RUB_ERR_BUDGET_EXCEEDED,
         StepperError::Propagation(PropagationError::Diverged { .. }) => ROTOR_RUB_ERR_DIVERGED,
         StepperError::Propagation(PropagationError::SingularContact { .. }) => {
             ROTOR_RUB_ERR_SINGULAR_CONTACT

@@ -1,7 +1,7 @@
 //! The C-visible types and constants (`#[repr(C)]`, mirrored in `include/rotor_rub.h`), and
 //! their conversions to and from the Rust API.
 
-use rotor_rub::stepper::{EVENT_CAPACITY, StepReport, StepperConfig};
+use rotor_rub::stepper::{EVENT_CAPACITY, OnCap, StepReport, StepperConfig};
 use rotor_rub::{ContactScheme, EventKind, Params, Regime, State};
 
 /// Success.
@@ -27,6 +27,16 @@ pub const ROTOR_RUB_ERR_SINGULAR_CONTACT: i32 = 8;
 pub const ROTOR_RUB_ERR_INVALID_ARGUMENT: i32 = 9;
 /// An internal error was caught at the boundary (a bug: please report it).
 pub const ROTOR_RUB_ERR_INTERNAL: i32 = 10;
+/// A step would have exceeded its bounded work (`on_cap` = `ROTOR_RUB_ON_CAP_FAIL`): refused,
+/// the stepper is unchanged.
+pub const ROTOR_RUB_ERR_BUDGET_EXCEEDED: i32 = 11;
+/// A value given to a setter is invalid (not finite or outside its range).
+pub const ROTOR_RUB_ERR_INVALID_VALUE: i32 = 12;
+
+/// On a cap: finish the step less accurately and flag it (`capped`, `search_capped`).
+pub const ROTOR_RUB_ON_CAP_DEGRADE: u32 = 0;
+/// On a cap: refuse the step with `ROTOR_RUB_ERR_BUDGET_EXCEEDED`.
+pub const ROTOR_RUB_ON_CAP_FAIL: u32 = 1;
 
 /// Contact scheme: exprb2 (second order, cheaper).
 pub const ROTOR_RUB_SCHEME_EXPRB2: i32 = 0;
@@ -63,7 +73,7 @@ pub const ROTOR_RUB_PRESET_DRY_WHIP: i32 = 3;
 /// Switches one step result holds; more are counted in `dropped_events`.
 pub const ROTOR_RUB_EVENT_CAPACITY: usize = 4;
 /// Size of `RotorRubStepper` in 64-bit words.
-pub const ROTOR_RUB_STEPPER_WORDS: usize = 128;
+pub const ROTOR_RUB_STEPPER_WORDS: usize = 160;
 
 const _: () = assert!(ROTOR_RUB_EVENT_CAPACITY == EVENT_CAPACITY);
 // The scheme codes are the library's (`ContactScheme::code`, the scheme registry).
@@ -104,6 +114,11 @@ pub struct RotorRubParams {
     pub friction_coefficient: f64,
     /// ρ_R: rotor radius over radial clearance.
     pub radius_ratio: f64,
+    /// u_x: external input force, x (per unit mass); `rotor_rub_stepper_set_input_force`
+    /// changes it cheaply between steps.
+    pub force_x: f64,
+    /// u_y: external input force, y.
+    pub force_y: f64,
 }
 
 /// A state (x, y, x', y').
@@ -132,6 +147,9 @@ pub struct RotorRubConfig {
     pub contact_substeps: u32,
     /// Cap on contact sub-steps in one step call, >= contact_substeps (default 8).
     pub max_substeps: u32,
+    /// What a step does at a cap: `ROTOR_RUB_ON_CAP_DEGRADE` (default) or
+    /// `ROTOR_RUB_ON_CAP_FAIL` (the step returns `ROTOR_RUB_ERR_BUDGET_EXCEEDED`).
+    pub on_cap: u32,
 }
 
 /// A contact switch.
@@ -197,6 +215,8 @@ impl From<RotorRubParams> for Params {
             offset_y: p.offset_y,
             friction_coefficient: p.friction_coefficient,
             radius_ratio: p.radius_ratio,
+            force_x: p.force_x,
+            force_y: p.force_y,
         }
     }
 }
@@ -217,6 +237,8 @@ impl From<Params> for RotorRubParams {
             offset_y: p.offset_y,
             friction_coefficient: p.friction_coefficient,
             radius_ratio: p.radius_ratio,
+            force_x: p.force_x,
+            force_y: p.force_y,
         }
     }
 }
@@ -245,6 +267,10 @@ impl From<StepperConfig> for RotorRubConfig {
             scheme: c.scheme.code(),
             contact_substeps: c.contact_substeps,
             max_substeps: c.max_substeps,
+            on_cap: match c.on_cap {
+                OnCap::Degrade => ROTOR_RUB_ON_CAP_DEGRADE,
+                OnCap::Fail => ROTOR_RUB_ON_CAP_FAIL,
+            },
         }
     }
 }
@@ -252,14 +278,20 @@ impl From<StepperConfig> for RotorRubConfig {
 impl TryFrom<RotorRubConfig> for StepperConfig {
     type Error = i32;
 
-    /// Fails with `ROTOR_RUB_ERR_INVALID_CONFIG` for an unknown scheme.
+    /// Fails with `ROTOR_RUB_ERR_INVALID_CONFIG` for an unknown scheme or cap policy.
     fn try_from(c: RotorRubConfig) -> Result<Self, i32> {
         let scheme = ContactScheme::from_code(c.scheme).ok_or(ROTOR_RUB_ERR_INVALID_CONFIG)?;
+        let on_cap = match c.on_cap {
+            ROTOR_RUB_ON_CAP_DEGRADE => OnCap::Degrade,
+            ROTOR_RUB_ON_CAP_FAIL => OnCap::Fail,
+            _ => return Err(ROTOR_RUB_ERR_INVALID_CONFIG),
+        };
         Ok(StepperConfig {
             dt: c.dt,
             scheme,
             contact_substeps: c.contact_substeps,
             max_substeps: c.max_substeps,
+            on_cap,
         })
     }
 }

@@ -59,6 +59,7 @@ fn a_whole_session_allocates_nothing_and_matches_rust() {
         scheme: -1,
         contact_substeps: 0,
         max_substeps: 0,
+        on_cap: 9,
     };
     let mut stepper = blank();
     let mut result = RotorRubStepResult::default();
@@ -203,6 +204,7 @@ fn misuse_gives_error_codes() {
             scheme: 5,
             contact_substeps: 1,
             max_substeps: 8,
+            on_cap: ROTOR_RUB_ON_CAP_DEGRADE,
         };
         assert_eq!(
             rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, &config),
@@ -347,7 +349,7 @@ fn parameters_by_index_and_name() {
     // SAFETY: valid or null pointers as each case says.
     unsafe {
         let mut found = 0;
-        for bad in [-1, 18, i32::MAX] {
+        for bad in [-1, 20, i32::MAX] {
             assert_eq!(
                 rotor_rub_parameter_set(&mut params, &mut initial, &mut start_time, bad, 1.0),
                 ROTOR_RUB_ERR_INVALID_ARGUMENT
@@ -395,7 +397,7 @@ fn parameters_by_index_and_name() {
         assert_eq!(params.speed_ratio, 2.0);
         let mut value = 0.0;
         assert_eq!(
-            rotor_rub_parameter_get(&params, std::ptr::null(), std::ptr::null(), 13, &mut value),
+            rotor_rub_parameter_get(&params, std::ptr::null(), std::ptr::null(), 15, &mut value),
             ROTOR_RUB_ERR_NULL
         );
         assert_eq!(
@@ -433,6 +435,7 @@ fn friction_through_the_c_abi() {
         scheme: -1,
         contact_substeps: 0,
         max_substeps: 0,
+        on_cap: 9,
     };
     let mut reversal = RotorRubParams::from(rotor_rub::Preset::Paper.problem().params);
     reversal.speed_ratio = 2.0;
@@ -493,4 +496,66 @@ fn friction_through_the_c_abi() {
         );
     }
     assert_eq!(allocations(), before, "friction steps allocate");
+}
+
+#[test]
+fn input_force_and_speed_setters_match_rust_and_refuse_bad_values() {
+    let (params, initial, t0) = paper();
+    let mut stepper = blank();
+    let mut result = RotorRubStepResult::default();
+    let problem = rotor_rub::Problem {
+        params: params.into(),
+        initial: initial.into(),
+        start_time: t0,
+    };
+    let mut rust = rotor_rub::Stepper::new(&problem, rotor_rub::StepperConfig::default()).unwrap();
+    // SAFETY: every pointer is valid.
+    unsafe {
+        assert_eq!(
+            rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, std::ptr::null()),
+            ROTOR_RUB_OK
+        );
+        let before = allocations();
+        for k in 0..5000 {
+            let (fx, fy) = (0.3 * (k as f64 * 1e-3).sin(), -0.2);
+            assert_eq!(
+                rotor_rub_stepper_set_input_force(&mut stepper, fx, fy),
+                ROTOR_RUB_OK
+            );
+            rust.set_input_force(fx, fy).unwrap();
+            if k == 2500 {
+                assert_eq!(
+                    rotor_rub_stepper_set_speed_ratio(&mut stepper, 1.8),
+                    ROTOR_RUB_OK
+                );
+                rust.set_speed_ratio(1.8).unwrap();
+            }
+            assert_eq!(
+                rotor_rub_stepper_step(&mut stepper, 1e-3, &mut result),
+                ROTOR_RUB_OK
+            );
+            assert_eq!(result, RotorRubStepResult::from(&rust.step(1e-3).unwrap()));
+        }
+        assert_eq!(allocations(), before, "the setters allocate nothing");
+        for (fx, fy) in [(f64::NAN, 0.0), (0.0, 2e3)] {
+            assert_eq!(
+                rotor_rub_stepper_set_input_force(&mut stepper, fx, fy),
+                ROTOR_RUB_ERR_INVALID_VALUE
+            );
+        }
+        for eta in [f64::INFINITY, -1.0, 0.0] {
+            assert_eq!(
+                rotor_rub_stepper_set_speed_ratio(&mut stepper, eta),
+                ROTOR_RUB_ERR_INVALID_VALUE
+            );
+        }
+        assert_eq!(
+            rotor_rub_stepper_set_input_force(std::ptr::null_mut(), 0.0, 0.0),
+            ROTOR_RUB_ERR_NULL
+        );
+        let mut read = params;
+        assert_eq!(rotor_rub_stepper_params(&stepper, &mut read), ROTOR_RUB_OK);
+        assert_eq!((read.force_x, read.force_y), rust.input_force());
+        assert_eq!(read.speed_ratio, 1.8);
+    }
 }

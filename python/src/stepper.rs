@@ -53,6 +53,7 @@ impl PyStepper {
             scheme,
             contact_substeps,
             max_substeps,
+            ..StepperConfig::default()
         };
         let inner = Stepper::new(&problem, config).map_err(stepper)?;
         Ok(PyStepper { inner })

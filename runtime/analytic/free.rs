@@ -54,6 +54,9 @@ pub struct FreeConstants {
     steady_amplitude: Option<f64>,
     /// The forced basis, within [`super::forced::RESONANT_BAND`] of resonance.
     resonance: Option<Resonance>,
+    /// The static deflection under the input force u (generated `input_static_deflection`;
+    /// exactly (0, 0) without one, and then never applied: the unforced path is unchanged).
+    deflection: (f64, f64),
     /// ν, η, F (and ε̂, replaced per segment) for the generated formulas.
     model: ModelParams,
 }
@@ -66,6 +69,7 @@ impl FreeConstants {
         let p = coef::free_particular(&model);
         let amp = harmonic_amplitude(p.c11, p.c22, p.c33, p.c44);
         FreeConstants {
+            deflection: deflection(&model),
             beta_sq,
             particular: p,
             steady_amplitude: amp.is_finite().then_some(amp),
@@ -74,10 +78,40 @@ impl FreeConstants {
         }
     }
 
+    /// The same constants for another input force (`docs/MODEL.md` §15): only the static
+    /// deflection changes (one generated call), so a controller may change u every step.
+    pub fn with_input(&self, force: (f64, f64)) -> Self {
+        let model = ModelParams {
+            force_x: force.0,
+            force_y: force.1,
+            ..self.model
+        };
+        FreeConstants {
+            deflection: deflection(&model),
+            model,
+            ..*self
+        }
+    }
+
+    /// The static deflection under the input force ((0, 0) without one).
+    pub fn deflection(&self) -> (f64, f64) {
+        self.deflection
+    }
+
     /// Whether free flight uses the resonance-stable form (`docs/MODEL.md` §11).
     pub fn resonant(&self) -> bool {
         self.resonance.is_some()
     }
+}
+
+/// The static deflection of free flight under the model's input force: (0, 0) exactly when
+/// there is none.
+fn deflection(model: &ModelParams) -> (f64, f64) {
+    if model.force_x == 0.0 && model.force_y == 0.0 {
+        return (0.0, 0.0);
+    }
+    let d = coef::input_static_deflection(model);
+    (d.x, d.y)
 }
 
 /// Bounds of the scalar basis functions and their derivatives on one interval.
@@ -184,6 +218,9 @@ pub struct FreeSegment {
     phase0: (f64, f64),
     form: Form,
     reach: FreeReach,
+    /// The static deflection the closed form is written about (`docs/MODEL.md` §15): the form
+    /// describes q − shift, with the stator offset moved by −shift; (0, 0) without input force.
+    shift: (f64, f64),
 }
 
 impl FreeSegment {
@@ -200,6 +237,8 @@ impl FreeSegment {
 
     /// The free segment through `state` with forcing phasor `phasor` = (cos θ0, sin θ0) at its
     /// start and stator offset `offset` (the stepper's transition uses unit inputs and no offset).
+    /// Under an input force the closed form is written about the static deflection d: free
+    /// flight of q − d, with the offset ε − d (`docs/MODEL.md` §15).
     pub(crate) fn with_phasor(
         constants: &FreeConstants,
         offset: (f64, f64),
@@ -207,6 +246,15 @@ impl FreeSegment {
         state: State,
     ) -> Self {
         let c = constants;
+        let shift = c.deflection;
+        let (offset, state) = if shift == (0.0, 0.0) {
+            (offset, state)
+        } else {
+            (
+                (offset.0 - shift.0, offset.1 - shift.1),
+                State::new(state.x - shift.0, state.y - shift.1, state.vx, state.vy),
+            )
+        };
         let model = ModelParams {
             ex: offset.0,
             ey: offset.1,
@@ -266,6 +314,7 @@ impl FreeSegment {
             phase0: phasor,
             form,
             reach,
+            shift,
         }
     }
 
@@ -309,6 +358,11 @@ impl Segment for FreeSegment {
                 let r = coef::free_forced_eval(model, &beta, start, &basis, forcing, &forced);
                 (r.x, r.y, r.vx, r.vy, r.h, r.dh)
             }
+        };
+        let (x, y) = if self.shift == (0.0, 0.0) {
+            (x, y)
+        } else {
+            (x + self.shift.0, y + self.shift.1)
         };
         Point {
             state: State::new(x, y, vx, vy),

@@ -23,6 +23,8 @@
 //!   room for studies of the limit. ρ_R ∈ (0, 1e5]: real rotors have R/δ ≈ 1e2–1e4; the slip
 //!   velocity's spin term ρ_R η stays below 1e7. μ > 0 also needs a positive definite symmetric
 //!   part of K_s (`cross_checks`), else the normal force can turn negative (`docs/MODEL.md §10`).
+//! * |u| ≤ 1e3 per component (the external input force, `docs/MODEL.md §15`): its static
+//!   deflection u stays a decade below the divergence radius, like the unbalance orbit.
 
 use super::{Problem, Range};
 
@@ -108,6 +110,7 @@ pub struct Info {
 }
 
 const STIFFNESS: f64 = 1.0e5;
+const FORCE: f64 = 1.0e3;
 
 parameter_table! {
     model {
@@ -137,6 +140,10 @@ parameter_table! {
             "Coulomb friction coefficient at contact (0: frictionless, the paper's model)";
         RadiusRatio radius_ratio "ρ_R" = 100.0, Range::above(0.0, 1.0e5),
             "rotor radius over radial clearance, R/δ (the rotor spins counter-clockwise at η)";
+        ForceX force_x "u_x" = 0.0, Range::closed(-FORCE, FORCE),
+            "external force on the rotor per unit mass, x, clearances·ω_n² (a bearing, a controller, a static load; the FMU's input fx)";
+        ForceY force_y "u_y" = 0.0, Range::closed(-FORCE, FORCE),
+            "external force on the rotor per unit mass, y, clearances·ω_n² (the FMU's input fy)";
     }
     start {
         X0 x0 "x̃0" = 0.1, Range::closed(-1.0e2, 1.0e2),

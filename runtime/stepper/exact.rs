@@ -19,12 +19,14 @@ const SUBSTEP_SLACK: f64 = 1e-9;
 
 impl Stepper {
     /// The step from the current state over `dt`, piece by piece; fills the report's events,
-    /// sub-step count, cap flag and error estimate. Returns the end state and regime.
+    /// sub-step count, cap flag and error estimate. Returns the end state, regime and slip, and
+    /// with `stop_at_switch` the switch time where the step stopped at its first switch.
     pub(super) fn exact_step(
         &self,
         dt: f64,
+        stop_at_switch: bool,
         report: &mut StepReport,
-    ) -> Result<(State, Regime, Slip), StepperError> {
+    ) -> Result<(State, Regime, Slip, Option<f64>), StepperError> {
         let t0 = self.time;
         let nominal = dt / f64::from(self.config.contact_substeps);
         let mut budget = self.config.max_substeps;
@@ -33,12 +35,12 @@ impl Stepper {
         loop {
             let rem = dt - s;
             if rem <= 0.0 || rem.is_nan() {
-                return Ok((state, regime, slip));
+                return Ok((state, regime, slip, None));
             }
             let t = t0 + s;
             match regime {
                 Regime::Free => match self.free_piece(t, state, rem, report) {
-                    Err(end) => return Ok((end, regime, slip)),
+                    Err(end) => return Ok((end, regime, slip, None)),
                     Ok((se, p)) => {
                         report.events.push(Event {
                             time: t + se,
@@ -49,6 +51,9 @@ impl Stepper {
                         (s, state, regime) = (s + se, p.state, Regime::Contact);
                         slip =
                             Slip::at(&self.params, regime, t + se, &state, Some(EventKind::Enter));
+                        if stop_at_switch {
+                            return Ok((state, regime, slip, Some(t + se)));
+                        }
                     }
                 },
                 Regime::Contact | Regime::Rolling if budget == 0 => {
@@ -61,7 +66,7 @@ impl Stepper {
                     };
                     let end_regime = field::regime_of(&self.params, t0 + dt, &end);
                     let slip = Slip::at(&self.params, end_regime, t0 + dt, &end, None);
-                    return Ok((end, end_regime, slip));
+                    return Ok((end, end_regime, slip, None));
                 }
                 Regime::Contact | Regime::Rolling => {
                     // Whole nominal sub-steps over the rest, equal lengths, no slivers.
@@ -93,8 +98,11 @@ impl Stepper {
                             regime = kind.regime_after();
                             slip = Slip::at(&self.params, regime, t + sx, &p, Some(kind));
                             (s, state) = (s + sx, p);
+                            if stop_at_switch {
+                                return Ok((state, regime, slip, Some(t + sx)));
+                            }
                         }
-                        None if h == rem => return Ok((end, regime, slip)),
+                        None if h == rem => return Ok((end, regime, slip, None)),
                         None => (s, state) = (s + h, end),
                     }
                 }

@@ -57,11 +57,13 @@
 
 mod exact;
 pub mod friction;
+mod inputs;
 mod report;
 pub mod search;
 mod transition;
 
 pub use crate::analytic::switch::Search;
+pub use inputs::Snapshot;
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
 pub use search::{
     MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, no_crossing,
@@ -96,6 +98,22 @@ pub struct StepperConfig {
     /// Cap on contact sub-steps in one `step` call (≥ `contact_substeps`): bounds the work of a
     /// step with several switches. See [`StepReport::capped`].
     pub max_substeps: u32,
+    /// What a step does when a cap is reached: [`OnCap::Degrade`] (the default) finishes the
+    /// step less accurately and flags it; [`OnCap::Fail`] returns
+    /// [`StepperError::BudgetExceeded`] and leaves the stepper unchanged (a hard real-time
+    /// caller then knows the step would have overrun its bounded work).
+    pub on_cap: OnCap,
+}
+
+/// What a step does when its sub-step cap or a switch search's cap is reached.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnCap {
+    /// Finish the step: the last contact sub-step covers the rest, a capped search gives its
+    /// last bracket; [`StepReport::capped`] / [`StepReport::search_capped`] say so.
+    #[default]
+    Degrade,
+    /// Return [`StepperError::BudgetExceeded`] instead; the stepper is unchanged.
+    Fail,
 }
 
 impl Default for StepperConfig {
@@ -106,6 +124,7 @@ impl Default for StepperConfig {
             scheme: ContactScheme::Exprb43,
             contact_substeps: 1,
             max_substeps: 8,
+            on_cap: OnCap::Degrade,
         }
     }
 }
@@ -189,6 +208,18 @@ impl Stepper {
     /// Advance exactly `dt` (finite, in (0, [`MAX_STEP`]]). Returns the end state and regime and
     /// the switches in (t, t + dt]. On error the stepper is left unchanged.
     pub fn step(&mut self, dt: f64) -> Result<StepReport, StepperError> {
+        self.advance(dt, false)
+    }
+
+    /// As [`Stepper::step`], but the step ends at the first switch inside it, if any: the
+    /// report's time is the switch time, its state the switch state and its one event the
+    /// switch (an importer's early return: the event is seen where it happened). Without a
+    /// switch it is exactly [`Stepper::step`].
+    pub fn step_to_switch(&mut self, dt: f64) -> Result<StepReport, StepperError> {
+        self.advance(dt, true)
+    }
+
+    fn advance(&mut self, dt: f64, stop_at_switch: bool) -> Result<StepReport, StepperError> {
         check_dt(dt, self.time)?;
         if dt != self.transition.dt() {
             self.transition = FreeTransition::new(&self.params, &self.free, dt);
@@ -209,20 +240,34 @@ impl Stepper {
             Regime::Free => self.free_step(),
             Regime::Contact | Regime::Rolling => None,
         };
-        let (state, regime, slip) = match fast {
-            Some(state) => (state, Regime::Free, friction::Slip::NONE),
-            None => self.exact_step(dt, &mut report)?,
+        let (state, regime, slip, stopped) = match fast {
+            Some(state) => (state, Regime::Free, friction::Slip::NONE, None),
+            None => self.exact_step(dt, stop_at_switch, &mut report)?,
         };
-        self.anchor_steps += 1;
-        self.time = self.anchor_time + self.anchor_steps as f64 * dt;
+        if self.config.on_cap == OnCap::Fail && (report.capped || report.search_capped) {
+            return Err(StepperError::BudgetExceeded {
+                time: self.time,
+                substeps: report.substeps,
+            });
+        }
         self.state = state;
         self.regime = regime;
         self.slip = slip;
-        self.phasor = if self.anchor_steps.is_multiple_of(PHASOR_RESYNC) {
-            phasor_at(&self.params, self.time)
+        if let Some(time) = stopped {
+            // Stopped at a switch: re-anchor the time and the forcing phasor there.
+            self.time = time;
+            self.anchor_time = time;
+            self.anchor_steps = 0;
+            self.phasor = phasor_at(&self.params, time);
         } else {
-            self.transition.rotate(self.phasor)
-        };
+            self.anchor_steps += 1;
+            self.time = self.anchor_time + self.anchor_steps as f64 * dt;
+            self.phasor = if self.anchor_steps.is_multiple_of(PHASOR_RESYNC) {
+                phasor_at(&self.params, self.time)
+            } else {
+                self.transition.rotate(self.phasor)
+            };
+        }
         report.time = self.time;
         report.state = state;
         report.regime = regime;
@@ -259,6 +304,12 @@ impl Stepper {
     /// The regime at [`Stepper::time`].
     pub fn regime(&self) -> Regime {
         self.regime
+    }
+
+    /// The slip direction σ of the current contact (±1 while slipping under friction, 0 when
+    /// free, rolling or frictionless).
+    pub fn slip_direction(&self) -> f64 {
+        self.slip.sigma
     }
 
     /// The parameters in force.

@@ -138,6 +138,15 @@ pub enum StepperError {
         /// Its value.
         value: f64,
     },
+    /// A cap was reached under [`super::OnCap::Fail`]: the step would have needed more than
+    /// its bounded work (`max_substeps` contact sub-steps, or a switch search's caps). The
+    /// stepper is unchanged; a shorter step (or [`super::OnCap::Degrade`]) gets through.
+    BudgetExceeded {
+        /// The time at the start of the refused step.
+        time: f64,
+        /// Contact sub-steps taken before the cap.
+        substeps: u32,
+    },
     /// The step length is not finite, not in (0, [`super::MAX_STEP`]], or too small to advance
     /// the time.
     InvalidStep {
@@ -155,6 +164,10 @@ impl fmt::Display for StepperError {
             StepperError::InvalidConfig { what, value } => {
                 write!(f, "stepper configuration {what} = {value:e} is invalid")
             }
+            StepperError::BudgetExceeded { time, substeps } => write!(
+                f,
+                "step at time {time:e} exceeded its work budget ({substeps} contact sub-steps, or a switch search's cap): refused, the stepper is unchanged"
+            ),
             StepperError::InvalidStep { dt, time } => write!(
                 f,
                 "step dt = {dt:e} at time {time:e} is invalid: it must be finite, in (0, {:e}], and advance the time",

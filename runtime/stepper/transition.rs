@@ -8,6 +8,10 @@
 //! resonance, §11) evaluated at `dt` on unit inputs: the map is linear in (w, cos θ0, sin θ0), so
 //! its columns are its values at the unit vectors. No closed form is typed here, and the switch
 //! bound is the free segment's own (`analytic::free`).
+//!
+//! Under a constant input force u (`docs/MODEL.md` §15) free flight is free flight about the
+//! static deflection d: w(dt) − d = Φ·(w(0) − d) + G·phasor, so the map gains the constant
+//! b = d − Φ·d, recomputed (16 multiplications) when u changes; Φ and G do not depend on u.
 
 use super::search::local_curvature;
 use crate::analytic::free::{BasisBound, FreeConstants, FreeSegment};
@@ -34,15 +38,18 @@ pub struct FreeTransition {
     basis: BasisBound,
     /// (ε̂x, ε̂y).
     offset: (f64, f64),
+    /// b = d − Φ·d for the input force's static deflection d; `None` without input force.
+    input: Option<[f64; 4]>,
 }
 
 impl FreeTransition {
     /// The map over `dt` (> 0) for `params`, with their free constants.
     pub fn new(params: &Params, constants: &FreeConstants, dt: f64) -> Self {
         let (sd, cd) = math::sin_cos(params.speed_ratio * dt);
-        // The free step from start state `w` and start phasor (ct, st), offsets zero.
+        // The unforced free step from start state `w` and start phasor (ct, st), offsets zero.
+        let unforced = constants.with_input((0.0, 0.0));
         let map = |w: [f64; 4], phasor: (f64, f64)| -> [f64; 4] {
-            FreeSegment::with_phasor(constants, (0.0, 0.0), phasor, State::from_array(w))
+            FreeSegment::with_phasor(&unforced, (0.0, 0.0), phasor, State::from_array(w))
                 .point(dt)
                 .state
                 .to_array()
@@ -65,15 +72,34 @@ impl FreeTransition {
         for (row, (c, s)) in g.iter_mut().zip(gc.into_iter().zip(gs)) {
             *row = [c, s];
         }
-        FreeTransition {
+        let mut transition = FreeTransition {
             dt,
             phi,
             g,
             rotation: (cd, sd),
-            constants: *constants,
+            constants: unforced,
             basis: BasisBound::on(constants, 0.0, dt),
             offset: (params.offset_x, params.offset_y),
-        }
+            input: None,
+        };
+        transition.set_input(constants);
+        transition
+    }
+
+    /// Take the input force of `constants` (the same parameters otherwise): b = d − Φ·d for
+    /// its static deflection d, and the constants of the switch bound. Φ and G are kept.
+    pub fn set_input(&mut self, constants: &FreeConstants) {
+        let (dx, dy) = constants.deflection();
+        self.constants = *constants;
+        self.input = if (dx, dy) == (0.0, 0.0) {
+            None
+        } else {
+            let mut b = [dx, dy, 0.0, 0.0];
+            for (bi, row) in b.iter_mut().zip(&self.phi) {
+                *bi -= row[0] * dx + row[1] * dy;
+            }
+            Some(b)
+        };
     }
 
     /// The step length this map is for.
@@ -90,9 +116,18 @@ impl FreeTransition {
     }
 
     /// The free state one step after `w`, with forcing phasor `phasor` at the start:
-    /// Φ·w + G·phasor (24 multiplications, 20 additions).
+    /// Φ·w + G·phasor (24 multiplications, 20 additions), plus b under an input force.
     #[inline]
     pub fn apply(&self, w: &State, phasor: (f64, f64)) -> State {
+        let end = self.apply_unforced(w, phasor);
+        match self.input {
+            None => end,
+            Some(b) => State::new(end.x + b[0], end.y + b[1], end.vx + b[2], end.vy + b[3]),
+        }
+    }
+
+    #[inline]
+    fn apply_unforced(&self, w: &State, phasor: (f64, f64)) -> State {
         let a = w.to_array();
         let mut out = [0.0; 4];
         for (o, (row, g)) in out.iter_mut().zip(self.phi.iter().zip(&self.g)) {

@@ -15,6 +15,29 @@ pub(super) fn derive(m: &mut Model) {
     paper_modal_constants(m);
     homogeneous_start(m);
     homogeneous_eval(m);
+    input_contact_constant(m);
+}
+
+/// The constant response of the linearized contact equations to the input force u
+/// (`docs/MODEL.md` §15): Kl q = u. Added to the particular solution's constants c55, c66
+/// (superposition), it makes every contact closed form exact under a constant u; the remainder
+/// n(q) does not depend on u.
+fn input_contact_constant(m: &mut Model) {
+    let q = [m.var("qsx"), m.var("qsy")];
+    let (kl, _) = m.linearized_inputs();
+    let zero = m.graph.constant(0.0);
+    let stiffness = m.linear_stiffness_term(kl, [zero, zero], q);
+    let forcing = m.input_force();
+    let r = m.equations_of_motion(q, &Rates::new(), stiffness, forcing);
+    let c = m.solve(&r, &["qsx", "qsy"]);
+    m.add_formula(
+        "input_contact_constant",
+        "The constant response Kl⁻¹u of the linearized contact equations to a constant input force u, added to the particular constants c55, c66.",
+        "docs/MODEL.md §15, §5",
+        "constant ansatz substituted into q'' + 2νq' + Kl q = u, solved by Cramer's rule.",
+        "Position",
+        vec![("x", "x of Kl⁻¹u", c[0]), ("y", "y of Kl⁻¹u", c[1])],
+    );
 }
 
 /// Harmonic + constant ansatz in Kl q + Fd: c11 … c44 from cos θ / sin θ, c55, c66 from the

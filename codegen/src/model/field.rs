@@ -10,6 +10,7 @@ use super::{Model, Rates, Vec2};
 pub(super) fn derive(m: &mut Model) {
     contact_force(m);
     accelerations(m);
+    input_acceleration(m);
     contact_remainder(m);
     linear_acceleration(m);
     shifted_stiffness(m);
@@ -51,6 +52,23 @@ fn accelerations(m: &mut Model) {
         "Acceleration of free flight: q'' = F(cos θ, sin θ) − 2ν q' − q (in contact, minus `contact_force`).",
         "docs/MODEL.md §1",
         "the model's pieces: unbalance − damping − restoring.",
+        "Acceleration",
+        vec![("ax", "x''", a[0]), ("ay", "y''", a[1])],
+    );
+}
+
+/// The input force's share of q'' (`docs/MODEL.md` §15): the numerical fields add it to
+/// `free_acceleration` (and to the contact field) when an input force acts, so the
+/// frictionless formulas stay the bits they were.
+fn input_acceleration(m: &mut Model) {
+    let zero = m.graph.constant(0.0);
+    let forcing = m.input_force();
+    let a = m.acceleration([zero, zero], [zero, zero], forcing);
+    m.add_formula(
+        "input_acceleration",
+        "The acceleration the input force u adds to every regime's field: q'' += u.",
+        "docs/MODEL.md §15",
+        "the model's acceleration with the input force as its only piece.",
         "Acceleration",
         vec![("ax", "x''", a[0]), ("ay", "y''", a[1])],
     );

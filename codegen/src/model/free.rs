@@ -12,6 +12,27 @@ pub(super) fn derive(m: &mut Model) {
     free_forcing(m);
     free_start(m);
     free_forced_eval(m);
+    input_static_deflection(m);
+}
+
+/// The constant response of free flight to the input force u (`docs/MODEL.md` §15): a constant
+/// ansatz in the free equations with u as the only forcing. Free flight under a constant u is
+/// free flight about this point, so the runtime moves the origin there and keeps every free
+/// closed form (superposition: the equations are linear).
+fn input_static_deflection(m: &mut Model) {
+    let q = [m.var("qsx"), m.var("qsy")];
+    let stiffness = m.stiffness(q, None);
+    let forcing = m.input_force();
+    let r = m.equations_of_motion(q, &Rates::new(), stiffness, forcing);
+    let c = m.solve(&r, &["qsx", "qsy"]);
+    m.add_formula(
+        "input_static_deflection",
+        "The static deflection of free flight under a constant input force u: the constant solution of q'' + 2νq' + q = u.",
+        "docs/MODEL.md §15",
+        "constant ansatz substituted into the free equations of motion with the input force as the only forcing, solved for the constants.",
+        "Position",
+        vec![("x", "x of the static deflection", c[0]), ("y", "y of the static deflection", c[1])],
+    );
 }
 
 /// c11 … c44: the harmonic ansatz substituted into the free equations; coefficients of cos θ and

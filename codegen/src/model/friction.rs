@@ -97,12 +97,13 @@ fn slipping_remainder(m: &mut Model) {
     );
 }
 
-/// Every force but friction, G = F(cos θ, sin θ) − 2ν q' − q − K_s g, at a state.
+/// Every force but friction, G = F(cos θ, sin θ) + u − 2ν q' − q − K_s g, at a state (the
+/// input force u included: it changes λ and the rolling field, `docs/MODEL.md` §15).
 fn frictionless_contact_acceleration(m: &mut Model) -> (Vec2, Vec2, Vec2) {
     let q = position(m);
     let v = [m.var("vx"), m.var("vy")];
     let phasor = [m.var("ct"), m.var("st")];
-    let forcing = m.unbalance(phasor);
+    let forcing = m.forcing(phasor);
     let stiffness = m.stiffness(q, Some(None));
     (q, v, m.acceleration(v, stiffness, forcing))
 }

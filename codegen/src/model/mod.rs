@@ -3,8 +3,9 @@
 //! The equations of motion are a sum of named pieces, each written once below:
 //!
 //! ```text
-//! q'' = F (cos θ, sin θ)  − 2ν q'   − q          − K_s·g(q)        − μσN t      [contact only]
-//!       [`unbalance`]      [`damping`] [`restoring`] [`elastic_contact`] [`friction`] [slipping]
+//! q'' = F (cos θ, sin θ) + u          − 2ν q'   − q          − K_s·g(q)        − μσN t
+//!       [`unbalance`]        [`input_force`] [`damping`] [`restoring`] [`elastic_contact`] [`friction`]
+//!                                                                  [contact only]    [slipping]
 //! ```
 //!
 //! At a running speed that changes, the unbalance term is [`unbalance_at_varying_speed`],
@@ -19,8 +20,16 @@
 //! piece here, added to `contact_pieces` (friction) or to the forcing (an external input):
 //! every generated formula follows from it.
 //!
+//! The input force u (an active magnetic bearing, a controller, a static load such as gravity)
+//! is held constant over a step by every caller, so each regime's equations stay linear with a
+//! constant extra forcing and the closed forms stay exact: free flight moves its equilibrium to
+//! the static deflection ([`input_static_deflection`](free.rs)), linearized contact adds the
+//! constant response Kl⁻¹u (`input_contact_constant`), and the friction quantities and the
+//! rolling field see it in G, the sum of every force but friction.
+//!
 //! [`unbalance`]: Model::unbalance
 //! [`unbalance_at_varying_speed`]: Model::unbalance_at_varying_speed
+//! [`input_force`]: Model::input_force
 //! [`damping`]: Model::damping
 //! [`restoring`]: Model::restoring
 //! [`elastic_contact`]: Model::elastic_contact
@@ -299,6 +308,20 @@ impl Model {
             g.neg(acceleration)
         });
         (forcing, rates)
+    }
+
+    /// The external input force u = (u_x, u_y) (per unit mass): what a magnetic bearing or a
+    /// controller applies, or a static load. Constant over a step (`docs/MODEL.md` §15).
+    pub(crate) fn input_force(&mut self) -> Vec2 {
+        [self.var("ux"), self.var("uy")]
+    }
+
+    /// Every force on the right-hand side of the equations of motion that acts in all regimes:
+    /// the unbalance at phasor `phasor` plus the input force.
+    pub(crate) fn forcing(&mut self, phasor: Vec2) -> Vec2 {
+        let unbalance = self.unbalance(phasor);
+        let input = self.input_force();
+        [0, 1].map(|i| self.graph.add(unbalance[i], input[i]))
     }
 
     /// The stator stiffness matrix K_s.

@@ -42,6 +42,16 @@ pub const GROUPS: &[Group] = &[
                 "rho_r",
                 "ρ_R = R/δ, rotor radius over radial clearance",
             ),
+            (
+                "ux",
+                "force_x",
+                "u_x, external input force (per unit mass), x: constant over a step",
+            ),
+            (
+                "uy",
+                "force_y",
+                "u_y, external input force (per unit mass), y: constant over a step",
+            ),
         ],
     },
     Group {
@@ -355,6 +365,14 @@ pub const INTERNAL: &[(&str, &str)] = &[
     (
         "se",
         "sin ηs, the forcing rotation over a free segment (coefficients taken)",
+    ),
+    (
+        "qsx",
+        "x of the unknown constant response to the input force",
+    ),
+    (
+        "qsy",
+        "y of the unknown constant response to the input force",
     ),
     ("c1", "c1, unknown of the paper's modal constants"),
     ("c2", "c2, unknown of the paper's modal constants"),

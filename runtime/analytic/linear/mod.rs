@@ -95,6 +95,12 @@ impl Linearization {
             return Err(Singular);
         }
         let mut particular = coef::contact_particular(&model, &kl);
+        if model.force_x != 0.0 || model.force_y != 0.0 {
+            // A constant input force adds the constant response Kl⁻¹u (`docs/MODEL.md` §15).
+            let q = coef::input_contact_constant(&model, &kl);
+            particular.c55 += q.x;
+            particular.c66 += q.y;
+        }
         let c = &particular;
         if [c.c55, c.c66, modes.disc, modes.omega_sq_mean]
             .iter()

@@ -6,8 +6,9 @@ use super::Linearization;
 use crate::analytic::segment::Bounds;
 use crate::analytic::series::{self, Coefficients};
 use crate::coefficients::{
-    self as coef, ContactBasis, ContactModes, ContactParticular, Force, HomogeneousStart,
-    LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular, Position, Velocity,
+    self as coef, Acceleration, ContactBasis, ContactModes, ContactParticular, Force,
+    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
+    Position, Velocity,
 };
 use crate::math;
 use crate::params::State;
@@ -115,7 +116,8 @@ impl LinearSegment {
 
     /// The acceleration q″ at local time `s` of the segment whose state there is `state`: the
     /// linearized equations q″ = −Fd + F(cos θ, sin θ) + a(s) − 2ν q′ − Kl q (generated
-    /// `linear_acceleration`, with the unbalance from the generated free acceleration at rest).
+    /// `linear_acceleration`, with the unbalance from the generated free acceleration at rest and
+    /// the input force).
     pub fn acceleration(&self, s: f64, state: &State) -> (f64, f64) {
         let l = &self.lin;
         let (ct, st) = l.phasor(s);
@@ -125,6 +127,17 @@ impl LinearSegment {
             &Velocity::default(),
             &Phasor { ct, st },
         );
+        // A constant input force acts on top (`docs/MODEL.md` §15; generated
+        // `input_acceleration`).
+        let unbalance = if l.model.force_x == 0.0 && l.model.force_y == 0.0 {
+            unbalance
+        } else {
+            let u = coef::input_acceleration(&l.model);
+            Acceleration {
+                ax: unbalance.ax + u.ax,
+                ay: unbalance.ay + u.ay,
+            }
+        };
         let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
         let load = Force {
             fx: unbalance.ax - l.kl.fd1 + a0x + s * (a1x + s * (a2x + s * a3x)),
