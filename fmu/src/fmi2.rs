@@ -1,0 +1,529 @@
+//! The FMI 2.0 co-simulation interface over [`crate::model::Model`]: the functions of
+//! `fmi2Functions.h`, each checking its arguments and the instance's phase, none panicking
+//! across the boundary, none allocating after `fmi2Instantiate` except `fmi2GetFMUstate` (which
+//! returns a new state object, as FMI 2.0 has it).
+
+use core::ffi::{CStr, c_char, c_int, c_void};
+
+use crate::instance::{
+    Fmi2Logger, Instance, Logger, Phase, slice, slice_mut, status, with_instance,
+};
+use crate::message::Message;
+use crate::model::{Model, Stepped};
+use crate::variables::Kind;
+use crate::{msg, state};
+
+type Component = *mut c_void;
+type Status = c_int;
+
+/// `fmi2CallbackFunctions`.
+#[repr(C)]
+pub struct Callbacks {
+    logger: Option<Fmi2Logger>,
+    allocate_memory: Option<unsafe extern "C" fn(usize, usize) -> *mut c_void>,
+    free_memory: Option<unsafe extern "C" fn(*mut c_void)>,
+    step_finished: Option<unsafe extern "C" fn(*mut c_void, c_int)>,
+    component_environment: *mut c_void,
+}
+
+const CO_SIMULATION: c_int = 1;
+
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi2GetVersion() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+/// # Safety
+/// FMI 2.0's contract for `fmi2Instantiate`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Instantiate(
+    name: *const c_char,
+    kind: c_int,
+    guid: *const c_char,
+    _resources: *const c_char,
+    functions: *const Callbacks,
+    _visible: c_int,
+    logging_on: c_int,
+) -> Component {
+    let result = std::panic::catch_unwind(|| {
+        // SAFETY: FMI's contract: null or valid.
+        let callbacks = unsafe { functions.as_ref() };
+        let logger = Logger::Fmi2(
+            callbacks.and_then(|c| c.logger),
+            callbacks.map_or(core::ptr::null_mut(), |c| c.component_environment),
+        );
+        // SAFETY: FMI's contract: a NUL-terminated string or null.
+        let name_bytes = if name.is_null() {
+            &b"rotor_rub"[..]
+        } else {
+            unsafe { CStr::from_ptr(name) }.to_bytes()
+        };
+        let instance = Instance::new(name_bytes, logger, logging_on != 0);
+        let expected = crate::description::guid();
+        // SAFETY: as above.
+        let given = (!guid.is_null()).then(|| unsafe { CStr::from_ptr(guid) });
+        let problem = if kind != CO_SIMULATION {
+            Some(msg!(
+                "this FMU supports co-simulation only (fmuType = {kind})"
+            ))
+        } else if given.and_then(|g| g.to_str().ok()) != Some(expected.as_str()) {
+            Some(msg!("GUID {:?} does not match the FMU's {expected}", given))
+        } else {
+            None
+        };
+        match problem {
+            Some(m) => {
+                instance.log(status::ERROR, &m);
+                core::ptr::null_mut()
+            }
+            None => Box::into_raw(Box::new(instance)).cast::<c_void>(),
+        }
+    });
+    result.unwrap_or(core::ptr::null_mut())
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
+    if !c.is_null() {
+        // SAFETY: created by Box::into_raw in fmi2Instantiate.
+        drop(unsafe { Box::from_raw(c.cast::<Instance>()) });
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetDebugLogging(
+    c: Component,
+    logging_on: c_int,
+    _n: usize,
+    _categories: *const *const c_char,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.logging_on = logging_on != 0;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: Component,
+    tolerance_defined: c_int,
+    tolerance: f64,
+    start_time: f64,
+    _stop_time_defined: c_int,
+    _stop_time: f64,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.expect("fmi2SetupExperiment", &[Phase::Instantiated])?;
+            if !start_time.is_finite() {
+                return Err(msg!("start time {start_time} is not finite"));
+            }
+            if tolerance_defined != 0 {
+                i.model.set(201, tolerance)?;
+            }
+            i.start_time = start_time;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.expect("fmi2EnterInitializationMode", &[Phase::Instantiated])?;
+            i.phase = Phase::Initialization;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.expect("fmi2ExitInitializationMode", &[Phase::Initialization])?;
+            i.model.initialize(i.start_time)?;
+            i.last_time = i.start_time;
+            i.phase = Phase::Step;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Terminate(c: Component) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.phase = Phase::Terminated;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.model = Model::default();
+            i.phase = Phase::Instantiated;
+            Ok(status::OK)
+        })
+    }
+}
+
+macro_rules! getter {
+    ($name:ident, $t:ty, $kind:expr, $conv:expr) => {
+        /// # Safety
+        /// FMI 2.0's contract: arrays of `n` elements.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            c: Component,
+            vr: *const u32,
+            n: usize,
+            values: *mut $t,
+        ) -> Status {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(c, |i| {
+                    let (vr, out) = (slice(vr, n)?, slice_mut(values, n)?);
+                    i.get_all(vr, $kind, out, $conv)?;
+                    Ok(status::OK)
+                })
+            }
+        }
+    };
+}
+
+macro_rules! setter {
+    ($name:ident, $t:ty, $kind:expr, $conv:expr) => {
+        /// # Safety
+        /// FMI 2.0's contract: arrays of `n` elements.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            c: Component,
+            vr: *const u32,
+            n: usize,
+            values: *const $t,
+        ) -> Status {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(c, |i| {
+                    let (vr, v) = (slice(vr, n)?, slice(values, n)?);
+                    i.set_all(vr, $kind, v.iter().map($conv))?;
+                    Ok(status::OK)
+                })
+            }
+        }
+    };
+}
+
+getter!(fmi2GetReal, f64, Kind::Float, |v| v);
+getter!(fmi2GetBoolean, c_int, Kind::Bool, |v| c_int::from(v != 0.0));
+setter!(fmi2SetReal, f64, Kind::Float, |v: &f64| *v);
+setter!(fmi2SetBoolean, c_int, Kind::Bool, |v: &c_int| f64::from(*v));
+
+/// # Safety
+/// FMI 2.0's contract: arrays of `n` elements.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetInteger(
+    c: Component,
+    vr: *const u32,
+    n: usize,
+    values: *mut c_int,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            let (vrs, out) = (slice(vr, n)?, slice_mut(values, n)?);
+            for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
+                let kind = crate::variables::find(r).map(|v| v.kind);
+                if !matches!(kind, Some(Kind::Int32 | Kind::Int64)) {
+                    Instance::check_kind(r, Kind::Int32)?;
+                }
+                *slot = i.model.get(r)?.min(f64::from(c_int::MAX)) as c_int;
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// FMI 2.0's contract: arrays of `n` elements.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetInteger(
+    c: Component,
+    vr: *const u32,
+    n: usize,
+    _v: *const c_int,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        no_variables(
+            c,
+            "fmi2SetInteger (every Integer variable is an output)",
+            vr,
+            n,
+        )
+    }
+}
+
+/// # Safety
+/// FMI 2.0's contract: arrays of `n` elements.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetString(
+    c: Component,
+    vr: *const u32,
+    n: usize,
+    _v: *mut *const c_char,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe { no_variables(c, "fmi2GetString (the FMU has no String variable)", vr, n) }
+}
+
+/// # Safety
+/// FMI 2.0's contract: arrays of `n` elements.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetString(
+    c: Component,
+    vr: *const u32,
+    n: usize,
+    _v: *const *const c_char,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe { no_variables(c, "fmi2SetString (the FMU has no String variable)", vr, n) }
+}
+
+/// OK for an empty list, else an error naming the first value reference.
+unsafe fn no_variables(c: Component, what: &str, vr: *const u32, n: usize) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |_| match slice(vr, n)?.first() {
+            None => Ok(status::OK),
+            Some(r) => Err(msg!("{what}: value reference {r} cannot be used here")),
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2DoStep(c: Component, t: f64, h: f64, _no_set_prior: c_int) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            i.expect("fmi2DoStep", &[Phase::Step])?;
+            match i.model.do_step(t, h, false)? {
+                Stepped::Completed | Stepped::EarlyReturn(_) => {}
+            }
+            i.last_time = t + h;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |_| {
+            Err(msg!("fmi2CancelStep: steps complete synchronously"))
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU; `state` valid for a read and a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut *mut c_void) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            let slot = state
+                .as_mut()
+                .ok_or_else(|| msg!("fmi2GetFMUstate: null state pointer"))?;
+            match (*slot).cast::<Model>().as_mut() {
+                Some(saved) => *saved = i.model,
+                None => *slot = Box::into_raw(Box::new(i.model)).cast(),
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU; `state` null or a state of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: *mut c_void) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            let saved = state
+                .cast::<Model>()
+                .as_ref()
+                .ok_or_else(|| msg!("fmi2SetFMUstate: null state"))?;
+            i.model = *saved;
+            if let Some(s) = &i.model.stepper {
+                i.last_time = s.time();
+                i.phase = Phase::Step;
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU; `state` valid for a read and a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut *mut c_void) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |_| {
+            if let Some(slot) = state.as_mut()
+                && !slot.is_null()
+            {
+                drop(Box::from_raw((*slot).cast::<Model>()));
+                *slot = core::ptr::null_mut();
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU; `size` valid for a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+    c: Component,
+    _state: *mut c_void,
+    size: *mut usize,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |_| {
+            *size.as_mut().ok_or_else(|| msg!("null size pointer"))? = state::BYTES;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU; `state` a state of it; `bytes` valid for `size` writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2SerializeFMUstate(
+    c: Component,
+    saved: *mut c_void,
+    bytes: *mut c_char,
+    size: usize,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |_| {
+            let model = saved
+                .cast::<Model>()
+                .as_ref()
+                .ok_or_else(|| msg!("null state"))?;
+            let out = slice_mut(bytes.cast::<u8>(), size)?;
+            let data = state::serialize(model);
+            out.get_mut(..state::BYTES)
+                .ok_or_else(|| {
+                    msg!(
+                        "buffer of {size} bytes is too small: {} needed",
+                        state::BYTES
+                    )
+                })?
+                .copy_from_slice(&data);
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `c` is null or an instance of this FMU; `bytes` valid for `size` reads; `state` for a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+    c: Component,
+    bytes: *const c_char,
+    size: usize,
+    saved: *mut *mut c_void,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |_| {
+            let model = state::deserialize(slice(bytes.cast::<u8>(), size)?)?;
+            let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
+            *slot = Box::into_raw(Box::new(model)).cast();
+            Ok(status::OK)
+        })
+    }
+}
+
+macro_rules! unsupported {
+    ($name:ident ( $($arg:ident : $t:ty),* ), $why:literal) => {
+        /// # Safety
+        /// `c` is null or an instance of this FMU.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(c: Component, $($arg: $t),*) -> Status {
+            $(let _ = $arg;)*
+            // SAFETY: caller's contract.
+            unsafe { with_instance(c, |_| Err(Message::new(format_args!(concat!(stringify!($name), ": ", $why))))) }
+        }
+    };
+}
+
+unsupported!(fmi2GetDirectionalDerivative(a: *const u32, b: usize, d: *const u32, e: usize, f: *const f64, g: *mut f64), "not provided (providesDirectionalDerivative = false)");
+unsupported!(fmi2SetRealInputDerivatives(a: *const u32, b: usize, d: *const c_int, e: *const f64), "inputs are held constant over a step (canInterpolateInputs = false)");
+unsupported!(fmi2GetRealOutputDerivatives(a: *const u32, b: usize, d: *const c_int, e: *mut f64), "not provided (maxOutputDerivativeOrder = 0)");
+unsupported!(fmi2GetStatus(a: c_int, b: *mut c_int), "steps complete synchronously: no status to ask for");
+unsupported!(fmi2GetIntegerStatus(a: c_int, b: *mut c_int), "no Integer status");
+unsupported!(fmi2GetBooleanStatus(a: c_int, b: *mut c_int), "no Boolean status");
+unsupported!(fmi2GetStringStatus(a: c_int, b: *mut *const c_char), "no String status");
+
+/// fmi2LastSuccessfulTime (kind 2) only.
+///
+/// # Safety
+/// `c` is null or an instance of this FMU; `value` valid for a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mut f64) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(c, |i| {
+            if kind != 2 {
+                return Err(msg!(
+                    "fmi2GetRealStatus: only fmi2LastSuccessfulTime (2) is provided, not {kind}"
+                ));
+            }
+            *value.as_mut().ok_or_else(|| msg!("null value pointer"))? = i.last_time;
+            Ok(status::OK)
+        })
+    }
+}

@@ -1,0 +1,443 @@
+//! The FMI 3.0 co-simulation interface over [`crate::model::Model`]: instantiation with early
+//! return, initialization, Float64/Int64/Int32/Boolean access, `fmi3DoStep` (returning at a
+//! contact switch with its time when early return is allowed), FMU state get/set/serialize.
+//! The functions FMI 3.0 requires but this FMU does not provide (model exchange, scheduled
+//! execution, clocks, other types) are in `fmi3_stubs.rs`: they log why and return an error.
+
+use core::ffi::{CStr, c_char, c_void};
+
+use crate::instance::{
+    Fmi3Logger, Instance, Logger, Phase, slice, slice_mut, status, with_instance,
+};
+use crate::model::{Model, Stepped};
+use crate::variables::Kind;
+use crate::{msg, state};
+
+type Inst = *mut c_void;
+type Status = i32;
+
+#[unsafe(no_mangle)]
+pub extern "C" fn fmi3GetVersion() -> *const c_char {
+    c"3.0".as_ptr()
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3SetDebugLogging(
+    i: Inst,
+    on: bool,
+    _n: usize,
+    _c: *const *const c_char,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.logging_on = on;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// FMI 3.0's contract for `fmi3InstantiateCoSimulation`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
+    name: *const c_char,
+    token: *const c_char,
+    _resources: *const c_char,
+    _visible: bool,
+    logging_on: bool,
+    event_mode_used: bool,
+    early_return_allowed: bool,
+    _required: *const u32,
+    _n_required: usize,
+    environment: *mut c_void,
+    log: Option<Fmi3Logger>,
+    _intermediate_update: *const c_void,
+) -> Inst {
+    let result = std::panic::catch_unwind(|| {
+        // SAFETY: FMI's contract: NUL-terminated strings or null.
+        let name_bytes = if name.is_null() {
+            &b"rotor_rub"[..]
+        } else {
+            unsafe { CStr::from_ptr(name) }.to_bytes()
+        };
+        let mut instance = Instance::new(name_bytes, Logger::Fmi3(log, environment), logging_on);
+        instance.early_return = early_return_allowed;
+        let expected = crate::description::guid();
+        // SAFETY: as above.
+        let given = (!token.is_null()).then(|| unsafe { CStr::from_ptr(token) });
+        let problem = if event_mode_used {
+            Some(msg!(
+                "event mode is not provided (hasEventMode = false): instantiate with eventModeUsed = false"
+            ))
+        } else if given.and_then(|g| g.to_str().ok()) != Some(expected.as_str()) {
+            Some(msg!(
+                "instantiation token {:?} does not match the FMU's {expected}",
+                given
+            ))
+        } else {
+            None
+        };
+        match problem {
+            Some(m) => {
+                instance.log(status::ERROR, &m);
+                core::ptr::null_mut()
+            }
+            None => Box::into_raw(Box::new(instance)).cast::<c_void>(),
+        }
+    });
+    result.unwrap_or(core::ptr::null_mut())
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3FreeInstance(i: Inst) {
+    if !i.is_null() {
+        // SAFETY: created by Box::into_raw at instantiation.
+        drop(unsafe { Box::from_raw(i.cast::<Instance>()) });
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3EnterInitializationMode(
+    i: Inst,
+    tolerance_defined: bool,
+    tolerance: f64,
+    start_time: f64,
+    _stop_time_defined: bool,
+    _stop_time: f64,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.expect("fmi3EnterInitializationMode", &[Phase::Instantiated])?;
+            if !start_time.is_finite() {
+                return Err(msg!("start time {start_time} is not finite"));
+            }
+            if tolerance_defined {
+                i.model.set(201, tolerance)?;
+            }
+            i.start_time = start_time;
+            i.phase = Phase::Initialization;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3ExitInitializationMode(i: Inst) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.expect("fmi3ExitInitializationMode", &[Phase::Initialization])?;
+            i.model.initialize(i.start_time)?;
+            i.last_time = i.start_time;
+            i.phase = Phase::Step;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3EnterStepMode(i: Inst) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.expect("fmi3EnterStepMode", &[Phase::Step])?;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3Terminate(i: Inst) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.phase = Phase::Terminated;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3Reset(i: Inst) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.model = Model::default();
+            i.phase = Phase::Instantiated;
+            Ok(status::OK)
+        })
+    }
+}
+
+macro_rules! access {
+    ($get:ident, $set:ident, $t:ty, $kind:expr, $to:expr, $from:expr) => {
+        /// # Safety
+        /// FMI 3.0's contract: `nvr` value references, `n` values.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $get(
+            i: Inst,
+            vr: *const u32,
+            nvr: usize,
+            values: *mut $t,
+            n: usize,
+        ) -> Status {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |i| {
+                    if n != nvr {
+                        return Err(msg!("{} values for {} scalar variables", n, nvr));
+                    }
+                    let (vr, out) = (slice(vr, nvr)?, slice_mut(values, n)?);
+                    i.get_all(vr, $kind, out, $to)?;
+                    Ok(status::OK)
+                })
+            }
+        }
+
+        /// # Safety
+        /// FMI 3.0's contract: `nvr` value references, `n` values.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $set(
+            i: Inst,
+            vr: *const u32,
+            nvr: usize,
+            values: *const $t,
+            n: usize,
+        ) -> Status {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |i| {
+                    if n != nvr {
+                        return Err(msg!("{} values for {} scalar variables", n, nvr));
+                    }
+                    let (vr, v) = (slice(vr, nvr)?, slice(values, n)?);
+                    i.set_all(vr, $kind, v.iter().map($from))?;
+                    Ok(status::OK)
+                })
+            }
+        }
+    };
+}
+
+access!(
+    fmi3GetFloat64,
+    fmi3SetFloat64,
+    f64,
+    Kind::Float,
+    |v| v,
+    |v: &f64| *v
+);
+access!(
+    fmi3GetInt64,
+    fmi3SetInt64,
+    i64,
+    Kind::Int64,
+    |v| v as i64,
+    |v: &i64| *v as f64
+);
+access!(
+    fmi3GetInt32,
+    fmi3SetInt32,
+    i32,
+    Kind::Int32,
+    |v| v as i32,
+    |v: &i32| f64::from(*v)
+);
+// fmi3Boolean is C's bool; read as a byte so that any non-zero value is true.
+access!(
+    fmi3GetBoolean,
+    fmi3SetBoolean,
+    u8,
+    Kind::Bool,
+    |v| u8::from(v != 0.0),
+    |v: &u8| f64::from(u8::from(*v != 0))
+);
+
+/// # Safety
+/// `i` is null or an instance of this FMU; the outputs valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3DoStep(
+    i: Inst,
+    t: f64,
+    h: f64,
+    _no_set_prior: bool,
+    event_handling_needed: *mut bool,
+    terminate: *mut bool,
+    early_return: *mut bool,
+    last_successful_time: *mut f64,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            i.expect("fmi3DoStep", &[Phase::Step])?;
+            let stepped = i.model.do_step(t, h, i.early_return);
+            let (early, time) = match stepped {
+                Ok(Stepped::Completed) => (false, t + h),
+                Ok(Stepped::EarlyReturn(at)) => (true, at),
+                Err(m) => {
+                    let at = i.model.stepper.as_ref().map_or(t, |s| s.time());
+                    write(last_successful_time, at);
+                    write(early_return, false);
+                    write(event_handling_needed, false);
+                    write(terminate, false);
+                    return Err(m);
+                }
+            };
+            i.last_time = time;
+            write(event_handling_needed, false);
+            write(terminate, false);
+            write(early_return, early);
+            write(last_successful_time, time);
+            Ok(status::OK)
+        })
+    }
+}
+
+/// Write an output argument (null skipped).
+unsafe fn write<T>(p: *mut T, v: T) {
+    if !p.is_null() {
+        // SAFETY: caller's contract.
+        unsafe { p.write(v) }
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU; `state` valid for a read and a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3GetFMUState(i: Inst, state: *mut *mut c_void) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            let slot = state
+                .as_mut()
+                .ok_or_else(|| msg!("fmi3GetFMUState: null state pointer"))?;
+            match (*slot).cast::<Model>().as_mut() {
+                Some(saved) => *saved = i.model,
+                None => *slot = Box::into_raw(Box::new(i.model)).cast(),
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU; `state` null or a state of this FMU.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3SetFMUState(i: Inst, state: *mut c_void) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |i| {
+            let saved = state
+                .cast::<Model>()
+                .as_ref()
+                .ok_or_else(|| msg!("fmi3SetFMUState: null state"))?;
+            i.model = *saved;
+            if let Some(s) = &i.model.stepper {
+                i.last_time = s.time();
+                i.phase = Phase::Step;
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU; `state` valid for a read and a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3FreeFMUState(i: Inst, state: *mut *mut c_void) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |_| {
+            if let Some(slot) = state.as_mut()
+                && !slot.is_null()
+            {
+                drop(Box::from_raw((*slot).cast::<Model>()));
+                *slot = core::ptr::null_mut();
+            }
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU; `size` valid for a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
+    i: Inst,
+    _s: *mut c_void,
+    size: *mut usize,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |_| {
+            *size.as_mut().ok_or_else(|| msg!("null size pointer"))? = state::BYTES;
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU; `saved` a state of it; `bytes` valid for `size` writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3SerializeFMUState(
+    i: Inst,
+    saved: *mut c_void,
+    bytes: *mut u8,
+    size: usize,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |_| {
+            let model = saved
+                .cast::<Model>()
+                .as_ref()
+                .ok_or_else(|| msg!("null state"))?;
+            let out = slice_mut(bytes, size)?;
+            out.get_mut(..state::BYTES)
+                .ok_or_else(|| {
+                    msg!(
+                        "buffer of {size} bytes is too small: {} needed",
+                        state::BYTES
+                    )
+                })?
+                .copy_from_slice(&state::serialize(model));
+            Ok(status::OK)
+        })
+    }
+}
+
+/// # Safety
+/// `i` is null or an instance of this FMU; `bytes` valid for `size` reads; `saved` for a write.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn fmi3DeserializeFMUState(
+    i: Inst,
+    bytes: *const u8,
+    size: usize,
+    saved: *mut *mut c_void,
+) -> Status {
+    // SAFETY: caller's contract.
+    unsafe {
+        with_instance(i, |_| {
+            let model = state::deserialize(slice(bytes, size)?)?;
+            let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
+            *slot = Box::into_raw(Box::new(model)).cast();
+            Ok(status::OK)
+        })
+    }
+}

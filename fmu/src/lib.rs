@@ -1,0 +1,42 @@
+//! The rotor–stator model as an FMI co-simulation FMU (FMI 3.0 and FMI 2.0 from one binary),
+//! for hardware-in-the-loop rigs and system simulators: a thin exported layer over
+//! `rotor_rub::Stepper`.
+//!
+//! * Outputs x, y, vx, vy, in_contact, normal_force, contact_count, slip_regime; inputs fx, fy
+//!   (an external force held constant over a communication step) and speed_ratio (phase kept
+//!   continuous); every entry of the parameter table as a parameter (`variables.rs`).
+//! * A communication step is covered by internal steps of at most `internal_step`, shortened
+//!   where the contact sub-steps' error estimate exceeds `tolerance` (`model.rs`), so accuracy
+//!   does not depend on the importer's step; every contact switch is located exactly; FMI 3.0
+//!   with early return allowed returns at the first switch with its time.
+//! * FMU state get/set/serialize (`state.rs`); no allocation in `DoStep`; every error is an FMI
+//!   error status with a logged message naming the value and its valid range, never a panic
+//!   across the boundary (`instance.rs`).
+//! * `description.rs` writes `modelDescription.xml` for either version from the same table;
+//!   `cargo xtask fmu` packs the binary and the descriptions into two `.fmu` archives.
+//!
+//! The exported function names are FMI's (`fmi2DoStep`, `fmi3DoStep`, …).
+#![allow(non_snake_case)]
+// Errors carry their message in a fixed buffer (`message::Message`, 400 bytes) so that no error
+// path allocates; boxing it, as clippy suggests for large error variants, would.
+#![allow(clippy::result_large_err)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![cfg_attr(
+    not(test),
+    deny(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing
+    )
+)]
+
+pub mod description;
+pub mod fmi2;
+pub mod fmi3;
+pub mod fmi3_stubs;
+pub mod instance;
+pub mod message;
+pub mod model;
+pub mod state;
+pub mod variables;

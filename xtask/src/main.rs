@@ -1,0 +1,133 @@
+//! Project tasks. `cargo xtask fmu` builds the FMI co-simulation FMUs of the model:
+//!
+//! ```text
+//! cargo xtask fmu            # release build → target/fmu/rotor_rub_fmi3.fmu, rotor_rub_fmi2.fmu
+//! cargo xtask fmu --debug    # the same from a debug build (faster to build, slower to run)
+//! ```
+//!
+//! Each archive holds `modelDescription.xml` (written by `rotor_rub_fmu::description` from the
+//! variable table, itself read off the parameter table) and the one binary that serves both
+//! versions (`rotor-rub-fmu`'s cdylib), under the host platform's FMI folder name
+//! (`binaries/x86_64-linux/` for FMI 3.0, `binaries/linux64/` for FMI 2.0 on x86_64 Linux).
+//! Other hosts get their own folder names; a host without an FMI 2.0 name gets the FMI 3.0 FMU
+//! only. The archive is a plain (stored) zip file written here, so the task needs no crate
+//! beyond the workspace.
+
+mod zip;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use rotor_rub_fmu::description::{MODEL_IDENTIFIER, Version, model_description};
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.first().map(String::as_str) {
+        Some("fmu") => match fmu(args.iter().any(|a| a == "--debug")) {
+            Ok(paths) => {
+                for p in paths {
+                    println!("{}", p.display());
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("cargo xtask fmu: {e}");
+                ExitCode::FAILURE
+            }
+        },
+        _ => {
+            eprintln!(
+                "usage: cargo xtask fmu [--debug]   (builds target/fmu/rotor_rub_fmi3.fmu and rotor_rub_fmi2.fmu)"
+            );
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The host's FMI platform folder names (FMI 2.0, FMI 3.0) and the shared library's extension.
+fn platform() -> Result<(Option<&'static str>, &'static str, &'static str), String> {
+    let (os, arch) = (std::env::consts::OS, std::env::consts::ARCH);
+    let ext = match os {
+        "linux" => "so",
+        "macos" => "dylib",
+        "windows" => "dll",
+        other => return Err(format!("no FMI platform name for the OS {other}")),
+    };
+    let fmi3 = match (arch, os) {
+        ("x86_64", "linux") => "x86_64-linux",
+        ("aarch64", "linux") => "aarch64-linux",
+        ("x86_64", "macos") => "x86_64-darwin",
+        ("aarch64", "macos") => "aarch64-darwin",
+        ("x86_64", "windows") => "x86_64-windows",
+        ("x86", "windows") => "x86-windows",
+        (a, o) => return Err(format!("no FMI 3.0 platform name for {a}-{o}")),
+    };
+    let fmi2 = match (arch, os) {
+        ("x86_64", "linux") => Some("linux64"),
+        ("x86_64", "macos") => Some("darwin64"),
+        ("x86_64", "windows") => Some("win64"),
+        ("x86", "windows") => Some("win32"),
+        _ => None,
+    };
+    Ok((fmi2, fmi3, ext))
+}
+
+fn fmu(debug: bool) -> Result<Vec<PathBuf>, String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .ok_or("no workspace root")?
+        .to_path_buf();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut build = Command::new(cargo);
+    build
+        .current_dir(&root)
+        .args(["build", "-p", "rotor-rub-fmu", "--lib"]);
+    if !debug {
+        build.arg("--release");
+    }
+    let status = build
+        .status()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !status.success() {
+        return Err(format!("cargo build failed ({status})"));
+    }
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target"));
+    let (fmi2, fmi3, ext) = platform()?;
+    let lib_name = match ext {
+        "dll" => format!("{MODEL_IDENTIFIER}.dll"),
+        _ => format!("lib{MODEL_IDENTIFIER}.{ext}"),
+    };
+    let profile = if debug { "debug" } else { "release" };
+    let lib = target.join(profile).join(&lib_name);
+    let binary = std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?;
+    let out_dir = target.join("fmu");
+    std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
+    let mut written = Vec::new();
+    let versions = [
+        (Version::Fmi3, Some(fmi3), "rotor_rub_fmi3.fmu"),
+        (Version::Fmi2, fmi2, "rotor_rub_fmi2.fmu"),
+    ];
+    for (version, platform, file) in versions {
+        let Some(platform) = platform else {
+            eprintln!("no FMI 2.0 platform name for this host: {file} not built");
+            continue;
+        };
+        let description = model_description(version);
+        let entries = [
+            ("modelDescription.xml".to_owned(), description.into_bytes()),
+            (
+                format!("binaries/{platform}/{MODEL_IDENTIFIER}.{ext}"),
+                binary.clone(),
+            ),
+        ];
+        let path = out_dir.join(file);
+        let tmp = out_dir.join(format!(".{file}.tmp"));
+        std::fs::write(&tmp, zip::stored(&entries))
+            .map_err(|e| format!("{}: {e}", tmp.display()))?;
+        std::fs::rename(&tmp, &path).map_err(|e| format!("{}: {e}", path.display()))?;
+        written.push(path);
+    }
+    Ok(written)
+}
