@@ -13,6 +13,8 @@
 //!    the mean cost per step of each; then RK4 at the step that costs the same per time unit as
 //!    the stepper.
 //!
+//! `STEPPER_BENCH=timing cargo bench --bench stepper` stops after the timing (1.).
+//!
 //! Criterion then measures single steps from fixed states (free, free with entry, contact,
 //! contact with exit), a parameter change (`set_params`, which recomputes Φ) and one RK4 step.
 
@@ -269,11 +271,53 @@ fn samples(dt: f64, scheme: ContactScheme) -> [Option<Stepper>; 4] {
     found
 }
 
+/// STEPPER_BENCH=profile-<kind>: re-run every step of one kind (index into [`KINDS`]) from its
+/// saved start, many times, for a sampling profiler (`perf record`).
+fn profile(kind_index: usize) {
+    let dt = 1e-3;
+    let problem = Preset::Paper.problem();
+    let mut s = Stepper::new(&problem, config(dt, ContactScheme::Exprb43)).expect("stepper");
+    let mut starts = Vec::new();
+    for _ in 0..200_000 {
+        let before = s;
+        let r = s.step(dt).expect("step");
+        if kind(before.regime(), r.events.total()) == kind_index {
+            starts.push(before);
+        }
+    }
+    let t = Instant::now();
+    let mut n = 0usize;
+    while t.elapsed() < Duration::from_secs(10) {
+        for start in &starts {
+            let mut s = *start;
+            black_box(s.step(black_box(dt)).expect("step"));
+            n += 1;
+        }
+    }
+    println!(
+        "{} steps of kind {}: {:.0} ns each",
+        n,
+        KINDS[kind_index],
+        t.elapsed().as_secs_f64() / n as f64 * 1e9
+    );
+}
+
 fn main() {
+    if let Ok(mode) = std::env::var("STEPPER_BENCH")
+        && let Some(k) = mode.strip_prefix("profile-")
+    {
+        profile(k.parse().expect("kind index"));
+        return;
+    }
     for dt in [1e-3, 1e-2] {
         timing_report(dt, ContactScheme::Exprb43);
     }
     timing_report(1e-3, ContactScheme::Exprb2);
+    // STEPPER_BENCH=timing: the per-step timing only (the worst step per kind), no accuracy
+    // report and no criterion run.
+    if std::env::var("STEPPER_BENCH").is_ok_and(|v| v == "timing") {
+        return;
+    }
     accuracy_report();
     let mut c = Criterion::default()
         .warm_up_time(Duration::from_secs(1))

@@ -193,3 +193,55 @@ def test_bad_values_are_refused_with_a_message_naming_them() -> None:
     finally:
         s.freeInstance()
         shutil.rmtree(unzipped, ignore_errors=True)
+
+
+def test_accuracy_does_not_depend_on_the_communication_step() -> None:
+    """Communication steps of 1e-3, 1e-2 and 0.1 are covered by the same internal steps of
+    1e-3: the outputs at common times agree to rounding."""
+    stop = 10.0
+    runs = {
+        h: simulate_fmu(str(FMUS["3.0"]), stop_time=stop, step_size=h, output_interval=0.1,
+                        output=["x", "y", "vx", "vy", "contact_count"])
+        for h in (1e-3, 1e-2, 0.1)
+    }
+    base = np.column_stack([runs[1e-3][n] for n in ["x", "y", "vx", "vy"]])
+    for h, r in runs.items():
+        states = np.column_stack([r[n] for n in ["x", "y", "vx", "vy"]])
+        assert states.shape == base.shape
+        worst = float(np.max(np.abs(states - base)))
+        print(f"communication step {h}: largest difference {worst:.1e}")
+        assert worst <= 1e-12
+        assert r["contact_count"][-1] == runs[1e-3]["contact_count"][-1]
+
+
+def test_a_tolerance_shortens_long_internal_steps() -> None:
+    """internal_step = 0.05 with a tight tolerance halves the contact steps until the error
+    estimate meets it: closer to the dt = 1e-3 run than with a loose tolerance."""
+    steps = int(5 * PERIOD / 1e-3)
+    stop = steps * 1e-3
+    fine = rr.Stepper(preset="paper", dt=1e-3).run(steps).samples.state[-1]
+
+    def end(tolerance: float) -> np.ndarray:
+        r = simulate_fmu(str(FMUS["3.0"]), stop_time=stop, step_size=stop / 10,
+                         start_values={"internal_step": 0.05, "tolerance": tolerance},
+                         output=["x", "y", "vx", "vy"])
+        return np.array([r[n][-1] for n in ["x", "y", "vx", "vy"]])
+
+    loose = float(np.max(np.abs(end(1e-2) - fine)))
+    tight = float(np.max(np.abs(end(1e-10) - fine)))
+    print(f"internal step 0.05: error {loose:.1e} (tolerance 1e-2), {tight:.1e} (1e-10)")
+    assert tight < 1e-6 and tight < loose / 10
+
+
+def test_slip_regime_reports_friction() -> None:
+    """The friction preset's stator (isotropic K = 100, mu = 0.2): in contact the rotor slips
+    (2 forward, 3 backward) or rolls (4); free is 0."""
+    r = simulate_fmu(str(FMUS["3.0"]), stop_time=40.0, step_size=1e-3,
+                     start_values={"k_xx": 100.0, "k_xy": 0.0, "k_yx": 0.0, "k_yy": 100.0,
+                                   "friction_coefficient": 0.2},
+                     output=["in_contact", "slip_regime", "normal_force"])
+    contact = r["in_contact"].astype(bool)
+    assert contact.any() and (~contact).any()
+    assert set(np.unique(r["slip_regime"][contact])) <= {2, 3, 4}
+    assert set(np.unique(r["slip_regime"][~contact])) == {0}
+    assert np.all(r["normal_force"][contact] >= 0) and np.all(r["normal_force"][~contact] == 0)

@@ -49,12 +49,22 @@
 //!   a plain fixed-step integrator (the error is then first order in the missed span).
 //! * [`StepReport::search_capped`] (search cap): a grazing contact shallower than the search
 //!   could resolve may be missing, or a switch time is known only to its last bracket.
+//! * With [`OnCap::Fail`] either cap refuses the step instead: [`StepperError::BudgetExceeded`],
+//!   the stepper unchanged, so a hard real-time caller never gets a degraded or overlong step
+//!   without knowing (measured worst steps per kind: `BENCHMARKS.md`).
+//!
+//! # Inputs between steps
+//! [`Stepper::set_input_force`] (the external force u, `docs/MODEL.md` §14: Φ is kept, the map
+//! gains a constant), [`Stepper::set_speed_ratio`] (phase continuous), [`Stepper::snapshot`] /
+//! [`Stepper::restore`] (roll back), and [`Stepper::step_to_switch`] (stop at the first switch:
+//! an FMU's early return).
 //!
 //! # Changing parameters or the step length
 //! [`Stepper::set_params`] (a speed ramp, a stiffness change) and a `step` with a new `dt`
 //! recompute Φ, G and the bound constants ([`FreeTransition::new`]: three `exp`, three
 //! `sin_cos`, six evaluations of the generated free formulas; measured ≈ 0.1 µs), once.
 
+mod config;
 mod exact;
 pub mod friction;
 mod inputs;
@@ -63,6 +73,7 @@ pub mod search;
 mod transition;
 
 pub use crate::analytic::switch::Search;
+pub use config::{OnCap, StepperConfig};
 pub use inputs::Snapshot;
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
 pub use search::{
@@ -74,7 +85,6 @@ use crate::analytic::free::FreeConstants;
 use crate::analytic::segment::point_of;
 use crate::field;
 use crate::math;
-use crate::method::ContactScheme;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{PropagationError, Regime, within_bounds};
 
@@ -85,73 +95,6 @@ pub const MAX_SUBSTEPS: u32 = 1024;
 /// Number of steps of one length after which the forcing phasor is recomputed from the absolute
 /// time (between, it is rotated: rounding drift ≤ ~1e-13 relative).
 pub const PHASOR_RESYNC: u64 = 256;
-
-/// How the stepper takes its steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StepperConfig {
-    /// The step length Φ(dt) is precomputed for (a `step` with another length recomputes it).
-    pub dt: f64,
-    /// The contact scheme: exprb43 (fourth order, default) or exprb2 (second order, cheaper).
-    pub scheme: ContactScheme,
-    /// Contact sub-steps per `dt` (≥ 1): contact sub-steps are at most dt / `contact_substeps`.
-    pub contact_substeps: u32,
-    /// Cap on contact sub-steps in one `step` call (≥ `contact_substeps`): bounds the work of a
-    /// step with several switches. See [`StepReport::capped`].
-    pub max_substeps: u32,
-    /// What a step does when a cap is reached: [`OnCap::Degrade`] (the default) finishes the
-    /// step less accurately and flags it; [`OnCap::Fail`] returns
-    /// [`StepperError::BudgetExceeded`] and leaves the stepper unchanged (a hard real-time
-    /// caller then knows the step would have overrun its bounded work).
-    pub on_cap: OnCap,
-}
-
-/// What a step does when its sub-step cap or a switch search's cap is reached.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum OnCap {
-    /// Finish the step: the last contact sub-step covers the rest, a capped search gives its
-    /// last bracket; [`StepReport::capped`] / [`StepReport::search_capped`] say so.
-    #[default]
-    Degrade,
-    /// Return [`StepperError::BudgetExceeded`] instead; the stepper is unchanged.
-    Fail,
-}
-
-impl Default for StepperConfig {
-    /// dt = 1e-3, exprb43, one contact sub-step per step, at most 8 per step.
-    fn default() -> Self {
-        StepperConfig {
-            dt: 1e-3,
-            scheme: ContactScheme::Exprb43,
-            contact_substeps: 1,
-            max_substeps: 8,
-            on_cap: OnCap::Degrade,
-        }
-    }
-}
-
-impl StepperConfig {
-    /// The default configuration with step length `dt`.
-    pub fn with_dt(dt: f64) -> Self {
-        StepperConfig {
-            dt,
-            ..StepperConfig::default()
-        }
-    }
-
-    fn validate(&self) -> Result<(), StepperError> {
-        let invalid = |what, value: u32| StepperError::InvalidConfig {
-            what,
-            value: f64::from(value),
-        };
-        if !(1..=MAX_SUBSTEPS).contains(&self.contact_substeps) {
-            return Err(invalid("contact_substeps", self.contact_substeps));
-        }
-        if !(self.contact_substeps..=MAX_SUBSTEPS).contains(&self.max_substeps) {
-            return Err(invalid("max_substeps", self.max_substeps));
-        }
-        Ok(())
-    }
-}
 
 /// The fixed-step propagator (see the module docs). Plain data, no heap: it can live in
 /// caller-owned memory (the C ABI relies on that).

@@ -1,0 +1,72 @@
+//! How the stepper takes its steps: the step length Φ is precomputed for, the contact scheme,
+//! the sub-step counts and caps, and what a step does when a cap is reached.
+
+use super::{MAX_SUBSTEPS, StepperError};
+use crate::method::ContactScheme;
+
+/// How the stepper takes its steps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepperConfig {
+    /// The step length Φ(dt) is precomputed for (a `step` with another length recomputes it).
+    pub dt: f64,
+    /// The contact scheme: exprb43 (fourth order, default) or exprb2 (second order, cheaper).
+    pub scheme: ContactScheme,
+    /// Contact sub-steps per `dt` (≥ 1): contact sub-steps are at most dt / `contact_substeps`.
+    pub contact_substeps: u32,
+    /// Cap on contact sub-steps in one `step` call (≥ `contact_substeps`): bounds the work of a
+    /// step with several switches. See [`super::StepReport::capped`].
+    pub max_substeps: u32,
+    /// What a step does when a cap is reached: [`OnCap::Degrade`] (the default) finishes the
+    /// step less accurately and flags it; [`OnCap::Fail`] returns
+    /// [`StepperError::BudgetExceeded`] and leaves the stepper unchanged (a hard real-time
+    /// caller then knows the step would have overrun its bounded work).
+    pub on_cap: OnCap,
+}
+
+/// What a step does when its sub-step cap or a switch search's cap is reached.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OnCap {
+    /// Finish the step: the last contact sub-step covers the rest, a capped search gives its
+    /// last bracket; [`StepReport::capped`] / [`StepReport::search_capped`] say so.
+    #[default]
+    Degrade,
+    /// Return [`StepperError::BudgetExceeded`] instead; the stepper is unchanged.
+    Fail,
+}
+
+impl Default for StepperConfig {
+    /// dt = 1e-3, exprb43, one contact sub-step per step, at most 8 per step.
+    fn default() -> Self {
+        StepperConfig {
+            dt: 1e-3,
+            scheme: ContactScheme::Exprb43,
+            contact_substeps: 1,
+            max_substeps: 8,
+            on_cap: OnCap::Degrade,
+        }
+    }
+}
+
+impl StepperConfig {
+    /// The default configuration with step length `dt`.
+    pub fn with_dt(dt: f64) -> Self {
+        StepperConfig {
+            dt,
+            ..StepperConfig::default()
+        }
+    }
+
+    pub(super) fn validate(&self) -> Result<(), StepperError> {
+        let invalid = |what, value: u32| StepperError::InvalidConfig {
+            what,
+            value: f64::from(value),
+        };
+        if !(1..=MAX_SUBSTEPS).contains(&self.contact_substeps) {
+            return Err(invalid("contact_substeps", self.contact_substeps));
+        }
+        if !(self.contact_substeps..=MAX_SUBSTEPS).contains(&self.max_substeps) {
+            return Err(invalid("max_substeps", self.max_substeps));
+        }
+        Ok(())
+    }
+}
