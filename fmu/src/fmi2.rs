@@ -1,6 +1,6 @@
 //! The FMI 2.0 co-simulation interface over [`crate::model::Model`]: the functions of
 //! `fmi2Functions.h`, each checking its arguments and the instance's phase, none panicking
-//! across the boundary, none allocating after `fmi2Instantiate` except `fmi2GetFMUstate` (which
+//! across the boundary, none allocating after `fmi2Instantiate` except `fmi2GetFMUstate` (`saved.rs`, which
 //! returns a new state object, as FMI 2.0 has it).
 
 use core::ffi::{CStr, c_char, c_int, c_void};
@@ -8,10 +8,9 @@ use core::ffi::{CStr, c_char, c_int, c_void};
 use crate::instance::{
     Fmi2Logger, Instance, Logger, Phase, slice, slice_mut, status, with_instance,
 };
-use crate::message::Message;
 use crate::model::{Model, Stepped};
+use crate::msg;
 use crate::variables::Kind;
-use crate::{msg, state};
 
 type Component = *mut c_void;
 type Status = c_int;
@@ -357,173 +356,6 @@ pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
     unsafe {
         with_instance(c, |_| {
             Err(msg!("fmi2CancelStep: steps complete synchronously"))
-        })
-    }
-}
-
-/// # Safety
-/// `c` is null or an instance of this FMU; `state` valid for a read and a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut *mut c_void) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |i| {
-            let slot = state
-                .as_mut()
-                .ok_or_else(|| msg!("fmi2GetFMUstate: null state pointer"))?;
-            match (*slot).cast::<Model>().as_mut() {
-                Some(saved) => *saved = i.model,
-                None => *slot = Box::into_raw(Box::new(i.model)).cast(),
-            }
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `c` is null or an instance of this FMU; `state` null or a state of this FMU.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: *mut c_void) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |i| {
-            let saved = state
-                .cast::<Model>()
-                .as_ref()
-                .ok_or_else(|| msg!("fmi2SetFMUstate: null state"))?;
-            i.model = *saved;
-            if let Some(s) = &i.model.stepper {
-                i.last_time = s.time();
-                i.phase = Phase::Step;
-            }
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `c` is null or an instance of this FMU; `state` valid for a read and a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut *mut c_void) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |_| {
-            if let Some(slot) = state.as_mut()
-                && !slot.is_null()
-            {
-                drop(Box::from_raw((*slot).cast::<Model>()));
-                *slot = core::ptr::null_mut();
-            }
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `c` is null or an instance of this FMU; `size` valid for a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
-    c: Component,
-    _state: *mut c_void,
-    size: *mut usize,
-) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |_| {
-            *size.as_mut().ok_or_else(|| msg!("null size pointer"))? = state::BYTES;
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `c` is null or an instance of this FMU; `state` a state of it; `bytes` valid for `size` writes.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2SerializeFMUstate(
-    c: Component,
-    saved: *mut c_void,
-    bytes: *mut c_char,
-    size: usize,
-) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |_| {
-            let model = saved
-                .cast::<Model>()
-                .as_ref()
-                .ok_or_else(|| msg!("null state"))?;
-            let out = slice_mut(bytes.cast::<u8>(), size)?;
-            let data = state::serialize(model);
-            out.get_mut(..state::BYTES)
-                .ok_or_else(|| {
-                    msg!(
-                        "buffer of {size} bytes is too small: {} needed",
-                        state::BYTES
-                    )
-                })?
-                .copy_from_slice(&data);
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `c` is null or an instance of this FMU; `bytes` valid for `size` reads; `state` for a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
-    c: Component,
-    bytes: *const c_char,
-    size: usize,
-    saved: *mut *mut c_void,
-) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |_| {
-            let model = state::deserialize(slice(bytes.cast::<u8>(), size)?)?;
-            let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
-            *slot = Box::into_raw(Box::new(model)).cast();
-            Ok(status::OK)
-        })
-    }
-}
-
-macro_rules! unsupported {
-    ($name:ident ( $($arg:ident : $t:ty),* ), $why:literal) => {
-        /// # Safety
-        /// `c` is null or an instance of this FMU.
-        #[unsafe(no_mangle)]
-        pub unsafe extern "C" fn $name(c: Component, $($arg: $t),*) -> Status {
-            $(let _ = $arg;)*
-            // SAFETY: caller's contract.
-            unsafe { with_instance(c, |_| Err(Message::new(format_args!(concat!(stringify!($name), ": ", $why))))) }
-        }
-    };
-}
-
-unsupported!(fmi2GetDirectionalDerivative(a: *const u32, b: usize, d: *const u32, e: usize, f: *const f64, g: *mut f64), "not provided (providesDirectionalDerivative = false)");
-unsupported!(fmi2SetRealInputDerivatives(a: *const u32, b: usize, d: *const c_int, e: *const f64), "inputs are held constant over a step (canInterpolateInputs = false)");
-unsupported!(fmi2GetRealOutputDerivatives(a: *const u32, b: usize, d: *const c_int, e: *mut f64), "not provided (maxOutputDerivativeOrder = 0)");
-unsupported!(fmi2GetStatus(a: c_int, b: *mut c_int), "steps complete synchronously: no status to ask for");
-unsupported!(fmi2GetIntegerStatus(a: c_int, b: *mut c_int), "no Integer status");
-unsupported!(fmi2GetBooleanStatus(a: c_int, b: *mut c_int), "no Boolean status");
-unsupported!(fmi2GetStringStatus(a: c_int, b: *mut *const c_char), "no String status");
-
-/// fmi2LastSuccessfulTime (kind 2) only.
-///
-/// # Safety
-/// `c` is null or an instance of this FMU; `value` valid for a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mut f64) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(c, |i| {
-            if kind != 2 {
-                return Err(msg!(
-                    "fmi2GetRealStatus: only fmi2LastSuccessfulTime (2) is provided, not {kind}"
-                ));
-            }
-            *value.as_mut().ok_or_else(|| msg!("null value pointer"))? = i.last_time;
-            Ok(status::OK)
         })
     }
 }

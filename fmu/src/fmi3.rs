@@ -1,6 +1,7 @@
 //! The FMI 3.0 co-simulation interface over [`crate::model::Model`]: instantiation with early
 //! return, initialization, Float64/Int64/Int32/Boolean access, `fmi3DoStep` (returning at a
-//! contact switch with its time when early return is allowed), FMU state get/set/serialize.
+//! contact switch with its time when early return is allowed); FMU state get/set/serialize is
+//! in `saved.rs`.
 //! The functions FMI 3.0 requires but this FMU does not provide (model exchange, scheduled
 //! execution, clocks, other types) are in `fmi3_stubs.rs`: they log why and return an error.
 
@@ -10,8 +11,8 @@ use crate::instance::{
     Fmi3Logger, Instance, Logger, Phase, slice, slice_mut, status, with_instance,
 };
 use crate::model::{Model, Stepped};
+use crate::msg;
 use crate::variables::Kind;
-use crate::{msg, state};
 
 type Inst = *mut c_void;
 type Status = i32;
@@ -314,130 +315,5 @@ unsafe fn write<T>(p: *mut T, v: T) {
     if !p.is_null() {
         // SAFETY: caller's contract.
         unsafe { p.write(v) }
-    }
-}
-
-/// # Safety
-/// `i` is null or an instance of this FMU; `state` valid for a read and a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3GetFMUState(i: Inst, state: *mut *mut c_void) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(i, |i| {
-            let slot = state
-                .as_mut()
-                .ok_or_else(|| msg!("fmi3GetFMUState: null state pointer"))?;
-            match (*slot).cast::<Model>().as_mut() {
-                Some(saved) => *saved = i.model,
-                None => *slot = Box::into_raw(Box::new(i.model)).cast(),
-            }
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `i` is null or an instance of this FMU; `state` null or a state of this FMU.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SetFMUState(i: Inst, state: *mut c_void) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(i, |i| {
-            let saved = state
-                .cast::<Model>()
-                .as_ref()
-                .ok_or_else(|| msg!("fmi3SetFMUState: null state"))?;
-            i.model = *saved;
-            if let Some(s) = &i.model.stepper {
-                i.last_time = s.time();
-                i.phase = Phase::Step;
-            }
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `i` is null or an instance of this FMU; `state` valid for a read and a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3FreeFMUState(i: Inst, state: *mut *mut c_void) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(i, |_| {
-            if let Some(slot) = state.as_mut()
-                && !slot.is_null()
-            {
-                drop(Box::from_raw((*slot).cast::<Model>()));
-                *slot = core::ptr::null_mut();
-            }
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `i` is null or an instance of this FMU; `size` valid for a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
-    i: Inst,
-    _s: *mut c_void,
-    size: *mut usize,
-) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(i, |_| {
-            *size.as_mut().ok_or_else(|| msg!("null size pointer"))? = state::BYTES;
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `i` is null or an instance of this FMU; `saved` a state of it; `bytes` valid for `size` writes.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3SerializeFMUState(
-    i: Inst,
-    saved: *mut c_void,
-    bytes: *mut u8,
-    size: usize,
-) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(i, |_| {
-            let model = saved
-                .cast::<Model>()
-                .as_ref()
-                .ok_or_else(|| msg!("null state"))?;
-            let out = slice_mut(bytes, size)?;
-            out.get_mut(..state::BYTES)
-                .ok_or_else(|| {
-                    msg!(
-                        "buffer of {size} bytes is too small: {} needed",
-                        state::BYTES
-                    )
-                })?
-                .copy_from_slice(&state::serialize(model));
-            Ok(status::OK)
-        })
-    }
-}
-
-/// # Safety
-/// `i` is null or an instance of this FMU; `bytes` valid for `size` reads; `saved` for a write.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn fmi3DeserializeFMUState(
-    i: Inst,
-    bytes: *const u8,
-    size: usize,
-    saved: *mut *mut c_void,
-) -> Status {
-    // SAFETY: caller's contract.
-    unsafe {
-        with_instance(i, |_| {
-            let model = state::deserialize(slice(bytes, size)?)?;
-            let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
-            *slot = Box::into_raw(Box::new(model)).cast();
-            Ok(status::OK)
-        })
     }
 }

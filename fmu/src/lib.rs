@@ -33,10 +33,12 @@
 
 pub mod description;
 pub mod fmi2;
+pub mod fmi2_stubs;
 pub mod fmi3;
 pub mod fmi3_stubs;
 pub mod instance;
 pub mod message;
 pub mod model;
+pub mod saved;
 pub mod state;
 pub mod variables;

@@ -11,6 +11,7 @@ use rotor_rub::{Parameter, Preset, Stepper, StepperConfig};
 use rotor_rub_fmu::description::{Version, guid, model_description};
 use rotor_rub_fmu::fmi3::*;
 use rotor_rub_fmu::instance::status;
+use rotor_rub_fmu::saved::*;
 
 struct Counting;
 

@@ -416,8 +416,9 @@ class Stepper(_core.Stepper):
 
     ``step(dt=None)`` advances one step and returns ``(time, state, regime, events)``;
     ``run(steps, dt=None)`` takes many steps in Rust (GIL released) and returns :class:`Steps`;
-    ``set_params(**params)`` changes parameters between steps; ``time``, ``state``, ``regime``
-    and ``dt`` read the current values.
+    ``set_params(**params)`` changes parameters between steps, ``set_input_force(fx, fy)`` the
+    external force (held until the next call) and ``set_speed_ratio(eta)`` the speed with a
+    continuous phase; ``time``, ``state``, ``regime`` and ``dt`` read the current values.
     """
 
     def run(self, steps: int, dt: Optional[float] = None) -> Steps:  # type: ignore[override]

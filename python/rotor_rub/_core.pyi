@@ -133,6 +133,10 @@ class Stepper:
         switch (event_time, event_kind, event_state), as numpy arrays."""
     def set_params(self, **params: float) -> None:
         """Change parameters between steps; state and time are kept."""
+    def set_input_force(self, fx: float, fy: float) -> None:
+        """Apply the external force (fx, fy) from now on, held until the next call."""
+    def set_speed_ratio(self, speed_ratio: float) -> None:
+        """Change the speed ratio from now on, the forcing phase kept continuous."""
     @property
     def time(self) -> float: ...
     @property

@@ -141,6 +141,21 @@ impl PyStepper {
         self.inner.set_params(&problem.params).map_err(stepper)
     }
 
+    /// Apply the external input force (fx, fy) from now on, held until the next call (a
+    /// controller's output; `docs/MODEL.md` §14). Cheap: the precomputed free map is kept.
+    fn set_input_force(&mut self, fx: f64, fy: f64) -> PyResult<()> {
+        self.inner
+            .set_input_force(fx, fy)
+            .map_err(|e| input(e.to_string()))
+    }
+
+    /// Change the speed ratio from now on with a continuous forcing phase.
+    fn set_speed_ratio(&mut self, speed_ratio: f64) -> PyResult<()> {
+        self.inner
+            .set_speed_ratio(speed_ratio)
+            .map_err(|e| input(e.to_string()))
+    }
+
     /// The current time τ.
     #[getter]
     fn time(&self) -> f64 {

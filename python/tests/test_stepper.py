@@ -54,3 +54,22 @@ def test_friction_regimes() -> None:
     out = stepper.run(20000)
     assert "rolling" in set(out.samples.regime)
     assert "roll" in set(out.events.kind)
+
+
+def test_input_force_and_speed_between_steps() -> None:
+    """A force set between steps moves the orbit as the force parameter does from the start
+    (the same closed forms); bad values raise ValueError naming them."""
+    a = rr.Stepper(dt=1e-3)
+    b = rr.Stepper(dt=1e-3, force_x=0.2, force_y=-0.1)
+    a.set_input_force(0.2, -0.1)
+    out_a, out_b = a.run(5000), b.run(5000)
+    assert np.array_equal(out_a.samples.state, out_b.samples.state)
+    a.set_speed_ratio(1.6)
+    a.run(100)
+    for bad in [(float("nan"), 0.0), (0.0, 2e3)]:
+        try:
+            a.set_input_force(*bad)
+        except ValueError as e:
+            assert "force" in str(e)
+        else:
+            raise AssertionError("accepted")

@@ -1,0 +1,168 @@
+//! FMU state get/set/free and serialization, the same six functions for FMI 2.0
+//! (`fmi2GetFMUstate`, …) and FMI 3.0 (`fmi3GetFMUState`, …): a saved state is a boxed copy of
+//! the [`Model`] (allocated by get, as both standards have it, never by `DoStep`); its bytes are
+//! [`crate::state`]'s checked fixed-size form.
+
+use core::ffi::c_void;
+
+use crate::instance::{Phase, slice, slice_mut, status, with_instance};
+use crate::model::Model;
+use crate::{msg, state};
+
+macro_rules! saved_state {
+    ($get:ident, $set:ident, $free:ident, $size:ident, $serialize:ident, $deserialize:ident) => {
+        /// Save the model's state: a new state object, or the given one overwritten.
+        ///
+        /// # Safety
+        /// `i` is null or an instance of this FMU; `saved` valid for a read and a write.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $get(i: *mut c_void, saved: *mut *mut c_void) -> i32 {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |i| {
+                    let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
+                    match (*slot).cast::<Model>().as_mut() {
+                        Some(model) => *model = i.model,
+                        None => *slot = Box::into_raw(Box::new(i.model)).cast(),
+                    }
+                    Ok(status::OK)
+                })
+            }
+        }
+
+        /// Restore a saved state (the time becomes the saved time).
+        ///
+        /// # Safety
+        /// `i` is null or an instance of this FMU; `saved` null or a state of this FMU.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $set(i: *mut c_void, saved: *mut c_void) -> i32 {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |i| {
+                    let model = saved
+                        .cast::<Model>()
+                        .as_ref()
+                        .ok_or_else(|| msg!("null state"))?;
+                    i.model = *model;
+                    if let Some(s) = &i.model.stepper {
+                        i.last_time = s.time();
+                        i.phase = Phase::Step;
+                    }
+                    Ok(status::OK)
+                })
+            }
+        }
+
+        /// Free a saved state and null the pointer.
+        ///
+        /// # Safety
+        /// `i` is null or an instance of this FMU; `saved` valid for a read and a write.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $free(i: *mut c_void, saved: *mut *mut c_void) -> i32 {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |_| {
+                    if let Some(slot) = saved.as_mut()
+                        && !slot.is_null()
+                    {
+                        drop(Box::from_raw((*slot).cast::<Model>()));
+                        *slot = core::ptr::null_mut();
+                    }
+                    Ok(status::OK)
+                })
+            }
+        }
+
+        /// The serialized size, [`state::BYTES`].
+        ///
+        /// # Safety
+        /// `i` is null or an instance of this FMU; `size` valid for a write.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $size(
+            i: *mut c_void,
+            _saved: *mut c_void,
+            size: *mut usize,
+        ) -> i32 {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |_| {
+                    *size.as_mut().ok_or_else(|| msg!("null size pointer"))? = state::BYTES;
+                    Ok(status::OK)
+                })
+            }
+        }
+
+        /// Write a saved state's bytes.
+        ///
+        /// # Safety
+        /// `i` is null or an instance of this FMU; `saved` a state of it; `bytes` valid for
+        /// `size` writes.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $serialize(
+            i: *mut c_void,
+            saved: *mut c_void,
+            bytes: *mut u8,
+            size: usize,
+        ) -> i32 {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |_| {
+                    let model = saved
+                        .cast::<Model>()
+                        .as_ref()
+                        .ok_or_else(|| msg!("null state"))?;
+                    slice_mut(bytes, size)?
+                        .get_mut(..state::BYTES)
+                        .ok_or_else(|| {
+                            msg!(
+                                "buffer of {size} bytes is too small: {} needed",
+                                state::BYTES
+                            )
+                        })?
+                        .copy_from_slice(&state::serialize(model));
+                    Ok(status::OK)
+                })
+            }
+        }
+
+        /// A new saved state from bytes, every value checked.
+        ///
+        /// # Safety
+        /// `i` is null or an instance of this FMU; `bytes` valid for `size` reads; `saved` for
+        /// a write.
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $deserialize(
+            i: *mut c_void,
+            bytes: *const u8,
+            size: usize,
+            saved: *mut *mut c_void,
+        ) -> i32 {
+            // SAFETY: caller's contract.
+            unsafe {
+                with_instance(i, |_| {
+                    let model = state::deserialize(slice(bytes, size)?)?;
+                    let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
+                    *slot = Box::into_raw(Box::new(model)).cast();
+                    Ok(status::OK)
+                })
+            }
+        }
+    };
+}
+
+saved_state!(
+    fmi2GetFMUstate,
+    fmi2SetFMUstate,
+    fmi2FreeFMUstate,
+    fmi2SerializedFMUstateSize,
+    fmi2SerializeFMUstate,
+    fmi2DeSerializeFMUstate
+);
+saved_state!(
+    fmi3GetFMUState,
+    fmi3SetFMUState,
+    fmi3FreeFMUState,
+    fmi3SerializedFMUStateSize,
+    fmi3SerializeFMUState,
+    fmi3DeserializeFMUState
+);
