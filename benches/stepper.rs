@@ -22,6 +22,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion};
+use rotor_rub::stepper::SwitchStart;
 use rotor_rub::{
     ContactScheme, Method, Options, Preset, Problem, Propagator, Regime, State, Stepper,
     StepperConfig, advance_to, field,
@@ -31,15 +32,23 @@ const STEPS: usize = 1_000_000;
 /// How many of the slowest steps of each kind are re-timed, and how often.
 const SLOWEST: usize = 16;
 const REPEAT: usize = 200;
-const KINDS: [&str; 4] = ["free", "free+entry", "contact", "contact+exit"];
+const KINDS: [&str; 5] = [
+    "free",
+    "free+entry",
+    "contact",
+    "contact+exit",
+    "2+ switches",
+];
 
-/// The kind of a step: by the regime at its start and whether it held a switch.
+/// The kind of a step: by the regime at its start and whether it held one switch; a step with
+/// two or more (an exit and a re-entry, …: two contact sub-steps and searches) is its own kind.
 fn kind(start: Regime, switches: usize) -> usize {
-    match (start, switches > 0) {
-        (Regime::Free, false) => 0,
-        (Regime::Free, true) => 1,
-        (Regime::Contact | Regime::Rolling, false) => 2,
-        (Regime::Contact | Regime::Rolling, true) => 3,
+    match (start, switches) {
+        (_, 2..) => 4,
+        (Regime::Free, 0) => 0,
+        (Regime::Free, _) => 1,
+        (Regime::Contact | Regime::Rolling, 0) => 2,
+        (Regime::Contact | Regime::Rolling, _) => 3,
     }
 }
 
@@ -55,9 +64,13 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
 }
 
 /// 10⁶ steps, each timed; prints the distribution per kind of step.
-fn timing_report(dt: f64, scheme: ContactScheme) {
+fn timing_report(dt: f64, scheme: ContactScheme, switch_start: SwitchStart) {
     let problem = Preset::Paper.problem();
-    let mut stepper = Stepper::new(&problem, config(dt, scheme)).expect("stepper");
+    let config = StepperConfig {
+        switch_start,
+        ..config(dt, scheme)
+    };
+    let mut stepper = Stepper::new(&problem, config).expect("stepper");
     let overhead = {
         let mut v: Vec<f64> = (0..10_000)
             .map(|_| {
@@ -68,9 +81,9 @@ fn timing_report(dt: f64, scheme: ContactScheme) {
         v.sort_by(f64::total_cmp);
         percentile(&v, 0.5)
     };
-    let mut times: [Vec<f64>; 4] = Default::default();
+    let mut times: [Vec<f64>; 5] = Default::default();
     // The SLOWEST slowest steps of each kind, with the stepper before them, to re-time.
-    let mut slowest: [Vec<(f64, Stepper)>; 4] = Default::default();
+    let mut slowest: [Vec<(f64, Stepper)>; 5] = Default::default();
     for _ in 0..STEPS {
         let before = stepper;
         let t = Instant::now();
@@ -86,7 +99,7 @@ fn timing_report(dt: f64, scheme: ContactScheme) {
         }
     }
     println!(
-        "timing dt={dt:e} {} ({STEPS} steps, {:.0} time units; Instant overhead {:.0} ns, included)",
+        "timing dt={dt:e} {} {switch_start:?} ({STEPS} steps, {:.0} time units; Instant overhead {:.0} ns, included)",
         scheme.name(),
         STEPS as f64 * dt,
         overhead * 1e9
@@ -254,11 +267,11 @@ fn rk4_run(problem: &Problem, dt: f64, steps: usize, out: &mut Vec<State>) {
 }
 
 /// Fixed start states of each kind of step for dt (copies of a stepper running the preset).
-fn samples(dt: f64, scheme: ContactScheme) -> [Option<Stepper>; 4] {
+fn samples(dt: f64, scheme: ContactScheme) -> [Option<Stepper>; 5] {
     let problem = Preset::Paper.problem();
     let mut s = Stepper::new(&problem, config(dt, scheme)).expect("stepper");
-    let mut found: [Option<Stepper>; 4] = [None; 4];
-    let mut seen = [0usize; 4];
+    let mut found: [Option<Stepper>; 5] = [None; 5];
+    let mut seen = [0usize; 5];
     for _ in 0..(50.0 / dt) as usize {
         let before = s;
         let r = s.step(dt).expect("step");
@@ -276,7 +289,16 @@ fn samples(dt: f64, scheme: ContactScheme) -> [Option<Stepper>; 4] {
 fn profile(kind_index: usize) {
     let dt = 1e-3;
     let problem = Preset::Paper.problem();
-    let mut s = Stepper::new(&problem, config(dt, ContactScheme::Exprb43)).expect("stepper");
+    let switch_start = if std::env::var("STEPPER_BENCH_HERMITE").is_ok() {
+        SwitchStart::Hermite
+    } else {
+        SwitchStart::Newton
+    };
+    let config = StepperConfig {
+        switch_start,
+        ..config(dt, ContactScheme::Exprb43)
+    };
+    let mut s = Stepper::new(&problem, config).expect("stepper");
     let mut starts = Vec::new();
     for _ in 0..200_000 {
         let before = s;
@@ -284,6 +306,33 @@ fn profile(kind_index: usize) {
         if kind(before.regime(), r.events.total()) == kind_index {
             starts.push(before);
         }
+    }
+    // STEPPER_BENCH_SLOWEST=k: only the k slowest of them (each timed as least of 50 runs).
+    if let Some(k) = std::env::var("STEPPER_BENCH_SLOWEST")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        let cost = |start: &Stepper| {
+            (0..50)
+                .map(|_| {
+                    let mut s = *start;
+                    let t = Instant::now();
+                    black_box(s.step(black_box(dt)).expect("step"));
+                    t.elapsed().as_secs_f64()
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut timed: Vec<(f64, Stepper)> = starts.iter().map(|s| (cost(s), *s)).collect();
+        timed.sort_by(|a, b| b.0.total_cmp(&a.0));
+        timed.truncate(k);
+        println!(
+            "slowest {k}: {:?} ns",
+            timed
+                .iter()
+                .map(|(t, _)| (t * 1e9) as u64)
+                .collect::<Vec<_>>()
+        );
+        starts = timed.into_iter().map(|(_, s)| s).collect();
     }
     let t = Instant::now();
     let mut n = 0usize;
@@ -309,10 +358,12 @@ fn main() {
         profile(k.parse().expect("kind index"));
         return;
     }
-    for dt in [1e-3, 1e-2] {
-        timing_report(dt, ContactScheme::Exprb43);
+    for start in [SwitchStart::Newton, SwitchStart::Hermite] {
+        for dt in [1e-3, 1e-2, 1e-4] {
+            timing_report(dt, ContactScheme::Exprb43, start);
+        }
     }
-    timing_report(1e-3, ContactScheme::Exprb2);
+    timing_report(1e-3, ContactScheme::Exprb2, SwitchStart::Newton);
     // STEPPER_BENCH=timing: the per-step timing only (the worst step per kind), no accuracy
     // report and no criterion run.
     if std::env::var("STEPPER_BENCH").is_ok_and(|v| v == "timing") {

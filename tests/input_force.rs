@@ -273,3 +273,43 @@ fn a_restored_snapshot_steps_on_bit_for_bit() {
         assert!(Snapshot::from_words(&bad).is_err());
     }
 }
+
+#[test]
+fn hermite_started_switches_are_the_same_switches_to_rounding() {
+    // SwitchStart::Hermite changes only where the refinement of a bracketed switch starts: the
+    // same switches, times and states to rounding (chaos over 20 periods amplifies rounding
+    // only far below the tolerance checked).
+    use rotor_rub::stepper::SwitchStart;
+    let problem = Preset::Paper.problem();
+    for dt in [1e-3, 1e-2] {
+        let mut a = Stepper::new(&problem, StepperConfig::with_dt(dt)).unwrap();
+        let mut b = Stepper::new(
+            &problem,
+            StepperConfig {
+                switch_start: SwitchStart::Hermite,
+                ..StepperConfig::with_dt(dt)
+            },
+        )
+        .unwrap();
+        let (mut worst_t, mut worst_s, mut n) = (0.0f64, 0.0f64, 0);
+        let steps = (5.0 * problem.params.forcing_period() / dt) as usize;
+        for _ in 0..steps {
+            let (ra, rb) = (a.step(dt).unwrap(), b.step(dt).unwrap());
+            assert_eq!(ra.events.len(), rb.events.len());
+            for (x, y) in ra.events.iter().zip(rb.events.iter()) {
+                assert_eq!(x.kind, y.kind);
+                worst_t = worst_t.max((x.time - y.time).abs());
+                n += 1;
+            }
+            assert!(!rb.search_capped);
+            worst_s = worst_s.max(max_abs_diff(ra.state, rb.state));
+        }
+        println!(
+            "dt = {dt}: {n} switches, times within {worst_t:.1e}, states within {worst_s:.1e}"
+        );
+        assert!(
+            n >= 15 && worst_t < 1e-11 && worst_s < 1e-10,
+            "{worst_t:e} {worst_s:e}"
+        );
+    }
+}

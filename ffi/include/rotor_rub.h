@@ -101,6 +101,13 @@
 // On a cap: refuse the step with `ROTOR_RUB_ERR_BUDGET_EXCEEDED`.
 #define ROTOR_RUB_ON_CAP_FAIL 1
 
+// Switch refinement starts by Newton from the bracket's end (the default).
+#define ROTOR_RUB_SWITCH_START_NEWTON 0
+
+// Switch refinement starts at the bracket's cubic Hermite root: fewer evaluations per switch,
+// the same switch to rounding (a tighter worst-case step time).
+#define ROTOR_RUB_SWITCH_START_HERMITE 1
+
 // Contact scheme: exprb2 (second order, cheaper).
 #define ROTOR_RUB_SCHEME_EXPRB2 0
 
@@ -210,6 +217,8 @@ typedef struct RotorRubConfig {
   // What a step does at a cap: `ROTOR_RUB_ON_CAP_DEGRADE` (default) or
   // `ROTOR_RUB_ON_CAP_FAIL` (the step returns `ROTOR_RUB_ERR_BUDGET_EXCEEDED`).
   uint32_t on_cap;
+  // `ROTOR_RUB_SWITCH_START_NEWTON` (default) or `ROTOR_RUB_SWITCH_START_HERMITE`.
+  uint32_t switch_start;
 } RotorRubConfig;
 
 // Caller-owned storage for one stepper: place it anywhere (stack, static, pool), initialise it

@@ -61,7 +61,7 @@ pub extern "C" fn rotor_rub_error_message(code: i32) -> *const c_char {
             c"invalid parameters or initial state (see rotor_rub_problem_validate for which)"
         }
         ROTOR_RUB_ERR_INVALID_CONFIG => {
-            c"invalid configuration (scheme; on_cap; 1 <= contact_substeps <= max_substeps <= 1024)"
+            c"invalid configuration (scheme; on_cap; switch_start; 1 <= contact_substeps <= max_substeps <= 1024)"
         }
         ROTOR_RUB_ERR_INVALID_STEP => {
             c"invalid step: dt must be finite, in (0, 1], and large enough to advance the time"

@@ -1,7 +1,7 @@
 //! The C-visible types and constants (`#[repr(C)]`, mirrored in `include/rotor_rub.h`), and
 //! their conversions to and from the Rust API.
 
-use rotor_rub::stepper::{EVENT_CAPACITY, OnCap, StepReport, StepperConfig};
+use rotor_rub::stepper::{EVENT_CAPACITY, OnCap, StepReport, StepperConfig, SwitchStart};
 use rotor_rub::{ContactScheme, EventKind, Params, Regime, State};
 
 /// Success.
@@ -37,6 +37,12 @@ pub const ROTOR_RUB_ERR_INVALID_VALUE: i32 = 12;
 pub const ROTOR_RUB_ON_CAP_DEGRADE: u32 = 0;
 /// On a cap: refuse the step with `ROTOR_RUB_ERR_BUDGET_EXCEEDED`.
 pub const ROTOR_RUB_ON_CAP_FAIL: u32 = 1;
+
+/// Switch refinement starts by Newton from the bracket's end (the default).
+pub const ROTOR_RUB_SWITCH_START_NEWTON: u32 = 0;
+/// Switch refinement starts at the bracket's cubic Hermite root: fewer evaluations per switch,
+/// the same switch to rounding (a tighter worst-case step time).
+pub const ROTOR_RUB_SWITCH_START_HERMITE: u32 = 1;
 
 /// Contact scheme: exprb2 (second order, cheaper).
 pub const ROTOR_RUB_SCHEME_EXPRB2: i32 = 0;
@@ -150,6 +156,8 @@ pub struct RotorRubConfig {
     /// What a step does at a cap: `ROTOR_RUB_ON_CAP_DEGRADE` (default) or
     /// `ROTOR_RUB_ON_CAP_FAIL` (the step returns `ROTOR_RUB_ERR_BUDGET_EXCEEDED`).
     pub on_cap: u32,
+    /// `ROTOR_RUB_SWITCH_START_NEWTON` (default) or `ROTOR_RUB_SWITCH_START_HERMITE`.
+    pub switch_start: u32,
 }
 
 /// A contact switch.
@@ -271,6 +279,10 @@ impl From<StepperConfig> for RotorRubConfig {
                 OnCap::Degrade => ROTOR_RUB_ON_CAP_DEGRADE,
                 OnCap::Fail => ROTOR_RUB_ON_CAP_FAIL,
             },
+            switch_start: match c.switch_start {
+                SwitchStart::Newton => ROTOR_RUB_SWITCH_START_NEWTON,
+                SwitchStart::Hermite => ROTOR_RUB_SWITCH_START_HERMITE,
+            },
         }
     }
 }
@@ -278,12 +290,17 @@ impl From<StepperConfig> for RotorRubConfig {
 impl TryFrom<RotorRubConfig> for StepperConfig {
     type Error = i32;
 
-    /// Fails with `ROTOR_RUB_ERR_INVALID_CONFIG` for an unknown scheme or cap policy.
+    /// Fails with `ROTOR_RUB_ERR_INVALID_CONFIG` for an unknown scheme, cap policy or switch start.
     fn try_from(c: RotorRubConfig) -> Result<Self, i32> {
         let scheme = ContactScheme::from_code(c.scheme).ok_or(ROTOR_RUB_ERR_INVALID_CONFIG)?;
         let on_cap = match c.on_cap {
             ROTOR_RUB_ON_CAP_DEGRADE => OnCap::Degrade,
             ROTOR_RUB_ON_CAP_FAIL => OnCap::Fail,
+            _ => return Err(ROTOR_RUB_ERR_INVALID_CONFIG),
+        };
+        let switch_start = match c.switch_start {
+            ROTOR_RUB_SWITCH_START_NEWTON => SwitchStart::Newton,
+            ROTOR_RUB_SWITCH_START_HERMITE => SwitchStart::Hermite,
             _ => return Err(ROTOR_RUB_ERR_INVALID_CONFIG),
         };
         Ok(StepperConfig {
@@ -292,6 +309,7 @@ impl TryFrom<RotorRubConfig> for StepperConfig {
             contact_substeps: c.contact_substeps,
             max_substeps: c.max_substeps,
             on_cap,
+            switch_start,
         })
     }
 }

@@ -60,6 +60,7 @@ fn a_whole_session_allocates_nothing_and_matches_rust() {
         contact_substeps: 0,
         max_substeps: 0,
         on_cap: 9,
+        switch_start: 9,
     };
     let mut stepper = blank();
     let mut result = RotorRubStepResult::default();
@@ -205,6 +206,7 @@ fn misuse_gives_error_codes() {
             contact_substeps: 1,
             max_substeps: 8,
             on_cap: ROTOR_RUB_ON_CAP_DEGRADE,
+            switch_start: ROTOR_RUB_SWITCH_START_NEWTON,
         };
         assert_eq!(
             rotor_rub_stepper_init(&mut stepper, &params, &initial, t0, &config),
@@ -436,6 +438,7 @@ fn friction_through_the_c_abi() {
         contact_substeps: 0,
         max_substeps: 0,
         on_cap: 9,
+        switch_start: 9,
     };
     let mut reversal = RotorRubParams::from(rotor_rub::Preset::Paper.problem().params);
     reversal.speed_ratio = 2.0;

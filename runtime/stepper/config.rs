@@ -2,6 +2,7 @@
 //! the sub-step counts and caps, and what a step does when a cap is reached.
 
 use super::{MAX_SUBSTEPS, StepperError};
+use crate::analytic::switch::Budget;
 use crate::method::ContactScheme;
 
 /// How the stepper takes its steps.
@@ -21,6 +22,21 @@ pub struct StepperConfig {
     /// [`StepperError::BudgetExceeded`] and leaves the stepper unchanged (a hard real-time
     /// caller then knows the step would have overrun its bounded work).
     pub on_cap: OnCap,
+    /// How a located switch's refinement starts: [`SwitchStart::Newton`] (the default, the
+    /// analytic method's) or [`SwitchStart::Hermite`] (fewer closed-form evaluations per switch,
+    /// the same switch to rounding: for a tighter worst-case step time).
+    pub switch_start: SwitchStart,
+}
+
+/// How the refinement of a located switch starts (the switch kernel's `Budget::hermite_start`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SwitchStart {
+    /// Safeguarded Newton from the bracket's end with the smaller residual.
+    #[default]
+    Newton,
+    /// From the root of the bracket's cubic Hermite interpolant (g, g′ at both ends): one
+    /// Newton step on the closed form from there converges.
+    Hermite,
 }
 
 /// What a step does when its sub-step cap or a switch search's cap is reached.
@@ -43,6 +59,7 @@ impl Default for StepperConfig {
             contact_substeps: 1,
             max_substeps: 8,
             on_cap: OnCap::Degrade,
+            switch_start: SwitchStart::Newton,
         }
     }
 }
@@ -53,6 +70,14 @@ impl StepperConfig {
         StepperConfig {
             dt,
             ..StepperConfig::default()
+        }
+    }
+
+    /// The switch searches' budget: the capped one, with the configured refinement start.
+    pub(super) fn budget(&self) -> &'static Budget {
+        match self.switch_start {
+            SwitchStart::Newton => &Budget::CAPPED,
+            SwitchStart::Hermite => &Budget::CAPPED_HERMITE,
         }
     }
 

@@ -3,7 +3,7 @@
 
 use super::friction::Slip;
 use super::report::StepReport;
-use super::search::locate;
+use super::search::locate_with;
 use super::{Stepper, StepperError, check_bounded};
 use crate::analytic::free::FreeSegment;
 use crate::analytic::schemes::{SubStep, exprb2_into, exprb43_into};
@@ -125,7 +125,14 @@ impl Stepper {
         let end = seg.point(rem);
         // h holds frequencies up to 2·max(η, 1): chunks as in `FreeFlight`.
         let chunk = 0.5 / p.speed_ratio.max(1.0 + p.damping_ratio);
-        let found = locate(&seg, (0.0, start), (rem, end), Direction::Up, chunk);
+        let found = locate_with(
+            &seg,
+            (0.0, start),
+            (rem, end),
+            Direction::Up,
+            chunk,
+            self.config.budget(),
+        );
         resolve(found, report).ok_or(end.state)
     }
 
@@ -160,12 +167,13 @@ impl Stepper {
         let (ex, ey) = (self.params.offset_x, self.params.offset_y);
         let start = point_of(state, ex, ey);
         let end = point_of(sub.end, ex, ey);
-        let found = locate(
+        let found = locate_with(
             &sub.segment,
             (0.0, start),
             (sub.length, end),
             Direction::Down,
             sub.length,
+            self.config.budget(),
         );
         resolve(found, report)
     }

@@ -16,7 +16,7 @@
 use super::report::StepReport;
 use super::{Stepper, StepperError};
 use crate::analytic::schemes::SubStep;
-use crate::analytic::switch::{Budget, SlipVelocity, first_slip_switch};
+use crate::analytic::switch::{SlipVelocity, first_slip_switch};
 use crate::field;
 use crate::params::{Params, State};
 use crate::propagate::{EventKind, Regime};
@@ -131,7 +131,7 @@ impl Stepper {
             slip.offset,
             slip.scale,
         );
-        first_slip_switch(&f, state, limit, &Budget::CAPPED)
+        first_slip_switch(&f, state, limit, self.config.budget())
     }
 
     /// One rolling sub-step of length `h` from `state` at `t`: its end state, or the first

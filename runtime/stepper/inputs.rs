@@ -4,7 +4,7 @@
 //! a rig can save it and roll back to it (FMI's get/set/serialize FMU state).
 
 use super::friction::Slip;
-use super::{FreeTransition, OnCap, Stepper, StepperConfig, StepperError};
+use super::{FreeTransition, OnCap, Stepper, StepperConfig, StepperError, SwitchStart};
 use crate::analytic::free::FreeConstants;
 use crate::math;
 use crate::method::ContactScheme;
@@ -134,7 +134,7 @@ pub struct Snapshot {
 }
 
 /// The words after the model parameters.
-const TAIL: usize = 20;
+const TAIL: usize = 21;
 
 impl Snapshot {
     /// Length of the serialized form in 64-bit words.
@@ -157,6 +157,10 @@ impl Snapshot {
             match c.on_cap {
                 OnCap::Degrade => 0,
                 OnCap::Fail => 1,
+            },
+            match c.switch_start {
+                SwitchStart::Newton => 0,
+                SwitchStart::Hermite => 1,
             },
             self.dt.to_bits(),
             self.time.to_bits(),
@@ -209,6 +213,7 @@ impl Snapshot {
             substeps,
             max_substeps,
             on_cap,
+            switch_start,
             dt,
             time,
             anchor_time,
@@ -244,6 +249,11 @@ impl Snapshot {
                     0 => OnCap::Degrade,
                     1 => OnCap::Fail,
                     other => return Err(invalid("snapshot on_cap", other)),
+                },
+                switch_start: match switch_start {
+                    0 => SwitchStart::Newton,
+                    1 => SwitchStart::Hermite,
+                    other => return Err(invalid("snapshot switch_start", other)),
                 },
             },
             dt: f(dt),

@@ -73,11 +73,12 @@ pub mod search;
 mod transition;
 
 pub use crate::analytic::switch::Search;
-pub use config::{OnCap, StepperConfig};
+pub use config::{OnCap, StepperConfig, SwitchStart};
 pub use inputs::Snapshot;
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
 pub use search::{
-    MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, no_crossing,
+    MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, locate_with,
+    no_crossing,
 };
 pub use transition::FreeTransition;
 

@@ -16,11 +16,24 @@ pub const MAX_REFINE_ITERATIONS: u32 = Budget::CAPPED.refine;
 /// (counted inside the current regime) and `hi`, searched in chunks of at most `chunk`.
 pub fn locate<S: Segment>(
     seg: &S,
+    start: (f64, Point),
+    end: (f64, Point),
+    direction: Direction,
+    chunk: f64,
+) -> Search<Point> {
+    locate_with(seg, start, end, direction, chunk, &Budget::CAPPED)
+}
+
+/// [`locate`] with another capped budget ([`Budget::CAPPED_HERMITE`]: the stepper's
+/// `SwitchStart::Hermite`).
+pub fn locate_with<S: Segment>(
+    seg: &S,
     (lo, start): (f64, Point),
     (hi, end): (f64, Point),
     direction: Direction,
     chunk: f64,
+    budget: &Budget,
 ) -> Search<Point> {
     let f = Boundary::new(seg, direction);
-    switch::locate(&f, lo, start, hi, Some(end), chunk, &Budget::CAPPED)
+    switch::locate(&f, lo, start, hi, Some(end), chunk, budget)
 }

@@ -37,6 +37,7 @@
 //! and, failing that, by the budget.
 
 mod boundary;
+mod hermite;
 mod slip;
 
 pub use boundary::{
@@ -79,6 +80,10 @@ pub struct Budget {
     pub min_interval: f64,
     /// Most Newton/bisection steps refining one bracket.
     pub refine: u32,
+    /// Start each refinement at the root of the bracket's cubic Hermite interpolant
+    /// (`hermite.rs`): fewer closed-form evaluations, the same switch to rounding but not to
+    /// the bit. Off in both standard budgets.
+    pub hermite_start: bool,
 }
 
 impl Budget {
@@ -89,12 +94,20 @@ impl Budget {
         tests: 1024,
         min_interval: 1e-13,
         refine: 80,
+        hermite_start: false,
     };
     /// The fixed-step stepper's: hard caps for a bounded step time.
     pub const CAPPED: Budget = Budget {
         tests: 32,
         min_interval: 4.0 * f64::EPSILON,
         refine: 40,
+        hermite_start: false,
+    };
+    /// [`Budget::CAPPED`] with refinements started at the Hermite root (the stepper's
+    /// `SwitchStart::Hermite`).
+    pub const CAPPED_HERMITE: Budget = Budget {
+        hermite_start: true,
+        ..Budget::CAPPED
     };
 }
 
@@ -228,7 +241,7 @@ fn search_chunk<F: EventFunction>(
         // precedes it (the common case: one transversal switch in the chunk). Not from a start
         // within rounding of g = 0 (just after a switch): the secant would be drawn to the
         // rounding noise there; the interval search proves the start's neighbourhood first.
-        let (x, converged) = refine(f, a, b, budget.refine);
+        let (x, converged) = refine(f, a, b, budget);
         if x.s > a.s && proves_free(f, &a, &x) {
             return found(x, converged && !work.capped);
         }
@@ -268,7 +281,7 @@ fn search_chunk<F: EventFunction>(
         };
         if y.g > TOUCH && (short || spent || x.dg > m2 * len) {
             // g(x) ≤ 0 < g(y): one crossing (g increases throughout), or no more splitting.
-            let (r, converged) = refine(f, x, y, budget.refine);
+            let (r, converged) = refine(f, x, y, budget);
             return found(r, converged && !spent && !work.capped);
         }
         if y.g <= TOUCH && (short || spent || no_crossing(x.g, x.dg, y.g, y.dg, m2, len, TOUCH)) {
@@ -327,17 +340,24 @@ pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slac
 /// Safeguarded Newton on g over a bracket g(a) ≤ 0 < g(b): Newton from the end with the smaller
 /// residual, else the secant, else bisection, and a bisection whenever two iterations in a row
 /// failed to halve the bracket. Returns the point with the smallest |g| seen in (a, b] and
-/// whether it converged to rounding within `iterations` steps.
+/// whether it converged to rounding within the budget's `refine` steps. With
+/// `hermite_start` the first step goes to the root of the bracket's Hermite interpolant.
 fn refine<F: EventFunction>(
     f: &F,
     lo: Knot<F::Point>,
     hi: Knot<F::Point>,
-    iterations: u32,
+    budget: &Budget,
 ) -> (Knot<F::Point>, bool) {
     let (mut a, mut b) = (lo, hi);
     let mut best = b;
     let mut slow = 0;
-    for _ in 0..iterations {
+    let mut start = if budget.hermite_start {
+        let w = b.s - a.s;
+        hermite::root(a.g, a.dg * w, b.g, b.dg * w).map(|tau| a.s + tau * w)
+    } else {
+        None
+    };
+    for _ in 0..budget.refine {
         let width = b.s - a.s;
         if width <= 4.0 * f64::EPSILON * (1.0 + math::abs(b.s)) || math::abs(best.g) <= CONVERGED {
             return (best, true);
@@ -348,7 +368,11 @@ fn refine<F: EventFunction>(
             (b.g, b.dg, b.s)
         };
         let inside = |t: f64| t > a.s && t < b.s;
-        let mut t = if d0 != 0.0 { s0 - g0 / d0 } else { f64::NAN };
+        let mut t = match start.take() {
+            Some(t) => t,
+            None if d0 != 0.0 => s0 - g0 / d0,
+            None => f64::NAN,
+        };
         if !inside(t) {
             t = a.s - a.g * width / (b.g - a.g);
         }
