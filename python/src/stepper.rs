@@ -142,7 +142,7 @@ impl PyStepper {
     }
 
     /// Apply the external input force (fx, fy) from now on, held until the next call (a
-    /// controller's output; `docs/MODEL.md` §14). Cheap: the precomputed free map is kept.
+    /// controller's output; `docs/MODEL.md` §15). Cheap: the precomputed free map is kept.
     fn set_input_force(&mut self, fx: f64, fy: f64) -> PyResult<()> {
         self.inner
             .set_input_force(fx, fy)

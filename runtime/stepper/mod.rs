@@ -54,7 +54,7 @@
 //!   without knowing (measured worst steps per kind: `BENCHMARKS.md`).
 //!
 //! # Inputs between steps
-//! [`Stepper::set_input_force`] (the external force u, `docs/MODEL.md` §14: Φ is kept, the map
+//! [`Stepper::set_input_force`] (the external force u, `docs/MODEL.md` §15: Φ is kept, the map
 //! gains a constant), [`Stepper::set_speed_ratio`] (phase continuous), [`Stepper::snapshot`] /
 //! [`Stepper::restore`] (roll back), and [`Stepper::step_to_switch`] (stop at the first switch:
 //! an FMU's early return).
