@@ -245,6 +245,56 @@ impl FreeSegment {
         phasor: (f64, f64),
         state: State,
     ) -> Self {
+        let off = Self::offset_distance(constants, offset);
+        let (model, form, reach) = Self::parts(constants, offset, off, phasor, state);
+        FreeSegment {
+            constants: *constants,
+            model,
+            phase0: phasor,
+            form,
+            reach,
+            shift: constants.deflection,
+        }
+    }
+
+    /// Only the bound amplitudes of [`Self::with_phasor`]'s segment (the same arithmetic, so the
+    /// same bits), without building the segment: the stepper's per-step curvature bound needs
+    /// nothing else, and building the segment copies the free constants.
+    #[inline]
+    /// `off` is [`Self::offset_distance`] of `constants` and `offset` (constant per step length
+    /// and parameter set, so the caller keeps it).
+    pub(crate) fn reach_with_phasor(
+        constants: &FreeConstants,
+        offset: (f64, f64),
+        off: f64,
+        phasor: (f64, f64),
+        state: State,
+    ) -> FreeReach {
+        Self::parts(constants, offset, off, phasor, state).2
+    }
+
+    /// |ε − d|: the stator offset's distance from the point the closed form is written about
+    /// (the static deflection d under an input force, else the rest position).
+    #[inline]
+    pub(crate) fn offset_distance(constants: &FreeConstants, offset: (f64, f64)) -> f64 {
+        let shift = constants.deflection;
+        if shift == (0.0, 0.0) {
+            math::hypot(offset.0, offset.1)
+        } else {
+            math::hypot(offset.0 - shift.0, offset.1 - shift.1)
+        }
+    }
+
+    /// The model with the segment's offset, the closed form's constants and the bound amplitudes
+    /// of the free segment through `state` (see [`Self::with_phasor`]).
+    #[inline]
+    fn parts(
+        constants: &FreeConstants,
+        offset: (f64, f64),
+        off: f64,
+        phasor: (f64, f64),
+        state: State,
+    ) -> (ModelParams, Form, FreeReach) {
         let c = constants;
         let shift = c.deflection;
         let (offset, state) = if shift == (0.0, 0.0) {
@@ -269,7 +319,6 @@ impl FreeSegment {
             vel: math::hypot(h.px, h.py),
             drive,
         };
-        let off = math::hypot(offset.0, offset.1);
         let (form, reach) = match c.resonance {
             None => {
                 let h = steady_homogeneous();
@@ -308,19 +357,7 @@ impl FreeSegment {
                 (form, reach)
             }
         };
-        FreeSegment {
-            constants: *constants,
-            model,
-            phase0: phasor,
-            form,
-            reach,
-            shift,
-        }
-    }
-
-    /// The segment's bound amplitudes (shared with the stepper's transition).
-    pub(crate) fn reach(&self) -> &FreeReach {
-        &self.reach
+        (model, form, reach)
     }
 
     /// Upper bound of |r − ε| for all s ≥ `lo`: the steady orbit's reach plus the decaying

@@ -38,6 +38,8 @@ pub struct FreeTransition {
     basis: BasisBound,
     /// (ε̂x, ε̂y).
     offset: (f64, f64),
+    /// |ε − d| for the switch bound (`FreeSegment::offset_distance`), kept with `constants`.
+    offset_distance: f64,
     /// b = d − Φ·d for the input force's static deflection d; `None` without input force.
     input: Option<[f64; 4]>,
 }
@@ -80,6 +82,7 @@ impl FreeTransition {
             constants: unforced,
             basis: BasisBound::on(constants, 0.0, dt),
             offset: (params.offset_x, params.offset_y),
+            offset_distance: 0.0,
             input: None,
         };
         transition.set_input(constants);
@@ -91,6 +94,7 @@ impl FreeTransition {
     pub fn set_input(&mut self, constants: &FreeConstants) {
         let (dx, dy) = constants.deflection();
         self.constants = *constants;
+        self.offset_distance = FreeSegment::offset_distance(constants, self.offset);
         self.input = if (dx, dy) == (0.0, 0.0) {
             None
         } else {
@@ -147,8 +151,14 @@ impl FreeTransition {
     /// in [`super::search::curvature`].
     #[inline]
     pub fn curvature_bound(&self, w: &State, phasor: (f64, f64), r0: f64) -> f64 {
-        let segment = FreeSegment::with_phasor(&self.constants, self.offset, phasor, *w);
-        let b = segment.reach().bounds(&self.basis);
+        let reach = FreeSegment::reach_with_phasor(
+            &self.constants,
+            self.offset,
+            self.offset_distance,
+            phasor,
+            *w,
+        );
+        let b = reach.bounds(&self.basis);
         let v0 = math::hypot(w.vx, w.vy);
         local_curvature(r0, v0, b.radius, b.speed, b.accel, self.dt)
     }
