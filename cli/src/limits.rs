@@ -21,10 +21,13 @@ const MEMORY_SHARE: u64 = 2;
 pub fn parse_work(text: &str) -> Result<u64, String> {
     let bad = || format!("'{text}' is not an integer from 1 to 1e18");
     let value: f64 = text.trim().parse().map_err(|_| bad())?;
-    if !(1.0..=1e18).contains(&value) || value.fract() != 0.0 {
-        return Err(bad());
-    }
-    Ok(value as u64)
+    work(value).ok_or_else(bad)
+}
+
+/// A work limit given as a number: an integer from 1 to 1e18 (what [`parse_work`] checks once
+/// the text is a number).
+pub fn work(value: f64) -> Option<u64> {
+    ((1.0..=1e18).contains(&value) && value.fract() == 0.0).then_some(value as u64)
 }
 
 /// The run-length limit shared by the commands that propagate.

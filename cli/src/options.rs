@@ -7,11 +7,20 @@ use rotor_rub::{ContactScheme, Method, Options, Params};
 /// A finite number > 0.
 pub fn parse_positive(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        Ok(x) => Err(format!(
-            "{x} is out of range: it must be a finite number > 0"
-        )),
+        Ok(x) => positive(x),
         Err(_) => Err(format!("'{text}' is not a number")),
+    }
+}
+
+/// `x` when it is a finite number > 0 (what [`parse_positive`] checks once the text is a number;
+/// also the Python keywords' check).
+pub fn positive(x: f64) -> Result<f64, String> {
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(format!(
+            "{x} is out of range: it must be a finite number > 0"
+        ))
     }
 }
 

@@ -71,7 +71,6 @@ def _key(names: Sequence[str], points: np.ndarray, chunk_size: int,
     if config is not None:
         with open(config, "rb") as f:
             described["config"] = hashlib.sha256(f.read(1 << 20)).hexdigest()
-    described["threads"] = None
     text = json.dumps(
         {"version": __version__, "names": list(names), "chunk_size": chunk_size,
          "options": described}, sort_keys=True, default=repr)

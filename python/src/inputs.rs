@@ -7,8 +7,9 @@ use std::path::PathBuf;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyDictMethods};
 use rotor_rub::{ContactScheme, Method, Options, Parameter, Problem};
-use rotor_rub_cli::limits::{Budget, LimitArgs, parse_work};
-use rotor_rub_cli::options::{SchemeArgs, parse_method, parse_positive, parse_scheme};
+use rotor_rub_cli::error::num;
+use rotor_rub_cli::limits::{Budget, LimitArgs, work};
+use rotor_rub_cli::options::{SchemeArgs, parse_method, parse_scheme, positive};
 use rotor_rub_cli::problem::{ProblemArgs, parse_parameter, parse_preset};
 
 use crate::errors::{cli, input};
@@ -63,7 +64,7 @@ pub fn options(
         .map_err(input)?
         .unwrap_or(default);
     let number = |name: &str, x: Option<f64>| -> PyResult<Option<f64>> {
-        x.map(|x| parse_positive(&x.to_string()).map_err(|e| input(format!("{name}: {e}"))))
+        x.map(|x| positive(x).map_err(|e| input(format!("{name}: {e}"))))
             .transpose()
     };
     let scheme: Option<ContactScheme> = contact_scheme
@@ -82,17 +83,24 @@ pub fn options(
 pub fn budget(max_work: Option<f64>) -> PyResult<Budget> {
     let max_work = match max_work {
         None => 1e9 as u64,
-        Some(w) => parse_work(&w.to_string()).map_err(|e| input(format!("max_work: {e}")))?,
+        Some(w) => work(w).ok_or_else(|| {
+            input(format!(
+                "max_work: '{}' is not an integer from 1 to 1e18",
+                num(w)
+            ))
+        })?,
     };
     Ok(LimitArgs { max_work }.budget())
 }
 
-/// A non-negative integer count given as a Python int.
-pub fn count(name: &str, value: i64, min: i64) -> PyResult<u64> {
-    if value < min {
-        return Err(input(format!(
-            "{name}: {value} is out of range: it must be an integer >= {min}"
-        )));
-    }
-    u64::try_from(value).map_err(|_| input(format!("{name}: {value} is too large")))
+/// A count given as a Python int, at least `min` (≥ 0).
+pub fn count(name: &str, value: i64, min: u64) -> PyResult<u64> {
+    u64::try_from(value)
+        .ok()
+        .filter(|&n| n >= min)
+        .ok_or_else(|| {
+            input(format!(
+                "{name}: {value} is out of range: it must be an integer >= {min}"
+            ))
+        })
 }

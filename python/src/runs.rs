@@ -11,7 +11,7 @@ use rotor_rub::{EventKind, Method, Regime, State};
 use rotor_rub_cli::analysis::classify::distinct_points;
 use rotor_rub_cli::analysis::spectrum::{real_amplitudes, whirl_amplitudes};
 use rotor_rub_cli::limits::{add_counts, fits_memory};
-use rotor_rub_cli::options::{describe, parse_positive};
+use rotor_rub_cli::options::{describe, positive};
 use rotor_rub_cli::trajectory::{self, uniform_times};
 use rotor_rub_cli::{poincare as section, spectrum as fft};
 
@@ -77,9 +77,7 @@ impl Columns {
 
 /// The end time from `t_end` or `periods` (default 20 forcing periods), as `--t-end`/`--periods`.
 fn end_time(t_end: Option<f64>, periods: Option<f64>, period: f64) -> PyResult<f64> {
-    let positive = |name: &str, x: f64| {
-        parse_positive(&format!("{x:e}")).map_err(|e| input(format!("{name}: {e}")))
-    };
+    let positive = |name: &str, x: f64| positive(x).map_err(|e| input(format!("{name}: {e}")));
     match (t_end, periods) {
         (Some(_), Some(_)) => Err(input(
             "give t_end or periods, not both (they both set the run length)",
@@ -200,7 +198,6 @@ pub fn poincare<'py>(
     budget
         .plan("--keep", keep.saturating_add(lyapunov_work))
         .map_err(cli)?;
-    trajectory::start(&problem, &options).map_err(cli)?;
     let result = py
         .detach(|| section::section(&problem, &options, transient, kept, lyapunov, &budget))
         .map_err(cli)?;
@@ -248,7 +245,6 @@ pub fn spectrum<'py>(
     budget
         .plan("--periods × --samples-per-period", n as u64)
         .map_err(cli)?;
-    trajectory::start(&problem, &options).map_err(cli)?;
     let (x, y) = py
         .detach(|| fft::signal(&problem, &options, transient, periods, per_period, &budget))
         .map_err(cli)?;

@@ -133,6 +133,33 @@ pub fn clearance_circle(offset: (f64, f64)) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// Fill `root` white and draw a figure's header in its top `height` pixels: the title, an
+/// optional subtitle under it, and the legend at pixel row `legend_y`. Returns the area below.
+pub fn header<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    height: u32,
+    title: &str,
+    subtitle: Option<&str>,
+    legend_y: i32,
+    entries: &[(LegendMark, String)],
+) -> Result<DrawingArea<DB, Shift>, String> {
+    root.fill(&WHITE).map_err(err)?;
+    let (top, body) = root.split_vertically(height);
+    top.draw(&Text::new(title, (12, 8), ("sans-serif", 20).into_font()))
+        .map_err(err)?;
+    if let Some(subtitle) = subtitle {
+        top.draw(&Text::new(
+            subtitle,
+            (12, 36),
+            ("sans-serif", 15).into_font(),
+        ))
+        .map_err(err)?;
+    }
+    let entries: Vec<(LegendMark, &str)> = entries.iter().map(|(m, s)| (*m, s.as_str())).collect();
+    legend(&top, (12, legend_y), &entries)?;
+    Ok(body)
+}
+
 /// Draw a one-line legend of (sample, label) entries at pixel `(x, y)` of `area`.
 pub fn legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,

@@ -4,7 +4,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{
-    CLEARANCE, ENTER, EXIT, Figure, LegendMark, clearance_circle, err, legend, square_ranges,
+    CLEARANCE, ENTER, EXIT, Figure, LegendMark, clearance_circle, err, header, square_ranges,
 };
 
 /// One trajectory in a panel.
@@ -81,18 +81,7 @@ impl Figure for OrbitFigure {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        root.fill(&WHITE).map_err(err)?;
-        let (header, body) = root.split_vertically(HEADER);
-        header
-            .draw(&Text::new(
-                self.title.clone(),
-                (12, 8),
-                ("sans-serif", 20).into_font(),
-            ))
-            .map_err(err)?;
-        let entries: Vec<(LegendMark, &str)> =
-            self.legend.iter().map(|(m, s)| (*m, s.as_str())).collect();
-        legend(&header, (12, 50), &entries)?;
+        let body = header(root, HEADER, &self.title, None, 50, &self.legend)?;
         let columns = self.columns.max(1);
         let rows = self.panels.len().div_ceil(columns).max(1);
         for (area, panel) in body.split_evenly((rows, columns)).iter().zip(&self.panels) {

@@ -5,7 +5,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{ANALYTIC, Figure, LegendMark, err, legend, padded_range};
+use super::{ANALYTIC, Figure, LegendMark, err, header, padded_range};
 
 /// Colour of the run-up.
 pub const RUN_UP: RGBColor = ANALYTIC;
@@ -44,25 +44,14 @@ impl Figure for RunupFigure {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        root.fill(&WHITE).map_err(err)?;
-        let (header, body) = root.split_vertically(HEADER);
-        header
-            .draw(&Text::new(
-                self.title.clone(),
-                (12, 8),
-                ("sans-serif", 20).into_font(),
-            ))
-            .map_err(err)?;
-        header
-            .draw(&Text::new(
-                self.subtitle.clone(),
-                (12, 36),
-                ("sans-serif", 15).into_font(),
-            ))
-            .map_err(err)?;
-        let entries: Vec<(LegendMark, &str)> =
-            self.legend.iter().map(|(m, s)| (*m, s.as_str())).collect();
-        legend(&header, (12, 74), &entries)?;
+        let body = header(
+            root,
+            HEADER,
+            &self.title,
+            Some(&self.subtitle),
+            74,
+            &self.legend,
+        )?;
 
         let points = self.curves.iter().flat_map(|c| c.points.iter());
         let xr = padded_range(points.clone().map(|p| p.0));
