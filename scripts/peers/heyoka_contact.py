@@ -137,6 +137,7 @@ class HeyokaPair:
         contact_y = free_y - (p["k_yx"] * gx + p["k_yy"] * gy)
         h = u * u + v * v - 1.0
         start = [p["x0"], p["y0"], p["vx0"], p["vy0"]]
+        hy.llvm_state.clear_memcache()  # the JIT time below is a fresh compilation
         t0 = time.perf_counter()
         self.free = hy.taylor_adaptive(
             [(x, vx), (y, vy), (vx, free_x), (vy, free_y)],

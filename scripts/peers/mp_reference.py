@@ -66,6 +66,15 @@ CASES: Dict[str, CaseSpec] = {
         "transient from the preset start",
     ),
 }
+CASES["friction35"] = CaseSpec(
+    name="friction35",
+    preset="paper",
+    overrides={"speed_ratio": 3.5, "friction_coefficient": 0.2, "radius_ratio": 1.0},
+    t_end=20.0,
+    out="tests/data/switches_30digit_friction.csv",
+    note="paper preset at eta = 3.5 with Coulomb friction mu = 0.2, R/clearance = 1: slipping "
+    "contacts with slip reversals (reverse events), no rolling, transient from the preset start",
+)
 # The contact-heavy case of heyoka_contact.py (paper, η = 2.5, N forcing periods): its exact
 # switch times, to measure every double-precision run (heyoka's tol-1e-15 run included) against.
 for _periods in (100, 1000):
@@ -108,8 +117,8 @@ class Model:
     """The field's constants in working precision (exact binary values of the f64 inputs)."""
 
     def __init__(self, p: Dict[str, float]) -> None:
-        if p["friction_coefficient"] != 0.0:
-            raise ValueError("frictionless model only")
+        self.mu = mpf(p["friction_coefficient"])
+        self.rho_r = mpf(p["radius_ratio"])
         self.eta = mpf(p["speed_ratio"])
         self.nu = mpf(p["damping_ratio"])
         self.f = mpf(p["mass_ratio"]) * mpf(p["eccentricity_ratio"]) * self.eta**2
@@ -118,8 +127,14 @@ class Model:
         self.ex, self.ey = mpf(p["offset_x"]), mpf(p["offset_y"])
         self.k = [[mpf(p["k_xx"]), mpf(p["k_xy"])], [mpf(p["k_yx"]), mpf(p["k_yy"])]]
 
-    def series(self, t: mpf, s0: Vec, contact: bool, n: int) -> Tuple[List[Vec], Vec]:
-        """Taylor coefficients at τ = t to order n of x, y, x', y' (4 lists) and of z² (list)."""
+    def series(self, t: mpf, s0: Vec, contact: bool, n: int,
+               sigma: int = 0) -> Tuple[List[Vec], Vec, Vec]:
+        """Taylor coefficients at τ = t to order n of x, y, x', y' (4 lists), of z² (list)
+        and, while slipping with direction σ = ±1 (docs/MODEL.md §10), of the slip velocity
+        w = q'·t + ρ_R η to order n − 1 (else an empty list).
+
+        Slipping adds −μσN t to the contact field: with r = 1/z, N t = r²(1 − r) Q (−v, u),
+        Q = (u, v) K_s (u, v)ᵀ, and w = r (y' u − x' v) + ρ_R η."""
         x, y, vx, vy = ([s0[i]] for i in range(4))
         theta = self.eta * t + self.phase
         c0, s0_ = mp.cos(theta), mp.sin(theta)
@@ -131,6 +146,15 @@ class Model:
         w: Vec = []
         z: Vec = []
         r: Vec = []
+        one_r: Vec = []  # 1 − r
+        q: Vec = []  # Q
+        r2: Vec = []  # r²
+        a3: Vec = []  # r²(1 − r)
+        pp: Vec = []  # P = r²(1 − r) Q
+        cw: Vec = []  # y' u − x' v
+        slip: Vec = []  # w
+        friction = contact and sigma != 0
+        mu_sigma = self.mu * sigma
         two_nu = 2 * self.nu
         kxx, kxy = self.k[0]
         kyx, kyy = self.k[1]
@@ -158,6 +182,17 @@ class Model:
                 gy = v[k] - mp.fsum(r[j] * v[k - j] for j in range(k + 1))
                 ax -= kxx * gx + kxy * gy
                 ay -= kyx * gx + kyy * gy
+            if friction:
+                one_r.append(1 - r[0] if k == 0 else -r[k])
+                q.append(kxx * cauchy(u, u, k) + (kxy + kyx) * cauchy(u, v, k)
+                         + kyy * cauchy(v, v, k))
+                r2.append(cauchy(r, r, k))
+                a3.append(cauchy(r2, one_r, k))
+                pp.append(cauchy(a3, q, k))
+                ax += mu_sigma * cauchy(pp, v, k)  # −μσ P (−v)
+                ay -= mu_sigma * cauchy(pp, u, k)  # −μσ P u
+                cw.append(cauchy(vy, u, k) - cauchy(vx, v, k))
+                slip.append(cauchy(r, cw, k) + (self.rho_r * self.eta if k == 0 else 0))
             x.append(vx[k] / (k + 1))
             y.append(vy[k] / (k + 1))
             vx.append(ax / (k + 1))
@@ -167,7 +202,31 @@ class Model:
         u.append(x[n])
         v.append(y[n])
         w.append(mp.fsum(u[j] * u[n - j] + v[j] * v[n - j] for j in range(n + 1)))
-        return [x, y, vx, vy], w
+        return [x, y, vx, vy], w, slip
+
+    def friction_at(self, t: mpf, s: Vec) -> Tuple[mpf, mpf, mpf]:
+        """w, λ and N at a contact state (docs/MODEL.md §10)."""
+        x, y, vx, vy = s
+        u, v = x - self.ex, y - self.ey
+        z = mp.sqrt(u * u + v * v)
+        nx, ny = u / z, v / z
+        tx, ty = -ny, nx
+        theta = self.eta * t + self.phase
+        gx, gy = (1 - 1 / z) * u, (1 - 1 / z) * v
+        kgx = self.k[0][0] * gx + self.k[0][1] * gy
+        kgy = self.k[1][0] * gx + self.k[1][1] * gy
+        big_gx = self.f * mp.cos(theta) + self.ux - 2 * self.nu * vx - x - kgx
+        big_gy = self.f * mp.sin(theta) + self.uy - 2 * self.nu * vy - y - kgy
+        vt = vx * tx + vy * ty
+        vn = vx * nx + vy * ny
+        lam = tx * big_gx + ty * big_gy - vt * vn / z
+        normal = nx * kgx + ny * kgy
+        return vt + self.rho_r * self.eta, lam, normal
+
+
+def cauchy(a: Vec, b: Vec, k: int) -> mpf:
+    """Coefficient k of the product of two power series."""
+    return mp.fsum(a[j] * b[k - j] for j in range(k + 1))
 
 
 def horner(c: Vec, s: mpf) -> mpf:
@@ -205,11 +264,14 @@ def integrate(p: Dict[str, float], t_end: float, dps: int, scan: int = 48,
     if abs(z2 - 1) < mpf(10) ** -12:
         raise ValueError("start on z = 1")
     contact = z2 > 1
+    sigma = 0
+    if contact and model.mu != 0:
+        sigma = direction(model.friction_at(t, state)[0])
     switches: List[Switch] = []
     steps = 0
     e2 = mp.e**2
     while t < tend:
-        coef, w = model.series(t, state, contact, n)
+        coef, w, slip = model.series(t, state, contact, n, sigma)
         steps += 1
         scale = max(mpf(1), max(abs(a) for a in state))
         rho = None
@@ -220,31 +282,56 @@ def integrate(p: Dict[str, float], t_end: float, dps: int, scan: int = 48,
                 rho = rj if rho is None else min(rho, rj)
         h = (rho / e2) if rho is not None else tend - t
         h = min(h, tend - t)
-        # event: first sign change of z² − 1 away from the regime's side on (0, h]
+        # events, each a polynomial that is positive inside the current regime: z² − 1 (sign
+        # by regime) and, while slipping, σw. The first sign change on (0, h] ends the step.
         w1 = list(w)
         w1[0] -= 1
-        side = -1 if not contact else 1  # sign of z² − 1 inside the current regime
+        if not contact:
+            w1 = [-c for c in w1]
+        events = [("z", w1)]
+        if sigma != 0:
+            events.append(("w", [sigma * c for c in slip]))
         prev = mpf(0)
-        root = None
+        hit: Optional[Tuple[mpf, str]] = None
         for i in range(1, scan + 1):
             s = h * i / scan
-            val = horner(w1, s)
-            if val * side < 0:
-                root = refine(w1, prev, s)
+            roots = [(refine(poly, prev, s), name) for name, poly in events
+                     if horner(poly, s) < 0]
+            if roots:
+                hit = min(roots)
                 break
             prev = s
-        if root is None:
+        if hit is None:
             t += h
             state = [horner(c, h) for c in coef]
             continue
+        root, name = hit
         t += root
         state = [horner(c, root) for c in coef]
-        kind = "exit" if contact else "enter"
+        if name == "z":
+            kind = "exit" if contact else "enter"
+            contact = not contact
+            sigma = 0
+            if contact and model.mu != 0:
+                sigma = direction(model.friction_at(t, state)[0])
+        else:
+            _, lam, normal = model.friction_at(t, state)
+            if abs(lam) <= model.mu * normal:
+                raise RuntimeError(f"rolling at t = {mp.nstr(t, 20)}: not modelled here")
+            new = direction(lam)
+            if new == sigma:  # w touched 0 without reversing: no event (§10 trap 3)
+                continue
+            kind, sigma = "reverse", new
         switches.append(Switch(kind, t, state))
         if verbose:
-            print(f"  {kind:5} t = {mp.nstr(t, 35)}  (step {steps})", file=sys.stderr)
-        contact = not contact
+            print(f"  {kind:7} t = {mp.nstr(t, 35)}  (step {steps})", file=sys.stderr)
     return switches, steps
+
+
+def direction(value: mpf) -> int:
+    if value == 0:
+        raise RuntimeError("slip velocity exactly 0 on entering contact: not modelled here")
+    return 1 if value > 0 else -1
 
 
 def refine(w1: Vec, a: mpf, b: mpf) -> mpf:
@@ -291,14 +378,17 @@ def write_csv(path: str, spec: CaseSpec, p: Dict[str, float], switches: Sequence
     with open(path, "w") as out:
         out.write(f"# 30-digit reference switch times: case {spec.name} ({spec.note}).\n")
         out.write("# Made by scripts/peers/mp_reference.py (mpmath Taylor-series integration of "
-                  "docs/MODEL.md §1, frictionless, switch at z = 1).\n")
+                  "docs/MODEL.md §1"
+                  + (", Coulomb friction §10 while slipping, reverse where w = 0 and sign λ "
+                     "flips" if p["friction_coefficient"] else ", frictionless")
+                  + ", switch at z = 1).\n")
         out.write("# Parameters (f64 values, used exactly): "
                   + ", ".join(f"{k} = {v!r}" for k, v in p.items()) + "\n")
         out.write(f"# Start state (x, y, vx, vy) = ({p['x0']!r}, {p['y0']!r}, {p['vx0']!r}, "
                   f"{p['vy0']!r}) at tau = {p['start_time']!r}; window [{p['start_time']!r}, "
                   f"{spec.t_end!r}].\n")
         out.write(f"# Convergence: {runs}; max |dt| between them {mp.nstr(agreement, 3)}.\n")
-        out.write("# Columns: kind (enter/exit), time (30 significant digits), state at the "
+        out.write("# Columns: kind (enter/exit/reverse), time (30 significant digits), state at the "
                   "switch x, y, vx, vy (25 significant digits).\n")
         out.write("kind,time,x,y,vx,vy\n")
         for s in switches:
