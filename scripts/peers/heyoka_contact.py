@@ -227,7 +227,7 @@ def time_ours(case: Case, method: str, tol: float, repeats: int) -> Optional[Run
                 method=method,
                 tol=tol,
                 samples=2,
-                **case.overrides,
+                **case.overrides,  # type: ignore[arg-type]
             )
         except ValueError as e:
             print(f"  note: {method} at tol {tol:g} skipped: {e}", file=sys.stderr)

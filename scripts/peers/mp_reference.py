@@ -364,7 +364,7 @@ def compare_with_ours(spec: CaseSpec, switches: Sequence[Switch]) -> None:
 
     for tol in (1e-12, 1e-13, 1e-14):
         run = rr.simulate(preset=spec.preset, t_end=spec.t_end, method="dop853", tol=tol,
-                          samples=2, **spec.overrides)
+                          samples=2, **spec.overrides)  # type: ignore[arg-type]
         kinds = [str(k) for k in run.events.kind]
         ok = kinds == [s.kind for s in switches]
         err = max((abs(float(t) - float(s.time)) for t, s in zip(run.events.time, switches)),
