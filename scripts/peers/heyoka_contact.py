@@ -14,7 +14,8 @@ quasi-periodic rub, about 4 switches per forcing period), 1000 forcing periods 2
 What is measured, all in one process:
 
 * heyoka's JIT compilation time (constructing both integrators; excluded from the run times);
-* wall time of each run: best and median of `--repeats` repeats;
+* wall time of each run: best and median of `--repeats` repeats; for heyoka also the part of it
+  that is Python and call overhead of the handoffs (the same calls with nothing to integrate);
 * every switch time. Accuracy is max |Δt| over the switches matched in order against a
   reference run (heyoka at tol 1e-15, independent of our code); the count and the kinds must
   match, otherwise the mismatch is reported (and the error over the common prefix before it).
@@ -198,6 +199,26 @@ class HeyokaPair:
             ta = self.contact if ta is self.free else self.free
 
 
+    def overhead(self, count: int) -> float:
+        """Wall time of `count` handoffs that integrate nothing (set time and state, reset
+        cooldowns, a zero-length propagate_until, read the state back): the Python and call
+        overhead a run with count − 1 switches pays on top of heyoka's compiled integration.
+        Best of 3."""
+        ta = self.free
+        s = self.start.copy()
+        best = math.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            for _ in range(count):
+                ta.time = 1.0
+                ta.state[:] = s
+                ta.reset_cooldowns()
+                ta.propagate_until(1.0)
+                s = ta.state.copy()
+            best = min(best, time.perf_counter() - t0)
+        return best
+
+
 def time_heyoka(case: Case, tol: float, repeats: int) -> Run:
     pair = HeyokaPair(case, tol)
     times = []
@@ -206,7 +227,10 @@ def time_heyoka(case: Case, tol: float, repeats: int) -> Run:
         t0 = time.perf_counter()
         switches, _ = pair.run()
         times.append(time.perf_counter() - t0)
-    return Run("heyoka", tol, times, switches, jit=pair.jit)
+    run = Run("heyoka", tol, times, switches, jit=pair.jit)
+    run.extra["overhead"] = pair.overhead(len(switches) + 1)
+    run.note = f"Python handoffs ≈ {1e3 * run.extra['overhead']:.2f} ms of it"
+    return run
 
 
 # ---------------------------------------------------------------------------------------------
@@ -362,7 +386,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     # the case at tol 1e-10
     main_runs: List[Run] = []
     hy_run = time_heyoka(case, tol, repeats)
-    hy_run.note = f"JIT {1e3 * (hy_run.jit or 0):.1f} ms excluded"
+    hy_run.note = f"JIT {1e3 * (hy_run.jit or 0):.1f} ms excluded; " + hy_run.note
     main_runs.append(hy_run)
     for m in methods:
         r = time_ours(case, m, tol, repeats)
