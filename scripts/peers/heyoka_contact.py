@@ -228,8 +228,9 @@ def time_heyoka(case: Case, tol: float, repeats: int) -> Run:
         switches, _ = pair.run()
         times.append(time.perf_counter() - t0)
     run = Run("heyoka", tol, times, switches, jit=pair.jit)
-    run.extra["overhead"] = pair.overhead(len(switches) + 1)
-    run.note = f"Python handoffs ≈ {1e3 * run.extra['overhead']:.2f} ms of it"
+    overhead = pair.overhead(len(switches) + 1)
+    run.extra["overhead"] = overhead
+    run.note = f"Python handoffs ≈ {1e3 * overhead:.2f} ms of it"
     return run
 
 
