@@ -357,6 +357,62 @@ def refine(w1: Vec, a: mpf, b: mpf) -> mpf:
     return s
 
 
+def acceleration(model: Model, t: mpf, s: Vec, contact: bool, sigma: int) -> Tuple[mpf, mpf]:
+    """The field at one point, written directly from docs/MODEL.md §1 and §10 (no series):
+    the independent statement the odefun check integrates."""
+    x, y, vx, vy = s
+    theta = model.eta * t + model.phase
+    ax = model.f * mp.cos(theta) + model.ux - 2 * model.nu * vx - x
+    ay = model.f * mp.sin(theta) + model.uy - 2 * model.nu * vy - y
+    if contact:
+        u, v = x - model.ex, y - model.ey
+        z = mp.sqrt(u * u + v * v)
+        gx, gy = (1 - 1 / z) * u, (1 - 1 / z) * v
+        kgx = model.k[0][0] * gx + model.k[0][1] * gy
+        kgy = model.k[1][0] * gx + model.k[1][1] * gy
+        ax -= kgx
+        ay -= kgy
+        if sigma:
+            normal = (u * kgx + v * kgy) / z  # N = nᵀ K_s g
+            ax -= model.mu * sigma * normal * (-v / z)
+            ay -= model.mu * sigma * normal * (u / z)
+    return ax, ay
+
+
+def odefun_check(p: Dict[str, float], switches: Sequence[Switch], segments: int,
+                 dps: int = 32) -> mpf:
+    """Integrate the first `segments` switch-to-switch segments again with mpmath.odefun (its own
+    Taylor method, derivatives by its own means) from each reference switch state, and return
+    the largest difference from the next reference switch state. The regime of each segment
+    follows from the switch kinds (after `enter` σ = sign w, after `reverse` −σ)."""
+    mp.dps = dps
+    model = Model(p)
+    worst = mpf(0)
+    contact, sigma = False, 0
+    start_t = mpf(p["start_time"])
+    start = [mpf(p["x0"]), mpf(p["y0"]), mpf(p["vx0"]), mpf(p["vy0"])]
+    for i, sw in enumerate(switches[:segments]):
+        def field(t: mpf, s: Vec, c: bool = contact, g: int = sigma) -> Vec:
+            ax, ay = acceleration(model, t, s, c, g)
+            return [s[2], s[3], ax, ay]
+
+        end = mp.odefun(field, start_t, start)(sw.time)
+        diff = max(abs(a - b) for a, b in zip(end, sw.state))
+        worst = max(worst, diff)
+        print(f"  odefun segment {i} ({'contact' if contact else 'free'}"
+              f"{f', σ = {sigma:+d}' if sigma else ''}) to {sw.kind} at "
+              f"{mp.nstr(sw.time, 12)}: max |Δstate| = {mp.nstr(diff, 3)}")
+        if sw.kind == "enter":
+            contact = True
+            sigma = direction(model.friction_at(sw.time, sw.state)[0]) if model.mu else 0
+        elif sw.kind == "exit":
+            contact, sigma = False, 0
+        else:
+            sigma = -sigma
+        start_t, start = sw.time, list(sw.state)
+    return worst
+
+
 def compare_with_ours(spec: CaseSpec, switches: Sequence[Switch]) -> None:
     """Our dop853 at tol 1e-13 (and 1e-12, 1e-14: the case must not be chaotic) against the
     reference."""
@@ -374,7 +430,7 @@ def compare_with_ours(spec: CaseSpec, switches: Sequence[Switch]) -> None:
 
 
 def write_csv(path: str, spec: CaseSpec, p: Dict[str, float], switches: Sequence[Switch],
-              agreement: mpf, runs: str) -> None:
+              agreement: mpf, runs: str, odefun_note: str = "") -> None:
     with open(path, "w") as out:
         out.write(f"# 30-digit reference switch times: case {spec.name} ({spec.note}).\n")
         out.write("# Made by scripts/peers/mp_reference.py (mpmath Taylor-series integration of "
@@ -388,6 +444,8 @@ def write_csv(path: str, spec: CaseSpec, p: Dict[str, float], switches: Sequence
                   f"{p['vy0']!r}) at tau = {p['start_time']!r}; window [{p['start_time']!r}, "
                   f"{spec.t_end!r}].\n")
         out.write(f"# Convergence: {runs}; max |dt| between them {mp.nstr(agreement, 3)}.\n")
+        if odefun_note:
+            out.write(f"# Independent check: {odefun_note}.\n")
         out.write("# Columns: kind (enter/exit/reverse), time (30 significant digits), state at the "
                   "switch x, y, vx, vy (25 significant digits).\n")
         out.write("kind,time,x,y,vx,vy\n")
@@ -403,6 +461,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                     help="also compare with our dop853 at tol 1e-12, 1e-13, 1e-14")
     ap.add_argument("--out", help="output CSV (default: the case's file under tests/data)")
     ap.add_argument("--verbose", action="store_true")
+    ap.add_argument("--odefun", type=int, default=0, metavar="K",
+                    help="also integrate the first K segments with mpmath.odefun from the "
+                    "reference switch states (an independent check of the series recurrences)")
     ap.add_argument("--agree", type=float, default=1e-31,
                     help="required relative agreement of the two runs' switch times (default "
                     "1e-31: 30 digits; the long contact-heavy cases amplify rounding, 1e-20 "
@@ -438,13 +499,21 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         return 1
     for s in b[:60]:
         print(f"  {s.kind:5} {mp.nstr(s.time, 30, strip_zeros=False)}")
+    odefun_note = ""
+    if args.odefun:
+        worst = odefun_check(p, b, args.odefun)
+        count = min(args.odefun, len(b))
+        odefun_note = (f"mpmath.odefun (dps 32) from each switch state to the next, first {count} "
+                       f"segments: max |dstate| {mp.nstr(worst, 3)}")
+        print(odefun_note)
+        mp.dps = dps_pair[1]
     if args.check:
         compare_with_ours(spec, b)
     out = args.out or spec.out
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
     write_csv(out, spec, p, b, agreement,
               f"runs at dps {dps_pair[0]} (order for 1e-{dps_pair[0]}) and dps {dps_pair[1]} "
-              f"(order for 1e-{dps_pair[1]}), written from the second")
+              f"(order for 1e-{dps_pair[1]}), written from the second", odefun_note)
     print(f"written {out}")
     return 0
 
