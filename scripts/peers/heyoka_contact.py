@@ -17,12 +17,15 @@ What is measured, all in one process:
 * wall time of each run: best and median of `--repeats` repeats; for heyoka also the part of it
   that is Python and call overhead of the handoffs (the same calls with nothing to integrate);
 * every switch time. Accuracy is max |Δt| over the switches matched in order against a
-  reference run (heyoka at tol 1e-15, independent of our code); the count and the kinds must
-  match, otherwise the mismatch is reported (and the error over the common prefix before it).
+  reference: the 30-digit switch times of mp_reference.py (data/contact_heavy_<periods>.csv)
+  when that file exists, else heyoka at tol 1e-15 (independent of our code; with the mp file
+  the error against heyoka at 1e-15 is printed beside, column "vs hy15"). The count and the
+  kinds must match, otherwise the mismatch is reported (and the error over the common prefix
+  before it).
 * our methods through the Python binding (`rotor_rub.simulate(..., samples=2)`): "hybrid",
   "dop853" and "taylor" when the installed package accepts it (a ValueError naming the method
-  means it does not: skipped with a note). When "taylor" exists its tol-1e-15 run is also
-  compared with heyoka's tol-1e-15 run (a cross-check of the two references).
+  means it does not: skipped with a note). When "taylor" exists its tol-1e-15 run (1e-14 when
+  1e-15 is out of its range) is also compared with heyoka's tol-1e-15 run (a cross-check).
 
 Equal-accuracy rule: the target error E is the max switch-time error of heyoka's run at the
 case's tolerance (1e-10) — the accuracy a user gets from the peer at the tolerance asked for
@@ -30,8 +33,8 @@ case's tolerance (1e-10) — the accuracy a user gets from the peer at the toler
 tolerance ladder 1e-8, 1e-9, …, 1e-14 is walked from loose to tight and the first (loosest)
 tolerance whose error is ≤ E is taken; the ratios of those rows compare methods at equal
 switch-time accuracy. A method that reaches E nowhere on the ladder is reported as such. Because
-over 1000 periods rounding puts a floor under every double-precision run (heyoka ~1e-11, our
-methods ~1e-10, growing with τ), the same selection is also printed at the fixed levels 1e-8,
+over 1000 periods rounding puts a floor under every double-precision run (heyoka ~2e-11, our
+methods ~1e-10, growing with τ: time_floor.py), the same selection is also printed at the fixed levels 1e-8,
 1e-9 and 1e-10.
 
 Usage: scripts/peers/run heyoka_contact.py [--quick] (see scripts/peers/README.md).
