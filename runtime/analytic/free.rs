@@ -43,6 +43,16 @@ pub(crate) fn harmonic_amplitude(c11: f64, c22: f64, c33: f64, c44: f64) -> f64 
     (sigma * (1.0 + 1e-12)).min(math::sqrt(sum))
 }
 
+/// √(x² + y²) with one rounded root, where libm's `hypot` (four times the instructions) guards
+/// against overflow and keeps extra precision. For the stepper's per-step free-flight bound,
+/// which only decides whether a step is provably free: its rounding (a few ulps of the bound)
+/// moves that decision only when the two-parabola test's margin is at rounding level, and an
+/// overflowing square gives an infinite bound, which sends the step to the exact path.
+#[inline]
+pub(crate) fn plain_norm(x: f64, y: f64) -> f64 {
+    math::sqrt(x * x + y * y)
+}
+
 /// Per-parameter-set constants of free flight (computed once per propagation).
 #[derive(Clone, Copy, Debug)]
 pub struct FreeConstants {
@@ -246,7 +256,7 @@ impl FreeSegment {
         state: State,
     ) -> Self {
         let off = Self::offset_distance(constants, offset);
-        let (model, form, reach) = Self::parts(constants, offset, off, phasor, state);
+        let (model, form, reach) = Self::parts(constants, offset, off, phasor, state, math::hypot);
         FreeSegment {
             constants: *constants,
             model,
@@ -257,12 +267,13 @@ impl FreeSegment {
         }
     }
 
-    /// Only the bound amplitudes of [`Self::with_phasor`]'s segment (the same arithmetic, so the
-    /// same bits), without building the segment: the stepper's per-step curvature bound needs
-    /// nothing else, and building the segment copies the free constants.
+    /// Only the bound amplitudes of [`Self::with_phasor`]'s segment, without building the
+    /// segment: the stepper's per-step curvature bound needs nothing else, and building the
+    /// segment copies the free constants. `off` is [`Self::offset_distance`] of `constants` and
+    /// `offset` (constant per step length and parameter set, so the caller keeps it). The
+    /// amplitudes' norms are [`plain_norm`] instead of `hypot` (the bound only decides whether
+    /// the stepper's step is free; see there).
     #[inline]
-    /// `off` is [`Self::offset_distance`] of `constants` and `offset` (constant per step length
-    /// and parameter set, so the caller keeps it).
     pub(crate) fn reach_with_phasor(
         constants: &FreeConstants,
         offset: (f64, f64),
@@ -270,7 +281,7 @@ impl FreeSegment {
         phasor: (f64, f64),
         state: State,
     ) -> FreeReach {
-        Self::parts(constants, offset, off, phasor, state).2
+        Self::parts(constants, offset, off, phasor, state, plain_norm).2
     }
 
     /// |ε − d|: the stator offset's distance from the point the closed form is written about
@@ -286,14 +297,16 @@ impl FreeSegment {
     }
 
     /// The model with the segment's offset, the closed form's constants and the bound amplitudes
-    /// of the free segment through `state` (see [`Self::with_phasor`]).
-    #[inline]
+    /// of the free segment through `state` (see [`Self::with_phasor`]), with `norm` the
+    /// Euclidean norm the amplitudes are taken with.
+    #[inline(always)]
     fn parts(
         constants: &FreeConstants,
         offset: (f64, f64),
         off: f64,
         phasor: (f64, f64),
         state: State,
+        norm: impl Fn(f64, f64) -> f64,
     ) -> (ModelParams, Form, FreeReach) {
         let c = constants;
         let shift = c.deflection;
@@ -315,8 +328,8 @@ impl FreeSegment {
         let steady_homogeneous =
             || coef::free_homogeneous(&model, &start, &Phasor { ct, st }, &c.particular);
         let amplitudes = |h: &FreeHomogeneous, drive: f64| Amplitudes {
-            pos: math::hypot(h.xh, h.yh),
-            vel: math::hypot(h.px, h.py),
+            pos: norm(h.xh, h.yh),
+            vel: norm(h.px, h.py),
             drive,
         };
         let (form, reach) = match c.resonance {
@@ -338,8 +351,8 @@ impl FreeSegment {
                         .steady_amplitude
                         .map(|amp| amplitudes(&steady_homogeneous(), amp)),
                     forced: Some(Amplitudes {
-                        pos: math::hypot(start.xh, start.yh),
-                        vel: math::hypot(start.px, start.py),
+                        pos: norm(start.xh, start.yh),
+                        vel: norm(start.px, start.py),
                         drive: harmonic_amplitude(
                             forcing.fxc,
                             forcing.fxs,

@@ -89,62 +89,107 @@ pub struct Recurrence<'a> {
 }
 
 impl Recurrence<'_> {
-    /// c_{m+2} from c_m and c_{m+1}: the generated linear acceleration at position c_m,
-    /// velocity (m + 1) c_{m+1} and force a_m, divided by (m + 2)(m + 1).
-    #[inline]
-    fn next(&self, m: usize, divisor: f64, cm: [f64; 2], cn: [f64; 2]) -> [f64; 2] {
-        let a = |i: usize| self.forcing.get(2 * m + i).copied().unwrap_or(0.0);
-        let k = (m + 1) as f64;
-        let acc = coef::linear_acceleration(
-            self.model,
-            &Position { x: cm[0], y: cm[1] },
-            &Velocity {
-                vx: k * cn[0],
-                vy: k * cn[1],
-            },
-            &Force { fx: a(0), fy: a(1) },
-            self.kl,
-        );
-        [acc.ax * divisor, acc.ay * divisor]
-    }
-
-    /// The first `len` (6 … [`SERIES_TERMS`]) coefficients into `c`, the others zero.
-    pub fn coefficients_into(&self, len: usize, c: &mut Coefficients) {
+    /// Runs the recurrence for the first `len` (6 … [`SERIES_TERMS`]) coefficients and hands
+    /// each c_{m+2} (m = 0 … len − 3) to `visit`: c_{m+2} is the generated linear acceleration
+    /// at position c_m, velocity (m + 1) c_{m+1} and force a_m, divided by (m + 2)(m + 1). The
+    /// forcing's coefficients are walked by pairs and zero after them (no per-term lookup).
+    #[inline(always)]
+    fn run(&self, len: usize, mut visit: impl FnMut(usize, [f64; 2])) {
         let len = len.clamp(6, SERIES_TERMS);
-        *c = [[0.0; 2]; SERIES_TERMS];
+        let mut forcing = self.forcing.chunks_exact(2);
         let (mut cm, mut cn) = ([0.0; 2], [0.0; 2]);
-        for ((m, &r), slot) in DIVISORS
-            .iter()
-            .enumerate()
-            .take(len - 2)
-            .zip(c.iter_mut().skip(2))
-        {
-            let next = self.next(m, r, cm, cn);
-            *slot = next;
+        for (m, &divisor) in DIVISORS.iter().take(len - 2).enumerate() {
+            let (fx, fy) = match forcing.next() {
+                Some(&[fx, fy]) => (fx, fy),
+                _ => (0.0, 0.0),
+            };
+            let k = (m + 1) as f64;
+            let acc = coef::linear_acceleration(
+                self.model,
+                &Position { x: cm[0], y: cm[1] },
+                &Velocity {
+                    vx: k * cn[0],
+                    vy: k * cn[1],
+                },
+                &Force { fx, fy },
+                self.kl,
+            );
+            let next = [acc.ax * divisor, acc.ay * divisor];
+            visit(m, next);
             (cm, cn) = (cn, next);
         }
+    }
+
+    /// The first `len` (6 … [`SERIES_TERMS`]) coefficients into `out`, the others zero.
+    pub fn coefficients_into(&self, len: usize, out: &mut Series) {
+        let mut slots = out.coefficients.iter_mut();
+        // c0 = c1 = 0.
+        for slot in slots.by_ref().take(2) {
+            *slot = [0.0; 2];
+        }
+        // [`used`], tracked as the terms come (c0, c1 and the terms after `len` are zero).
+        let mut last = 0;
+        self.run(len, |m, next| {
+            if let Some(slot) = slots.next() {
+                *slot = next;
+            }
+            if next[0] != 0.0 || next[1] != 0.0 {
+                last = m + 3;
+            }
+        });
+        for slot in slots {
+            *slot = [0.0; 2];
+        }
+        out.used = last;
     }
 
     /// Position and velocity at `s` of the first `len` terms in one pass, without storing the
     /// coefficients (the same value as [`eval`] of [`Self::coefficients_into`] up to rounding).
     pub fn value(&self, len: usize, s: f64) -> [f64; 4] {
-        let len = len.clamp(6, SERIES_TERMS);
-        // (c_m, c_{m+1}) with c0 = c1 = 0; the terms m = 0, 1 contribute nothing.
-        let (mut cm, mut cn) = ([0.0; 2], [0.0; 2]);
+        // c0 = c1 = 0: the terms m = 0, 1 contribute nothing.
         let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
         // s^(m+1) for the term c_{m+2} s^(m+2).
         let mut pow1 = s;
-        for (m, &r) in DIVISORS.iter().enumerate().take(len - 2) {
-            let next = self.next(m, r, cm, cn);
+        self.run(len, |m, next| {
             let pow2 = pow1 * s;
             let d = (m + 2) as f64 * pow1;
             x += next[0] * pow2;
             y += next[1] * pow2;
             vx += next[0] * d;
             vy += next[1] * d;
-            (cm, cn, pow1) = (cn, next, pow2);
-        }
+            pow1 = pow2;
+        });
         [x, y, vx, vy]
+    }
+}
+
+/// A series response's Taylor coefficients with the count up to the last non-zero one (kept so
+/// that evaluations and bounds do not search for it each time).
+#[derive(Clone, Copy, Debug)]
+pub struct Series {
+    /// c_0 … c_{SERIES_TERMS − 1}.
+    pub coefficients: Coefficients,
+    /// [`used`] of `coefficients`.
+    pub used: usize,
+}
+
+impl Series {
+    /// No terms.
+    pub const ZERO: Series = Series {
+        coefficients: [[0.0; 2]; SERIES_TERMS],
+        used: 0,
+    };
+
+    /// The coefficients up to the last non-zero one.
+    #[inline]
+    pub fn terms(&self) -> &[[f64; 2]] {
+        self.coefficients.get(..self.used).unwrap_or(&[])
+    }
+
+    /// Position and velocity at s (Horner): [`eval`].
+    #[inline]
+    pub fn eval(&self, s: f64) -> [f64; 4] {
+        eval_terms(self.terms(), s)
     }
 }
 
@@ -158,14 +203,24 @@ pub fn used(c: &Coefficients) -> usize {
 
 /// Position and velocity of a Taylor polynomial at s (Horner).
 pub fn eval(c: &Coefficients, s: f64) -> [f64; 4] {
+    eval_terms(c.get(..used(c)).unwrap_or(&[]), s)
+}
+
+/// [`eval`] of the coefficients `c` (the velocity's Horner sum stops before the constant term).
+#[inline]
+fn eval_terms(c: &[[f64; 2]], s: f64) -> [f64; 4] {
     let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
-    for (m, cm) in c.iter().enumerate().take(used(c)).rev() {
+    let Some((c0, rest)) = c.split_first() else {
+        return [x, y, vx, vy];
+    };
+    for (i, cm) in rest.iter().enumerate().rev() {
+        let m = (i + 1) as f64;
         x = x * s + cm[0];
         y = y * s + cm[1];
-        if m > 0 {
-            vx = vx * s + m as f64 * cm[0];
-            vy = vy * s + m as f64 * cm[1];
-        }
+        vx = vx * s + m * cm[0];
+        vy = vy * s + m * cm[1];
     }
+    x = x * s + c0[0];
+    y = y * s + c0[1];
     [x, y, vx, vy]
 }

@@ -170,6 +170,13 @@ impl Stepper {
             self.anchor_time = self.time;
             self.anchor_steps = 0;
         }
+        if self.regime == Regime::Free
+            && let Some(state) = self.free_step()
+        {
+            // The fast path: no cap can be hit, and the report is built once, in place.
+            self.finish(dt, state, Regime::Free, friction::Slip::NONE, None);
+            return Ok(StepReport::free(self.time, state));
+        }
         let mut report = StepReport {
             time: self.time,
             state: self.state,
@@ -180,20 +187,31 @@ impl Stepper {
             search_capped: false,
             error_estimate: 0.0,
         };
-        let fast = match self.regime {
-            Regime::Free => self.free_step(),
-            Regime::Contact | Regime::Rolling => None,
-        };
-        let (state, regime, slip, stopped) = match fast {
-            Some(state) => (state, Regime::Free, friction::Slip::NONE, None),
-            None => self.exact_step(dt, stop_at_switch, &mut report)?,
-        };
+        let (state, regime, slip, stopped) = self.exact_step(dt, stop_at_switch, &mut report)?;
         if self.config.on_cap == OnCap::Fail && (report.capped || report.search_capped) {
             return Err(StepperError::BudgetExceeded {
                 time: self.time,
                 substeps: report.substeps,
             });
         }
+        self.finish(dt, state, regime, slip, stopped);
+        report.time = self.time;
+        report.state = state;
+        report.regime = regime;
+        Ok(report)
+    }
+
+    /// Take the step's end: state, regime and slip, and the time and forcing phasor (re-anchored
+    /// at the switch when the step `stopped` at one).
+    #[inline]
+    fn finish(
+        &mut self,
+        dt: f64,
+        state: State,
+        regime: Regime,
+        slip: friction::Slip,
+        stopped: Option<f64>,
+    ) {
         self.state = state;
         self.regime = regime;
         self.slip = slip;
@@ -212,10 +230,6 @@ impl Stepper {
                 self.transition.rotate(self.phasor)
             };
         }
-        report.time = self.time;
-        report.state = state;
-        report.regime = regime;
-        Ok(report)
     }
 
     /// Replace the parameters from the current time on (e.g. one point of a speed ramp). Costs

@@ -122,6 +122,23 @@ pub struct StepReport {
     pub error_estimate: f64,
 }
 
+impl StepReport {
+    /// The report of a step taken on the free fast path: no switch, no sub-step, no cap.
+    #[inline]
+    pub(super) fn free(time: f64, state: State) -> Self {
+        StepReport {
+            time,
+            state,
+            regime: Regime::Free,
+            events: EventList::default(),
+            substeps: 0,
+            capped: false,
+            search_capped: false,
+            error_estimate: 0.0,
+        }
+    }
+}
+
 /// Why a stepper could not be built or a step not taken: a propagation error (shared with every
 /// method: invalid problem, divergence, singular contact) or one of the stepper's own (its
 /// configuration, its step length). A failed step leaves the stepper unchanged.

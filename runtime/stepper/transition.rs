@@ -14,7 +14,7 @@
 //! b = d − Φ·d, recomputed (16 multiplications) when u changes; Φ and G do not depend on u.
 
 use super::search::local_curvature;
-use crate::analytic::free::{BasisBound, FreeConstants, FreeSegment};
+use crate::analytic::free::{BasisBound, FreeConstants, FreeSegment, plain_norm};
 use crate::analytic::segment::Segment;
 use crate::math;
 use crate::params::{Params, State};
@@ -159,7 +159,7 @@ impl FreeTransition {
             *w,
         );
         let b = reach.bounds(&self.basis);
-        let v0 = math::hypot(w.vx, w.vy);
+        let v0 = plain_norm(w.vx, w.vy);
         local_curvature(r0, v0, b.radius, b.speed, b.accel, self.dt)
     }
 }

@@ -6,7 +6,6 @@
 use super::{LinearSegment, Response};
 use crate::analytic::free::harmonic_amplitude;
 use crate::analytic::segment::{Bounds, Point, Segment, point_of};
-use crate::analytic::series;
 use crate::coefficients::{
     self as coef, Force, LinearizedContact, ModelParams, Position, Velocity,
 };
@@ -159,9 +158,7 @@ impl Segment for LinearSegment {
                 let c = [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y];
                 polynomial_bounds(c.chunks_exact(2).map(norm), hi)
             }
-            Response::Series(c) => {
-                polynomial_bounds(c.iter().take(series::used(c)).map(|c| norm(c)), hi)
-            }
+            Response::Series(c) => polynomial_bounds(c.terms().iter().map(|c| norm(c)), hi),
         };
         Bounds {
             radius: rh + amp + shift + pr,

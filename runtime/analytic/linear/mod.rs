@@ -12,7 +12,9 @@ pub use segment::{LinearSegment, Response};
 
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
-use super::series::{MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, len_for_rate, rate, series_len};
+use super::series::{
+    MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, Series, len_for_rate, rate, series_len,
+};
 use crate::coefficients::{
     self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
     HomogeneousStart, LinearizedContact, ModelParams, Phasor, PolynomialParticular, Position, Slip,
@@ -267,7 +269,7 @@ impl Linearization {
             self.add_harmonic_forcing(&mut all);
             let len = len_for_rate(self.harmonic_rate() * horizon);
             if !matches!(out.response, Response::Series(_)) {
-                out.response = Response::Series([[0.0; 2]; SERIES_TERMS]);
+                out.response = Response::Series(Series::ZERO);
             }
             if let Response::Series(c) = &mut out.response {
                 Recurrence {
@@ -282,7 +284,7 @@ impl Linearization {
         } else if self.norm_kl * horizon * horizon <= 1.0 {
             let len = series_len(self.norm_kl, self.nu, horizon);
             if !matches!(out.response, Response::Series(_)) {
-                out.response = Response::Series([[0.0; 2]; SERIES_TERMS]);
+                out.response = Response::Series(Series::ZERO);
             }
             if let Response::Series(c) = &mut out.response {
                 self.recurrence(&forcing).coefficients_into(len, c);

@@ -4,7 +4,7 @@
 
 use super::Linearization;
 use crate::analytic::segment::Bounds;
-use crate::analytic::series::{self, Coefficients};
+use crate::analytic::series::Series;
 use crate::coefficients::{
     self as coef, Acceleration, ContactBasis, ContactModes, ContactParticular, Force,
     HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
@@ -27,7 +27,7 @@ pub enum Response {
     /// The zero-state response as a Taylor polynomial Σ c_m s^m (x and y coefficients), from
     /// the equations of motion: c0 = c1 = 0 and
     /// (m + 2)(m + 1) c_{m+2} = a_m − 2ν(m + 1) c_{m+1} − Kl c_m (`docs/MODEL.md` §3).
-    Series(Coefficients),
+    Series(Series),
 }
 
 /// `unforced + q` componentwise (the last sum of [`LinearSegment::state_with`]).
@@ -63,7 +63,7 @@ impl LinearSegment {
                 let q = coef::polynomial_eval(&LocalTime { s }, b);
                 [q.x, q.y, q.vx, q.vy]
             }
-            Response::Series(c) => series::eval(c, s),
+            Response::Series(c) => c.eval(s),
         };
         State::new(
             h.x + p[0] + q[0],
@@ -82,7 +82,7 @@ impl LinearSegment {
         }
         match &self.response {
             Response::None => Some(*unforced),
-            Response::Series(c) => Some(add_response(unforced, &series::eval(c, s))),
+            Response::Series(c) => Some(add_response(unforced, &c.eval(s))),
             Response::Polynomial(_) => None,
         }
     }
