@@ -114,8 +114,10 @@ pub fn exprb43_into(
     // their response to the extra forcing is a series (short steps), so only that response is
     // evaluated for them (bit for bit what evaluating each stage's own segment gives).
     let unforced = free.state_with(h, &at_h);
+    // The series length of the stages' cubic responses, computed once.
+    let terms = lin.cubic_terms(h);
     let stage_state = |forcing: [f64; 8]| {
-        lin.forced_state(&unforced, &forcing, h, h)
+        lin.forced_state_with(&unforced, &forcing, terms, h)
             .unwrap_or_else(|| lin.segment(state, forcing, h).state_with(h, &at_h))
     };
     let u3 = stage_state([n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
@@ -125,7 +127,7 @@ pub fn exprb43_into(
     let a3 = ((-8.0 * n2x + 2.0 * n3x) / h3, (-8.0 * n2y + 2.0 * n3y) / h3);
     let embedded = stage_state([0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0]);
     let forcing = [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1];
-    lin.segment_into(state, forcing, h, &mut out.segment);
+    lin.segment_with(state, forcing, h, || terms, &mut out.segment);
     let segment = &out.segment;
     let end = segment
         .state_from_unforced(h, &unforced)

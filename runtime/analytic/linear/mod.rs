@@ -7,14 +7,11 @@ mod segment;
 
 pub use bounds::max_contact_stiffness;
 use bounds::{acceleration_gains, frobenius, harmonic_condition};
-use segment::add_response;
 pub use segment::{LinearSegment, Response};
 
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
-use super::series::{
-    MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, Series, len_for_rate, rate, series_len,
-};
+use super::series::{MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, Series, len_for_rate, rate};
 use crate::coefficients::{
     self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
     HomogeneousStart, LinearizedContact, ModelParams, Phasor, PolynomialParticular, Position, Slip,
@@ -257,6 +254,19 @@ impl Linearization {
         horizon: f64,
         out: &mut LinearSegment,
     ) {
+        self.segment_with(state, forcing, horizon, || self.cubic_terms(horizon), out);
+    }
+
+    /// [`Self::segment_into`] with the cubic forcing's series length from `cubic_terms` (called
+    /// only when that response is needed; [`Self::cubic_terms`] of `horizon`).
+    pub fn segment_with(
+        &self,
+        state: State,
+        forcing: [f64; 8],
+        horizon: f64,
+        cubic_terms: impl FnOnce() -> Option<usize>,
+        out: &mut LinearSegment,
+    ) {
         let k = &self.kl;
         out.lin = *self;
         out.forcing = forcing;
@@ -281,8 +291,7 @@ impl Linearization {
             }
         } else if forcing.iter().all(|&a| a == 0.0) {
             out.response = Response::None;
-        } else if self.norm_kl * horizon * horizon <= 1.0 {
-            let len = series_len(self.norm_kl, self.nu, horizon);
+        } else if let Some(len) = cubic_terms() {
             if !matches!(out.response, Response::Series(_)) {
                 out.response = Response::Series(Series::ZERO);
             }
@@ -318,40 +327,13 @@ impl Linearization {
         out.start = start;
     }
 
-    /// The state at `s` of the segment from the same start with the extra cubic `forcing` over
-    /// `horizon`, given `unforced`, the state at `s` of the segment without extra forcing — when
-    /// that segment's response is a Taylor series or absent, so that both share their
-    /// homogeneous and harmonic parts (`None` otherwise: build the segment). The same sums in
-    /// the same order as [`LinearSegment::state_with`], so the same bits.
-    pub fn forced_state(
-        &self,
-        unforced: &State,
-        forcing: &[f64; 8],
-        horizon: f64,
-        s: f64,
-    ) -> Option<State> {
-        if self.resonant {
-            // The unforced segment's series holds the harmonic forcing: build the segment.
-            return None;
-        }
-        if forcing.iter().all(|&a| a == 0.0) {
-            return Some(*unforced);
-        }
-        if self.norm_kl * horizon * horizon <= 1.0 {
-            let len = series_len(self.norm_kl, self.nu, horizon);
-            let q = self.recurrence(forcing).value(len, s);
-            return Some(add_response(unforced, &q));
-        }
-        None
-    }
-
     /// The model parameters in the generated code's form.
     pub fn model(&self) -> &ModelParams {
         &self.model
     }
 
     /// The series response's equation for the cubic `forcing`.
-    fn recurrence<'a>(&'a self, forcing: &'a [f64; 8]) -> Recurrence<'a> {
+    pub(super) fn recurrence<'a>(&'a self, forcing: &'a [f64; 8]) -> Recurrence<'a> {
         Recurrence {
             model: &self.model,
             kl: &self.kl,

@@ -4,7 +4,7 @@
 
 use super::Linearization;
 use crate::analytic::segment::Bounds;
-use crate::analytic::series::Series;
+use crate::analytic::series::{self, Series};
 use crate::coefficients::{
     self as coef, Acceleration, ContactBasis, ContactModes, ContactParticular, Force,
     HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
@@ -39,6 +39,51 @@ pub(super) fn add_response(unforced: &State, q: &[f64; 4]) -> State {
         unforced.vx + q[2],
         unforced.vy + q[3],
     )
+}
+
+impl Linearization {
+    /// The series length of a cubic forcing's response over `horizon` where the series form
+    /// is used (‖Kl‖·horizon² ≤ 1), else `None` (the polynomial particular solution). One
+    /// sub-step's stages share it ([`Linearization::segment_with`],
+    /// [`Linearization::forced_state_with`]).
+    pub fn cubic_terms(&self, horizon: f64) -> Option<usize> {
+        (self.norm_kl * horizon * horizon <= 1.0)
+            .then(|| series::series_len(self.norm_kl, self.nu, horizon))
+    }
+
+    /// The state at `s` of the segment from the same start with the extra cubic `forcing` over
+    /// `horizon`, given `unforced`, the state at `s` of the segment without extra forcing — when
+    /// that segment's response is a Taylor series or absent, so that both share their
+    /// homogeneous and harmonic parts (`None` otherwise: build the segment). The same sums in
+    /// the same order as [`LinearSegment::state_with`], so the same bits.
+    pub fn forced_state(
+        &self,
+        unforced: &State,
+        forcing: &[f64; 8],
+        horizon: f64,
+        s: f64,
+    ) -> Option<State> {
+        self.forced_state_with(unforced, forcing, self.cubic_terms(horizon), s)
+    }
+
+    /// [`Linearization::forced_state`] with [`Linearization::cubic_terms`] of the horizon given.
+    pub fn forced_state_with(
+        &self,
+        unforced: &State,
+        forcing: &[f64; 8],
+        cubic_terms: Option<usize>,
+        s: f64,
+    ) -> Option<State> {
+        if self.resonant {
+            // The unforced segment's series holds the harmonic forcing: build the segment.
+            return None;
+        }
+        if forcing.iter().all(|&a| a == 0.0) {
+            return Some(*unforced);
+        }
+        let q = self.recurrence(forcing).value(cubic_terms?, s);
+        Some(add_response(unforced, &q))
+    }
 }
 
 /// A linearized contact segment: [`Linearization`] plus initial state and cubic forcing.
