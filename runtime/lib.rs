@@ -31,6 +31,7 @@ pub mod speed;
 pub mod stepper;
 #[cfg(feature = "proptest")]
 pub mod strategies;
+pub mod taylor;
 pub mod variable_speed;
 
 pub use method::{ContactScheme, Method, Options, Propagator};

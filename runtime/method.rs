@@ -138,6 +138,9 @@ registry! {
     Analytic => crate::analytic::AnalyticPropagator,
     /// Exact free flight plus adaptive DOP853 on the nonlinear contact field (`docs/MODEL.md` §8).
     Hybrid => crate::hybrid::HybridPropagator,
+    /// Exact free flight plus a Taylor integrator on the nonlinear contact field, its
+    /// recurrences generated from the model, switches as polynomial roots (`docs/MODEL.md` §16).
+    Taylor => crate::taylor::TaylorPropagator,
     /// Adaptive Dormand–Prince 8(5,3) on the full piecewise equations.
     Dop853 => crate::reference::Dop853Propagator,
     /// Adaptive Dormand–Prince 5(4) (MATLAB's ode45) on the full piecewise equations.

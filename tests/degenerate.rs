@@ -186,7 +186,15 @@ fn agree_with_dop853(manifold: Manifold, problem: &Problem) {
         tol: Some(1e-12),
         ..Options::with_method(Method::Hybrid)
     };
-    for (name, options) in [("analytic", analytic), ("hybrid", hybrid)] {
+    let taylor = Options {
+        tol: Some(1e-12),
+        ..Options::with_method(Method::Taylor)
+    };
+    for (name, options) in [
+        ("analytic", analytic),
+        ("hybrid", hybrid),
+        ("taylor", taylor),
+    ] {
         let r = run(problem, &options).unwrap_or_else(|e| panic!("{manifold:?} {name}: {e}"));
         check(&format!("{manifold:?} {name}"), &r, &reference);
     }

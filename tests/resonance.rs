@@ -90,7 +90,7 @@ proptest! {
         let e = diff(segment.point(t).state, expected);
         prop_assert!(e <= FREE_TOL, "segment: error {e:e} (ν = {nu:e}, η − 1 = {detune:e})");
         // Free flight through the analytic and hybrid propagators.
-        for method in [Method::Analytic, Method::Hybrid] {
+        for method in [Method::Analytic, Method::Hybrid, Method::Taylor] {
             let (found, end) = run(&problem, method, None, t);
             prop_assert!(found.is_empty());
             let e = diff(end, expected);
@@ -165,6 +165,14 @@ fn hybrid_matches_the_reference_near_resonance() {
     // `simulate --t-end 30 --set speed_ratio=1 --set damping_ratio=1e-9` (before: 6151 hybrid
     // switches against 35).
     regression(Method::Hybrid, 1.0, 1e-9, 30.0, 1e-7);
+}
+
+/// Taylor: exact free flight and the generated Taylor integrator in contact at its default
+/// tolerance: the same bound as hybrid.
+#[test]
+fn taylor_matches_the_reference_near_resonance() {
+    regression(Method::Taylor, COMPARE_ETA, 0.0, compare_end(), 1e-7);
+    regression(Method::Taylor, 1.0, 1e-9, 30.0, 1e-7);
 }
 
 /// The analytic method's free flight: the first contact entry (free flight from the start) is

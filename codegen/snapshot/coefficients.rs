@@ -76,6 +76,24 @@
 //                               after:     0 add     3 mul    0 div   0 sqrt   0 trans
 // varying_speed_unbalance      before:     2 add    10 mul    0 div   0 sqrt   0 trans
 //                               after:     2 add     9 mul    0 div   0 sqrt   0 trans
+// contact_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
+// slipping_taylor::constants   before:     0 add     4 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
+// rolling_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
+//
+// Taylor recurrences per system: series, order 0, and order n >= 1 as fixed + n x per-n
+// (per-n counts bound the convolutions from above: a square or a square root takes about half):
+// contact_taylor               21 series; order 0:    16 add    14 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    11 add    23 mul    1 div   0 sqrt   0 trans
+//                              order n per n:     3 add     6 mul    0 div   0 sqrt   0 trans
+// slipping_taylor              33 series; order 0:    23 add    28 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    17 add    37 mul    1 div   0 sqrt   0 trans
+//                              order n per n:    11 add    14 mul    0 div   0 sqrt   0 trans
+// rolling_taylor               45 series; order 0:    41 add    42 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    34 add    51 mul    1 div   0 sqrt   0 trans
+//                              order n per n:    17 add    20 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
 /// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
@@ -1695,3 +1713,652 @@ pub fn varying_speed_unbalance(
         fy: -(ct * speed_rate * unbalance - st * t0 * unbalance),
     }
 }
+/// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).
+///
+/// Source: docs/MODEL.md §1, §16.
+/// Generated Taylor-coefficient recurrences (automatic differentiation of the field's
+/// elementary operations): `order0` evaluates every operation at the expansion point,
+/// `order` its coefficient n ≥ 1 from the lower ones, then each state's coefficient n + 1.
+pub mod contact_taylor {
+    #[allow(unused_imports)]
+    use super::*;
+    #[allow(unused_imports)]
+    use crate::math as m;
+    use crate::taylor::kernels as ts;
+    /// Series the recurrences use (states first).
+    pub const SERIES: usize = 21;
+    /// States, stored first: x, y, x', y', cos θ, sin θ.
+    pub const STATES: usize = 6;
+    /// The series of h = z² − 1 (positive in contact).
+    pub const BOUNDARY: usize = 20;
+    /// Outputs of [`constants`].
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Constants {
+        /// time-constant sub-expression 0
+        pub k0: f64,
+        /// time-constant sub-expression 1
+        pub k1: f64,
+        /// time-constant sub-expression 2
+        pub k2: f64,
+        /// time-constant sub-expression 3
+        pub k3: f64,
+        /// time-constant sub-expression 4
+        pub k4: f64,
+        /// time-constant sub-expression 5
+        pub k5: f64,
+        /// time-constant sub-expression 6
+        pub k6: f64,
+        /// time-constant sub-expression 7
+        pub k7: f64,
+        /// time-constant sub-expression 8
+        pub k8: f64,
+        /// time-constant sub-expression 9
+        pub k9: f64,
+        /// time-constant sub-expression 10
+        pub k10: f64,
+        /// time-constant sub-expression 11
+        pub k11: f64,
+    }
+    /// The time-constant sub-expressions of the contact_taylor recurrences (parameters and their combinations), computed once per segment.
+    ///
+    /// Source: docs/MODEL.md §1, §16.
+    /// Derivation: the sub-expressions of the field that depend on no state.
+    #[inline]
+    #[must_use]
+    pub fn constants(model: &ModelParams) -> Constants {
+        let nu = model.nu;
+        let eta = model.eta;
+        let f = model.f;
+        let kxx = model.kxx;
+        let kxy = model.kxy;
+        let kyx = model.kyx;
+        let kyy = model.kyy;
+        let ex = model.ex;
+        let ey = model.ey;
+        let force_x = model.force_x;
+        let force_y = model.force_y;
+        Constants {
+            k0: force_x,
+            k1: f,
+            k2: -2.0 * nu,
+            k3: -kxx,
+            k4: -ex,
+            k5: -ey,
+            k6: -kxy,
+            k7: force_y,
+            k8: -kyx,
+            k9: -kyy,
+            k10: -eta,
+            k11: eta,
+        }
+    }
+    /// Every operation at the expansion point (order 0; the states' order 0 set by the
+    /// caller), and every state's coefficient 1.
+    #[inline]
+    pub fn order0(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        s[6][0] = k.k4 + s[0][0];
+        s[7][0] = s[6][0] * s[6][0];
+        s[8][0] = k.k5 + s[1][0];
+        s[9][0] = s[8][0] * s[8][0];
+        s[10][0] = s[7][0] + s[9][0];
+        s[11][0] = m::sqrt(s[10][0]);
+        s[12][0] = 1.0 / s[11][0];
+        s[13][0] = 1.0 - s[12][0];
+        s[14][0] = s[6][0] * s[13][0];
+        s[15][0] = s[8][0] * s[13][0];
+        s[16][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
+            + k.k6 * s[15][0] - s[0][0];
+        s[17][0] = k.k7 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k8 * s[14][0]
+            + k.k9 * s[15][0] - s[1][0];
+        s[18][0] = k.k10 * s[5][0];
+        s[19][0] = k.k11 * s[4][0];
+        s[20][0] = s[7][0] + s[9][0] - 1.0;
+        s[0][1] = s[2][0];
+        s[1][1] = s[3][0];
+        s[2][1] = s[16][0];
+        s[3][1] = s[17][0];
+        s[4][1] = s[18][0];
+        s[5][1] = s[19][0];
+    }
+    /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
+    /// coefficient `N + 1` of every state. The order is a constant, so every
+    /// convolution is a loop of known length (unrolled by the compiler). Beyond the
+    /// storage's capacity it does nothing.
+    #[inline]
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        ts::set(&mut s[12], N, v);
+        let v = -ts::at(&s[12], N);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[6], &s[13]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[13]);
+        ts::set(&mut s[15], N, v);
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
+            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N) - ts::at(&s[0], N);
+        ts::set(&mut s[16], N, v);
+        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[1], N);
+        ts::set(&mut s[17], N, v);
+        let v = k.k10 * ts::at(&s[5], N);
+        ts::set(&mut s[18], N, v);
+        let v = k.k11 * ts::at(&s[4], N);
+        ts::set(&mut s[19], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[20], N, v);
+        let v = ts::at(&s[2], N) * ts::inverse::<N>();
+        ts::set(&mut s[0], N + 1, v);
+        let v = ts::at(&s[3], N) * ts::inverse::<N>();
+        ts::set(&mut s[1], N + 1, v);
+        let v = ts::at(&s[16], N) * ts::inverse::<N>();
+        ts::set(&mut s[2], N + 1, v);
+        let v = ts::at(&s[17], N) * ts::inverse::<N>();
+        ts::set(&mut s[3], N + 1, v);
+        let v = ts::at(&s[18], N) * ts::inverse::<N>();
+        ts::set(&mut s[4], N + 1, v);
+        let v = ts::at(&s[19], N) * ts::inverse::<N>();
+        ts::set(&mut s[5], N + 1, v);
+    }
+}
+/// Slipping contact in direction σ: the frictionless contact field minus μσN t.
+///
+/// Source: docs/MODEL.md §10, §16.
+/// Generated Taylor-coefficient recurrences (automatic differentiation of the field's
+/// elementary operations): `order0` evaluates every operation at the expansion point,
+/// `order` its coefficient n ≥ 1 from the lower ones, then each state's coefficient n + 1.
+pub mod slipping_taylor {
+    #[allow(unused_imports)]
+    use super::*;
+    #[allow(unused_imports)]
+    use crate::math as m;
+    use crate::taylor::kernels as ts;
+    /// Series the recurrences use (states first).
+    pub const SERIES: usize = 33;
+    /// States, stored first: x, y, x', y', cos θ, sin θ.
+    pub const STATES: usize = 6;
+    /// The series of h = z² − 1 (positive in contact).
+    pub const BOUNDARY: usize = 29;
+    /// The series of the slip velocity w = q'·t + ρ_R η.
+    pub const SLIP_VELOCITY: usize = 32;
+    /// Outputs of [`constants`].
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Constants {
+        /// time-constant sub-expression 0
+        pub k0: f64,
+        /// time-constant sub-expression 1
+        pub k1: f64,
+        /// time-constant sub-expression 2
+        pub k2: f64,
+        /// time-constant sub-expression 3
+        pub k3: f64,
+        /// time-constant sub-expression 4
+        pub k4: f64,
+        /// time-constant sub-expression 5
+        pub k5: f64,
+        /// time-constant sub-expression 6
+        pub k6: f64,
+        /// time-constant sub-expression 7
+        pub k7: f64,
+        /// time-constant sub-expression 8
+        pub k8: f64,
+        /// time-constant sub-expression 9
+        pub k9: f64,
+        /// time-constant sub-expression 10
+        pub k10: f64,
+        /// time-constant sub-expression 11
+        pub k11: f64,
+        /// time-constant sub-expression 12
+        pub k12: f64,
+        /// time-constant sub-expression 13
+        pub k13: f64,
+        /// time-constant sub-expression 14
+        pub k14: f64,
+        /// time-constant sub-expression 15
+        pub k15: f64,
+        /// time-constant sub-expression 16
+        pub k16: f64,
+        /// time-constant sub-expression 17
+        pub k17: f64,
+        /// time-constant sub-expression 18
+        pub k18: f64,
+    }
+    /// The time-constant sub-expressions of the slipping_taylor recurrences (parameters and their combinations), computed once per segment.
+    ///
+    /// Source: docs/MODEL.md §10, §16.
+    /// Derivation: the sub-expressions of the field that depend on no state.
+    #[inline]
+    #[must_use]
+    pub fn constants(model: &ModelParams, slip: &Slip) -> Constants {
+        let nu = model.nu;
+        let eta = model.eta;
+        let f = model.f;
+        let kxx = model.kxx;
+        let kxy = model.kxy;
+        let kyx = model.kyx;
+        let kyy = model.kyy;
+        let ex = model.ex;
+        let ey = model.ey;
+        let mu = model.mu;
+        let rho_r = model.rho_r;
+        let force_x = model.force_x;
+        let force_y = model.force_y;
+        let sigma = slip.sigma;
+        Constants {
+            k0: force_x,
+            k1: f,
+            k2: -2.0 * nu,
+            k3: -kxx,
+            k4: -ex,
+            k5: -ey,
+            k6: -kxy,
+            k7: sigma * mu,
+            k8: kxx,
+            k9: kxy,
+            k10: kyx,
+            k11: kyy,
+            k12: force_y,
+            k13: -kyx,
+            k14: -kyy,
+            k15: -sigma * mu,
+            k16: -eta,
+            k17: eta,
+            k18: eta * rho_r,
+        }
+    }
+    /// Every operation at the expansion point (order 0; the states' order 0 set by the
+    /// caller), and every state's coefficient 1.
+    #[inline]
+    pub fn order0(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        s[6][0] = k.k4 + s[0][0];
+        s[7][0] = s[6][0] * s[6][0];
+        s[8][0] = k.k5 + s[1][0];
+        s[9][0] = s[8][0] * s[8][0];
+        s[10][0] = s[7][0] + s[9][0];
+        s[11][0] = m::sqrt(s[10][0]);
+        s[12][0] = 1.0 / s[11][0];
+        s[13][0] = 1.0 - s[12][0];
+        s[14][0] = s[6][0] * s[13][0];
+        s[15][0] = s[8][0] * s[13][0];
+        s[16][0] = s[8][0] * s[12][0];
+        s[17][0] = s[6][0] * s[12][0];
+        s[18][0] = k.k8 * s[14][0] + k.k9 * s[15][0];
+        s[19][0] = s[17][0] * s[18][0];
+        s[20][0] = k.k10 * s[14][0] + k.k11 * s[15][0];
+        s[21][0] = s[16][0] * s[20][0];
+        s[22][0] = s[19][0] + s[21][0];
+        s[23][0] = s[16][0] * s[22][0];
+        s[24][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
+            + k.k6 * s[15][0] + k.k7 * s[23][0] - s[0][0];
+        s[25][0] = s[17][0] * s[22][0];
+        s[26][0] = k.k12 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k13 * s[14][0]
+            + k.k14 * s[15][0] + k.k15 * s[25][0] - s[1][0];
+        s[27][0] = k.k16 * s[5][0];
+        s[28][0] = k.k17 * s[4][0];
+        s[29][0] = s[7][0] + s[9][0] - 1.0;
+        s[30][0] = s[2][0] * s[16][0];
+        s[31][0] = s[3][0] * s[17][0];
+        s[32][0] = k.k18 + s[31][0] - s[30][0];
+        s[0][1] = s[2][0];
+        s[1][1] = s[3][0];
+        s[2][1] = s[24][0];
+        s[3][1] = s[26][0];
+        s[4][1] = s[27][0];
+        s[5][1] = s[28][0];
+    }
+    /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
+    /// coefficient `N + 1` of every state. The order is a constant, so every
+    /// convolution is a loop of known length (unrolled by the compiler). Beyond the
+    /// storage's capacity it does nothing.
+    #[inline]
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        ts::set(&mut s[12], N, v);
+        let v = -ts::at(&s[12], N);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[6], &s[13]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[13]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[17], N, v);
+        let v = k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[17], &s[18]);
+        ts::set(&mut s[19], N, v);
+        let v = k.k10 * ts::at(&s[14], N) + k.k11 * ts::at(&s[15], N);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[16], &s[20]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::at(&s[19], N) + ts::at(&s[21], N);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[16], &s[22]);
+        ts::set(&mut s[23], N, v);
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
+            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N)
+            + k.k7 * ts::at(&s[23], N) - ts::at(&s[0], N);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[17], &s[22]);
+        ts::set(&mut s[25], N, v);
+        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
+            + k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N)
+            + k.k15 * ts::at(&s[25], N) - ts::at(&s[1], N);
+        ts::set(&mut s[26], N, v);
+        let v = k.k16 * ts::at(&s[5], N);
+        ts::set(&mut s[27], N, v);
+        let v = k.k17 * ts::at(&s[4], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[29], N, v);
+        let v = ts::product::<N>(&s[2], &s[16]);
+        ts::set(&mut s[30], N, v);
+        let v = ts::product::<N>(&s[3], &s[17]);
+        ts::set(&mut s[31], N, v);
+        let v = ts::at(&s[31], N) - ts::at(&s[30], N);
+        ts::set(&mut s[32], N, v);
+        let v = ts::at(&s[2], N) * ts::inverse::<N>();
+        ts::set(&mut s[0], N + 1, v);
+        let v = ts::at(&s[3], N) * ts::inverse::<N>();
+        ts::set(&mut s[1], N + 1, v);
+        let v = ts::at(&s[24], N) * ts::inverse::<N>();
+        ts::set(&mut s[2], N + 1, v);
+        let v = ts::at(&s[26], N) * ts::inverse::<N>();
+        ts::set(&mut s[3], N + 1, v);
+        let v = ts::at(&s[27], N) * ts::inverse::<N>();
+        ts::set(&mut s[4], N + 1, v);
+        let v = ts::at(&s[28], N) * ts::inverse::<N>();
+        ts::set(&mut s[5], N + 1, v);
+    }
+}
+/// Rolling contact: the frictionless contact field minus λ t, λ the tangential force that keeps w = 0.
+///
+/// Source: docs/MODEL.md §10, §16.
+/// Generated Taylor-coefficient recurrences (automatic differentiation of the field's
+/// elementary operations): `order0` evaluates every operation at the expansion point,
+/// `order` its coefficient n ≥ 1 from the lower ones, then each state's coefficient n + 1.
+pub mod rolling_taylor {
+    #[allow(unused_imports)]
+    use super::*;
+    #[allow(unused_imports)]
+    use crate::math as m;
+    use crate::taylor::kernels as ts;
+    /// Series the recurrences use (states first).
+    pub const SERIES: usize = 45;
+    /// States, stored first: x, y, x', y', cos θ, sin θ.
+    pub const STATES: usize = 6;
+    /// The series of h = z² − 1 (positive in contact).
+    pub const BOUNDARY: usize = 37;
+    /// The series of μN − λ (rolling needs it ≥ 0).
+    pub const CONE_UPPER: usize = 43;
+    /// The series of μN + λ (rolling needs it ≥ 0).
+    pub const CONE_LOWER: usize = 44;
+    /// Outputs of [`constants`].
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Constants {
+        /// time-constant sub-expression 0
+        pub k0: f64,
+        /// time-constant sub-expression 1
+        pub k1: f64,
+        /// time-constant sub-expression 2
+        pub k2: f64,
+        /// time-constant sub-expression 3
+        pub k3: f64,
+        /// time-constant sub-expression 4
+        pub k4: f64,
+        /// time-constant sub-expression 5
+        pub k5: f64,
+        /// time-constant sub-expression 6
+        pub k6: f64,
+        /// time-constant sub-expression 7
+        pub k7: f64,
+        /// time-constant sub-expression 8
+        pub k8: f64,
+        /// time-constant sub-expression 9
+        pub k9: f64,
+        /// time-constant sub-expression 10
+        pub k10: f64,
+        /// time-constant sub-expression 11
+        pub k11: f64,
+        /// time-constant sub-expression 12
+        pub k12: f64,
+        /// time-constant sub-expression 13
+        pub k13: f64,
+        /// time-constant sub-expression 14
+        pub k14: f64,
+        /// time-constant sub-expression 15
+        pub k15: f64,
+        /// time-constant sub-expression 16
+        pub k16: f64,
+    }
+    /// The time-constant sub-expressions of the rolling_taylor recurrences (parameters and their combinations), computed once per segment.
+    ///
+    /// Source: docs/MODEL.md §10, §16.
+    /// Derivation: the sub-expressions of the field that depend on no state.
+    #[inline]
+    #[must_use]
+    pub fn constants(model: &ModelParams) -> Constants {
+        let nu = model.nu;
+        let eta = model.eta;
+        let f = model.f;
+        let kxx = model.kxx;
+        let kxy = model.kxy;
+        let kyx = model.kyx;
+        let kyy = model.kyy;
+        let ex = model.ex;
+        let ey = model.ey;
+        let mu = model.mu;
+        let force_x = model.force_x;
+        let force_y = model.force_y;
+        Constants {
+            k0: force_x,
+            k1: f,
+            k2: -2.0 * nu,
+            k3: -kxx,
+            k4: -ex,
+            k5: -ey,
+            k6: -kxy,
+            k7: force_y,
+            k8: -kyx,
+            k9: -kyy,
+            k10: -eta,
+            k11: eta,
+            k12: mu,
+            k13: kxx,
+            k14: kxy,
+            k15: kyx,
+            k16: kyy,
+        }
+    }
+    /// Every operation at the expansion point (order 0; the states' order 0 set by the
+    /// caller), and every state's coefficient 1.
+    #[inline]
+    pub fn order0(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        s[6][0] = k.k4 + s[0][0];
+        s[7][0] = s[6][0] * s[6][0];
+        s[8][0] = k.k5 + s[1][0];
+        s[9][0] = s[8][0] * s[8][0];
+        s[10][0] = s[7][0] + s[9][0];
+        s[11][0] = m::sqrt(s[10][0]);
+        s[12][0] = 1.0 / s[11][0];
+        s[13][0] = 1.0 - s[12][0];
+        s[14][0] = s[6][0] * s[13][0];
+        s[15][0] = s[8][0] * s[13][0];
+        s[16][0] = s[8][0] * s[12][0];
+        s[17][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
+            + k.k6 * s[15][0] - s[0][0];
+        s[18][0] = s[16][0] * s[17][0];
+        s[19][0] = s[6][0] * s[12][0];
+        s[20][0] = k.k7 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k8 * s[14][0]
+            + k.k9 * s[15][0] - s[1][0];
+        s[21][0] = s[19][0] * s[20][0];
+        s[22][0] = s[2][0] * s[16][0];
+        s[23][0] = s[3][0] * s[19][0];
+        s[24][0] = s[23][0] - s[22][0];
+        s[25][0] = s[12][0] * s[24][0];
+        s[26][0] = s[2][0] * s[19][0];
+        s[27][0] = s[3][0] * s[16][0];
+        s[28][0] = s[26][0] + s[27][0];
+        s[29][0] = s[25][0] * s[28][0];
+        s[30][0] = s[21][0] - s[18][0] - s[29][0];
+        s[31][0] = s[16][0] * s[30][0];
+        s[32][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
+            + k.k6 * s[15][0] + s[31][0] - s[0][0];
+        s[33][0] = s[19][0] * s[30][0];
+        s[34][0] = k.k7 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k8 * s[14][0]
+            + k.k9 * s[15][0] - s[1][0] - s[33][0];
+        s[35][0] = k.k10 * s[5][0];
+        s[36][0] = k.k11 * s[4][0];
+        s[37][0] = s[7][0] + s[9][0] - 1.0;
+        s[38][0] = k.k13 * s[14][0] + k.k14 * s[15][0];
+        s[39][0] = s[19][0] * s[38][0];
+        s[40][0] = k.k15 * s[14][0] + k.k16 * s[15][0];
+        s[41][0] = s[16][0] * s[40][0];
+        s[42][0] = s[39][0] + s[41][0];
+        s[43][0] = s[18][0] + s[29][0] + k.k12 * s[42][0] - s[21][0];
+        s[44][0] = s[21][0] + k.k12 * s[42][0] - s[18][0] - s[29][0];
+        s[0][1] = s[2][0];
+        s[1][1] = s[3][0];
+        s[2][1] = s[32][0];
+        s[3][1] = s[34][0];
+        s[4][1] = s[35][0];
+        s[5][1] = s[36][0];
+    }
+    /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
+    /// coefficient `N + 1` of every state. The order is a constant, so every
+    /// convolution is a loop of known length (unrolled by the compiler). Beyond the
+    /// storage's capacity it does nothing.
+    #[inline]
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        ts::set(&mut s[12], N, v);
+        let v = -ts::at(&s[12], N);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[6], &s[13]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[13]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[16], N, v);
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
+            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N) - ts::at(&s[0], N);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[16], &s[17]);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[19], N, v);
+        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[1], N);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[19], &s[20]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[2], &s[16]);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[3], &s[19]);
+        ts::set(&mut s[23], N, v);
+        let v = ts::at(&s[23], N) - ts::at(&s[22], N);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[12], &s[24]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[2], &s[19]);
+        ts::set(&mut s[26], N, v);
+        let v = ts::product::<N>(&s[3], &s[16]);
+        ts::set(&mut s[27], N, v);
+        let v = ts::at(&s[26], N) + ts::at(&s[27], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[25], &s[28]);
+        ts::set(&mut s[29], N, v);
+        let v = ts::at(&s[21], N) - ts::at(&s[18], N) - ts::at(&s[29], N);
+        ts::set(&mut s[30], N, v);
+        let v = ts::product::<N>(&s[16], &s[30]);
+        ts::set(&mut s[31], N, v);
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
+            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N) + ts::at(&s[31], N)
+            - ts::at(&s[0], N);
+        ts::set(&mut s[32], N, v);
+        let v = ts::product::<N>(&s[19], &s[30]);
+        ts::set(&mut s[33], N, v);
+        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[1], N)
+            - ts::at(&s[33], N);
+        ts::set(&mut s[34], N, v);
+        let v = k.k10 * ts::at(&s[5], N);
+        ts::set(&mut s[35], N, v);
+        let v = k.k11 * ts::at(&s[4], N);
+        ts::set(&mut s[36], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[37], N, v);
+        let v = k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N);
+        ts::set(&mut s[38], N, v);
+        let v = ts::product::<N>(&s[19], &s[38]);
+        ts::set(&mut s[39], N, v);
+        let v = k.k15 * ts::at(&s[14], N) + k.k16 * ts::at(&s[15], N);
+        ts::set(&mut s[40], N, v);
+        let v = ts::product::<N>(&s[16], &s[40]);
+        ts::set(&mut s[41], N, v);
+        let v = ts::at(&s[39], N) + ts::at(&s[41], N);
+        ts::set(&mut s[42], N, v);
+        let v = ts::at(&s[18], N) + ts::at(&s[29], N) + k.k12 * ts::at(&s[42], N)
+            - ts::at(&s[21], N);
+        ts::set(&mut s[43], N, v);
+        let v = ts::at(&s[21], N) + k.k12 * ts::at(&s[42], N) - ts::at(&s[18], N)
+            - ts::at(&s[29], N);
+        ts::set(&mut s[44], N, v);
+        let v = ts::at(&s[2], N) * ts::inverse::<N>();
+        ts::set(&mut s[0], N + 1, v);
+        let v = ts::at(&s[3], N) * ts::inverse::<N>();
+        ts::set(&mut s[1], N + 1, v);
+        let v = ts::at(&s[32], N) * ts::inverse::<N>();
+        ts::set(&mut s[2], N + 1, v);
+        let v = ts::at(&s[34], N) * ts::inverse::<N>();
+        ts::set(&mut s[3], N + 1, v);
+        let v = ts::at(&s[35], N) * ts::inverse::<N>();
+        ts::set(&mut s[4], N + 1, v);
+        let v = ts::at(&s[36], N) * ts::inverse::<N>();
+        ts::set(&mut s[5], N + 1, v);
+    }
+}
+/// The most series any Taylor system uses (the runtime's storage size).
+pub const TAYLOR_SERIES_MAX: usize = 45;

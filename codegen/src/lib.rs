@@ -4,7 +4,9 @@
 //! [`expr`] (hash-consed DAG with simplifying constructors) → [`model`] (the equations of motion,
 //! stated once, and the derivation of each formula from them) → [`derive`] (differentiation,
 //! linear solves) → [`optimize`] (common-subexpression elimination, operation counts) →
-//! [`emit`] (`quote`) → [`format`] (`syn` + `prettyplease`). This file only wires the stages.
+//! [`emit`] (`quote`) → [`format`] (`syn` + `prettyplease`); [`taylor`] decomposes the regimes'
+//! fields into series operations and emits their Taylor recurrences. This file only wires the
+//! stages.
 
 pub mod derive;
 pub mod emit;
@@ -12,6 +14,7 @@ pub mod expr;
 pub mod format;
 pub mod model;
 pub mod optimize;
+pub mod taylor;
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -29,7 +32,7 @@ pub struct Generated {
 
 /// Derive every formula and emit the runtime's coefficient module.
 pub fn generate() -> Generated {
-    let model = model::derive_all();
+    let mut model = model::derive_all();
     let mut body = TokenStream::new();
     let mut counts = Vec::new();
     let mut used: Vec<&'static str> = Vec::new();
@@ -39,6 +42,27 @@ pub fn generate() -> Generated {
         used.extend(e.groups.iter().map(|g| g.ty));
         counts.push((f.name.clone(), e.before, e.after));
     }
+    let mut taylor_lines = Vec::new();
+    let mut series_max = 0;
+    let systems = std::mem::take(&mut model.taylor);
+    for system in &systems {
+        let program = taylor::decompose(&mut model.graph, system);
+        let e = taylor::emit::emit_system(&model.graph, system, &program, model::symbols::GROUPS);
+        body.extend(e.tokens);
+        used.extend(e.constants.groups.iter().map(|g| g.ty));
+        series_max = series_max.max(e.series);
+        counts.push((
+            format!("{}::constants", system.name),
+            e.constants.before,
+            e.constants.after,
+        ));
+        taylor_lines.push((system.name.clone(), e.series, e.order0, e.per_order));
+    }
+    let series_max = proc_macro2::Literal::usize_unsuffixed(series_max);
+    body.extend(quote! {
+        /// The most series any Taylor system uses (the runtime's storage size).
+        pub const TAYLOR_SERIES_MAX: usize = #series_max;
+    });
     // The declared structs, once each, in table order.
     let mut structs = TokenStream::new();
     for g in model::symbols::GROUPS {
@@ -61,6 +85,12 @@ pub fn generate() -> Generated {
     for (name, before, after) in &counts {
         let _ = writeln!(header, "// {name:<28} before: {before}");
         let _ = writeln!(header, "// {:<28}  after: {after}", "");
+    }
+    header.push_str("//\n// Taylor recurrences per system: series, order 0, and order n >= 1 as fixed + n x per-n\n// (per-n counts bound the convolutions from above: a square or a square root takes about half):\n");
+    for (name, series, order0, (fixed, per_n)) in &taylor_lines {
+        let _ = writeln!(header, "// {name:<28} {series} series; order 0: {order0}");
+        let _ = writeln!(header, "// {:<28} order n fixed: {fixed}", "");
+        let _ = writeln!(header, "// {:<28} order n per n: {per_n}", "");
     }
     header.push('\n');
     Generated {

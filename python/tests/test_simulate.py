@@ -51,7 +51,7 @@ def test_every_parameter_is_a_keyword() -> None:
 
 
 @pytest.mark.parametrize("preset", sorted(rr.presets()))
-@pytest.mark.parametrize("method", ["analytic", "hybrid", "dop853", "rk45"])
+@pytest.mark.parametrize("method", ["analytic", "hybrid", "taylor", "dop853", "rk45"])
 def test_equals_the_cli(cli: Path, tmp_path: Path, preset: str, method: str) -> None:
     run_cli(cli, ["simulate", "--preset", preset, "--method", method, "--periods", "6",
                   "--events", "e.csv", "--samples", "s.csv", "--sample-count", "257"], tmp_path)

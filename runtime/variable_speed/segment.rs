@@ -65,13 +65,15 @@ impl Program<'_> {
         let changing = piece.rate != 0.0;
         Ok(match self.options.options.method {
             Method::Dop853 | Method::Rk45 => (self.ramp(piece, time, state)?, piece.end),
-            Method::Hybrid if changing => (self.ramp(piece, time, state)?, piece.end),
+            Method::Hybrid | Method::Taylor if changing => {
+                (self.ramp(piece, time, state)?, piece.end)
+            }
             Method::Analytic if changing => {
                 let end = self.hold_end(piece, time);
                 let held = HeldSpeed::between((piece, time), (piece, end));
                 (self.held(held, time, state)?, end)
             }
-            Method::Hybrid | Method::Analytic => (
+            Method::Hybrid | Method::Taylor | Method::Analytic => (
                 self.held(HeldSpeed::of_piece(piece), time, state)?,
                 piece.end,
             ),

@@ -224,6 +224,7 @@ fn every_method_agrees_with_the_oracle_on_the_issue_cases() {
         for (label, method, tol, bound) in [
             ("dop853", Method::Dop853, Some(1e-13), 1e-8),
             ("hybrid", Method::Hybrid, Some(1e-13), 1e-8),
+            ("taylor", Method::Taylor, Some(1e-13), 1e-8),
             ("analytic", Method::Analytic, None, 1e-6),
             ("rk45", Method::Rk45, Some(1e-12), 1e-7),
         ] {

@@ -207,7 +207,7 @@ proptest! {
 
     #[test]
     fn friction_invariants_hold_in_every_method(problem in friction_problem()) {
-        for method in [Method::Dop853, Method::Hybrid, Method::Analytic] {
+        for method in [Method::Dop853, Method::Hybrid, Method::Taylor, Method::Analytic] {
             check(&problem, method)?;
         }
     }

@@ -99,7 +99,7 @@ fn slipping_remainder(m: &mut Model) {
 
 /// Every force but friction, G = F(cos θ, sin θ) + u − 2ν q' − q − K_s g, at a state (the
 /// input force u included: it changes λ and the rolling field, `docs/MODEL.md` §15).
-fn frictionless_contact_acceleration(m: &mut Model) -> (Vec2, Vec2, Vec2) {
+pub(super) fn frictionless_contact_acceleration(m: &mut Model) -> (Vec2, Vec2, Vec2) {
     let q = position(m);
     let v = [m.var("vx"), m.var("vy")];
     let phasor = [m.var("ct"), m.var("st")];
@@ -110,7 +110,7 @@ fn frictionless_contact_acceleration(m: &mut Model) -> (Vec2, Vec2, Vec2) {
 
 /// λ = t·G − (q'·t)(q'·n)/z (with q'·t and t): from w' = t·q'' + q'·t' with t' = −(q'·t/z) n, the tangential
 /// force that keeps w' = 0.
-fn rolling_force(m: &mut Model, q: Vec2, v: Vec2, acc: Vec2) -> (ExprId, ExprId, Vec2) {
+pub(super) fn rolling_force(m: &mut Model, q: Vec2, v: Vec2, acc: Vec2) -> (ExprId, ExprId, Vec2) {
     let (n, t, z) = m.contact_frame(q);
     let tg = m.dot(t, acc);
     let vt = m.dot(v, t);

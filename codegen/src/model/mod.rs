@@ -46,6 +46,7 @@ mod linearization;
 mod polynomial;
 mod speed;
 pub mod symbols;
+mod taylor;
 mod tools;
 
 use std::collections::HashMap;
@@ -60,6 +61,8 @@ pub struct Model {
     pub graph: Graph,
     /// The derived formulas.
     pub formulas: Vec<Formula>,
+    /// The systems whose Taylor recurrences are generated (`taylor.rs`).
+    pub taylor: Vec<crate::taylor::System>,
 }
 
 /// Build the model and derive every formula.
@@ -67,6 +70,7 @@ pub fn derive_all() -> Model {
     let mut m = Model {
         graph: Graph::new(),
         formulas: Vec::new(),
+        taylor: Vec::new(),
     };
     linearization::derive(&mut m);
     free::derive(&mut m);
@@ -75,6 +79,7 @@ pub fn derive_all() -> Model {
     field::derive(&mut m);
     friction::derive(&mut m);
     speed::derive(&mut m);
+    taylor::derive(&mut m);
     m
 }
 

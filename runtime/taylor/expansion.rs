@@ -1,0 +1,247 @@
+//! One Taylor expansion of a contact regime's field about a state (`docs/MODEL.md` §16): the
+//! generated recurrences fill the series, the order comes from the tolerance and the step from
+//! the last two orders' coefficients (Jorba–Zou), and the same polynomials give the state
+//! anywhere in the step (dense output) and the switch functions as polynomials.
+
+use super::kernels::{self, CAPACITY, MAX_ORDER, Series};
+use crate::coefficients::{
+    ModelParams, Slip, TAYLOR_SERIES_MAX, contact_taylor, rolling_taylor, slipping_taylor,
+};
+use crate::math;
+use crate::params::{Params, State};
+use crate::propagate::Regime;
+
+/// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
+macro_rules! orders {
+    ($p:expr, |$n:ident| $call:expr) => {{
+        orders!(@each $p, $n, $call; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
+    }};
+    (@each $p:expr, $n:ident, $call:expr; $($k:literal)+) => {
+        $(
+            if $k <= $p {
+                const $n: usize = $k;
+                $call;
+            }
+        )+
+    };
+}
+
+/// A regime's field: which generated recurrences, with their constants.
+#[derive(Clone, Copy, Debug)]
+enum Field {
+    Contact(contact_taylor::Constants),
+    Slipping(slipping_taylor::Constants),
+    Rolling(rolling_taylor::Constants),
+}
+
+/// A switch function of a contact regime, positive inside it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Switch {
+    /// z² − 1: the contact ends (`exit`).
+    Boundary,
+    /// σw while slipping: the slip velocity reaches 0 (`roll`, `reverse`, or a touch).
+    SlipVelocity,
+    /// μN − λ while rolling: λ reaches the friction limit from below (`slip`).
+    ConeUpper,
+    /// μN + λ while rolling: λ reaches the friction limit from above (`slip`).
+    ConeLower,
+}
+
+/// The expansion order for a tolerance (Jorba–Zou): p = ⌈−ln(tol)/2 + 1⌉, within [2, MAX_ORDER].
+pub fn order_for(tol: f64) -> usize {
+    let p = libm::ceil(-math::ln(tol) / 2.0 + 1.0);
+    if p.is_finite() && p >= 2.0 {
+        (p as usize).min(MAX_ORDER)
+    } else {
+        2
+    }
+}
+
+/// The series of one step's expansion.
+pub struct Expansion {
+    field: Field,
+    /// σ while slipping (1 otherwise): the slip-velocity switch is σw.
+    slip: f64,
+    order: usize,
+    series: Series,
+}
+
+impl Expansion {
+    /// An expansion of order `order` (≤ [`MAX_ORDER`]) for the field of frictionless contact.
+    pub fn new(params: &Params, order: usize) -> Self {
+        let order = order.clamp(2, MAX_ORDER);
+        Expansion {
+            field: Field::Contact(contact_taylor::constants(&ModelParams::of(params))),
+            slip: 1.0,
+            order,
+            series: [[0.0; CAPACITY]; TAYLOR_SERIES_MAX],
+        }
+    }
+
+    /// Switch to the field of `regime` (contact slipping in direction `slip` when `slip` ≠ 0).
+    pub fn set_regime(&mut self, params: &Params, regime: Regime, slip: f64) {
+        let model = ModelParams::of(params);
+        self.slip = if slip < 0.0 { -1.0 } else { 1.0 };
+        self.field = match regime {
+            Regime::Rolling => Field::Rolling(rolling_taylor::constants(&model)),
+            _ if slip != 0.0 => {
+                Field::Slipping(slipping_taylor::constants(&model, &Slip { sigma: slip }))
+            }
+            _ => Field::Contact(contact_taylor::constants(&model)),
+        };
+    }
+
+    /// The switch functions of the current field.
+    pub fn switches(&self) -> &'static [Switch] {
+        match self.field {
+            Field::Contact(_) => &[Switch::Boundary],
+            Field::Slipping(_) => &[Switch::Boundary, Switch::SlipVelocity],
+            Field::Rolling(_) => &[Switch::Boundary, Switch::ConeUpper, Switch::ConeLower],
+        }
+    }
+
+    /// Expand about `state` with the forcing phasor (cos θ, sin θ): every series to the order.
+    pub fn expand(&mut self, state: &State, (cos_theta, sin_theta): (f64, f64)) {
+        let s = &mut self.series;
+        for (series, value) in s
+            .iter_mut()
+            .zip([state.x, state.y, state.vx, state.vy, cos_theta, sin_theta])
+        {
+            if let Some(c) = series.first_mut() {
+                *c = value;
+            }
+        }
+        let p = self.order;
+        match &self.field {
+            Field::Contact(k) => {
+                contact_taylor::order0(k, s);
+                orders!(p, |N| contact_taylor::order::<N>(k, s));
+            }
+            Field::Slipping(k) => {
+                slipping_taylor::order0(k, s);
+                orders!(p, |N| slipping_taylor::order::<N>(k, s));
+            }
+            Field::Rolling(k) => {
+                rolling_taylor::order0(k, s);
+                orders!(p, |N| rolling_taylor::order::<N>(k, s));
+            }
+        }
+    }
+
+    /// The step the expansion is good for at `tol` (Jorba–Zou, with heyoka's safety factors):
+    /// ρ = min over the last two orders n of (max(1, ‖x₀‖∞)/‖xₙ‖∞)^{1/n} over the six states,
+    /// h = ρ/e² · e^{−0.7/(p−1)}.
+    pub fn step_size(&self) -> f64 {
+        let p = self.order;
+        let norm = |n: usize| {
+            self.series
+                .iter()
+                .take(6)
+                .map(|c| math::abs(kernels::at(c, n)))
+                .fold(0.0, f64::max)
+        };
+        let log_reference = math::ln(norm(0).max(1.0));
+        // ln ρₙ = (ln ref − ln ‖xₙ‖)/n (+∞ for a vanishing order).
+        let log_radius = |n: usize| {
+            let v = norm(n);
+            if v > 0.0 {
+                (log_reference - math::ln(v)) / n as f64
+            } else {
+                f64::INFINITY
+            }
+        };
+        let log_rho = log_radius(p - 1).min(log_radius(p));
+        math::exp(log_rho - 2.0 - 0.7 / (p as f64 - 1.0))
+    }
+
+    /// The forcing phasor (cos θ, sin θ) at local time `s`, from its series (exact to the
+    /// truncation, like the states).
+    pub fn phasor_at(&self, s: f64) -> (f64, f64) {
+        let v = |i: usize| {
+            self.series
+                .get(i)
+                .map_or(0.0, |c| kernels::evaluate(c, self.order, s))
+        };
+        (v(4), v(5))
+    }
+
+    /// The rotor state at local time `s` of the step.
+    pub fn state_at(&self, s: f64) -> State {
+        let v = |i: usize| {
+            self.series
+                .get(i)
+                .map_or(0.0, |c| kernels::evaluate(c, self.order, s))
+        };
+        State::new(v(0), v(1), v(2), v(3))
+    }
+
+    /// The switch function's polynomial coefficients (positive inside the regime).
+    pub fn switch_polynomial(&self, switch: Switch) -> [f64; CAPACITY] {
+        let (index, sign) = match (switch, &self.field) {
+            (Switch::Boundary, Field::Contact(_)) => (contact_taylor::BOUNDARY, 1.0),
+            (Switch::Boundary, Field::Slipping(_)) => (slipping_taylor::BOUNDARY, 1.0),
+            (Switch::Boundary, Field::Rolling(_)) => (rolling_taylor::BOUNDARY, 1.0),
+            (Switch::SlipVelocity, _) => (slipping_taylor::SLIP_VELOCITY, self.slip),
+            (Switch::ConeUpper, _) => (rolling_taylor::CONE_UPPER, 1.0),
+            (Switch::ConeLower, _) => (rolling_taylor::CONE_LOWER, 1.0),
+        };
+        let mut c = self.series.get(index).copied().unwrap_or([0.0; CAPACITY]);
+        for ck in &mut c {
+            *ck *= sign;
+        }
+        c
+    }
+
+    /// The size of the terms a switch function's value at the expansion point is computed from
+    /// (its rounding is relative to it): 1 for z² − 1 (z ≈ 1), |q'| + ρ_R η for w, μN + |λ|
+    /// (the larger margin) for the friction cone.
+    pub fn rounding_scale(&self, switch: Switch, params: &Params) -> f64 {
+        let at0 = |i: usize| {
+            self.series
+                .get(i)
+                .map_or(0.0, |c| math::abs(kernels::at(c, 0)))
+        };
+        match switch {
+            Switch::Boundary => 1.0,
+            Switch::SlipVelocity => {
+                at0(2).max(at0(3)) + math::abs(params.radius_ratio * params.speed_ratio)
+            }
+            Switch::ConeUpper | Switch::ConeLower => {
+                at0(rolling_taylor::CONE_UPPER).max(at0(rolling_taylor::CONE_LOWER))
+            }
+        }
+    }
+
+    /// The order of the expansion (the degree of its polynomials).
+    pub fn order(&self) -> usize {
+        self.order
+    }
+
+    /// Put the crossing of z = 1 near local time `s` onto the surface of the step's polynomial
+    /// state: Newton steps on |q(s) − ε̂|² − 1 (two suffice from the switch polynomial's root,
+    /// which differs from it by truncation only).
+    pub fn polish_boundary(&self, params: &Params, mut s: f64, h: f64) -> f64 {
+        for _ in 0..3 {
+            let (x, vx) = self.eval_d(0, s);
+            let (y, vy) = self.eval_d(1, s);
+            let (u, v) = (x - params.offset_x, y - params.offset_y);
+            let f = u * u + v * v - 1.0;
+            let df = 2.0 * (u * vx + v * vy);
+            if df == 0.0 || !f.is_finite() {
+                break;
+            }
+            let next = s - f / df;
+            if !(next >= 0.0 && next <= h) || next == s {
+                break;
+            }
+            s = next;
+        }
+        s
+    }
+
+    fn eval_d(&self, i: usize, s: f64) -> (f64, f64) {
+        self.series.get(i).map_or((0.0, 0.0), |c| {
+            kernels::evaluate_with_derivative(c, self.order, s)
+        })
+    }
+}

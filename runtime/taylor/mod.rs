@@ -1,0 +1,97 @@
+//! The `taylor` method (`docs/MODEL.md` §16): exact closed-form free flight, and in contact a
+//! Taylor integrator whose coefficient recurrences the generator emits from the model statement
+//! (`coefficients::contact_taylor`, `slipping_taylor`, `rolling_taylor`; built by
+//! `codegen/src/taylor`).
+//!
+//! Each contact step expands the regime's field about the step's start to order
+//! p = ⌈−ln(tol)/2 + 1⌉ ([`expansion`]), takes the step the last two orders allow (Jorba–Zou),
+//! and searches the switch functions — z² − 1, and under friction σw or μN ∓ λ — as
+//! polynomials of the step's local time ([`roots`]: Descartes isolation, so no sign change inside
+//! a step is missed, and a start on the switch surface divides its root out). Samples and
+//! Poincaré points come from the same polynomials. No heap: the series live in a fixed array
+//! (orders up to [`kernels::MAX_ORDER`]).
+//!
+//! Tolerance semantics: free flight is exact (rounding only); in contact `tol` bounds each
+//! step's truncation error, relative to max(1, |state|).
+
+pub mod expansion;
+pub mod kernels;
+pub mod roots;
+mod solver;
+
+pub use solver::TaylorContact;
+
+use crate::analytic::propagator::FreeFlightSolver;
+use crate::driver::{ByRegime, Piecewise, SegmentSolver};
+use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
+use crate::params::{Problem, State};
+use crate::propagate::{Event, Propagate, PropagationError, Regime};
+use crate::reference::REFERENCE_BUDGET;
+
+/// The taylor method (see [`crate::Method::Taylor`]).
+pub struct TaylorPropagator(Piecewise<ByRegime<FreeFlightSolver, TaylorContact, TaylorContact>>);
+
+impl TaylorPropagator {
+    /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
+    /// start time.
+    pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
+        problem.validate()?;
+        Self::start(problem, tol)
+    }
+
+    /// As [`TaylorPropagator::new`] without checking the problem (see [`Registered::resume`]).
+    fn start(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
+        Method::Taylor.check_tolerance(tol)?;
+        let params = problem.params;
+        let t0 = problem.start_time;
+        Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
+            let mut contact = TaylorContact::new(&params, tol, t0, s0);
+            if regime == Regime::Contact {
+                contact.start(regime, slip, t0, s0)?;
+            }
+            Ok(ByRegime {
+                free: FreeFlightSolver::new(&params, t0, s0),
+                contact,
+                rolling: TaylorContact::new(&params, tol, t0, s0),
+            })
+        })
+        .map(TaylorPropagator)
+    }
+}
+
+impl Registered for TaylorPropagator {
+    const INFO: MethodInfo = MethodInfo {
+        name: "taylor",
+        description: "closed-form free flight, generated Taylor series in contact",
+        default_tolerance: crate::reference::DEFAULT_TOLERANCE,
+        tolerance_range: ValidRange {
+            min: 1e-16,
+            max: 1e-3,
+        },
+        numerical_reference: false,
+        contact_scheme: false,
+    };
+
+    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        TaylorPropagator::new(problem, options.tolerance())
+    }
+
+    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+        TaylorPropagator::start(problem, options.tolerance())
+    }
+}
+
+impl Propagate for TaylorPropagator {
+    fn time(&self) -> f64 {
+        self.0.time()
+    }
+    fn state(&self) -> State {
+        self.0.state()
+    }
+    fn regime(&self) -> Regime {
+        self.0.regime()
+    }
+    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+        self.0.advance(target)
+    }
+}

@@ -1,0 +1,186 @@
+//! The Taylor contact solver (`docs/MODEL.md` §16): contact, slipping and rolling segments by
+//! Taylor steps of the generated recurrences; each step's switch functions searched as
+//! polynomials ([`super::roots`]), targets served from the same polynomials.
+
+use super::expansion::{Expansion, Switch, order_for};
+use super::roots::first_exit;
+use crate::driver::{Located, SegmentSolver};
+use crate::field::{self, SlipZero};
+use crate::math;
+use crate::params::{Params, State};
+use crate::propagate::{Event, EventKind, PropagationError, Regime, within_bounds};
+
+/// A contact regime's solver: Taylor steps on the regime's field.
+pub struct TaylorContact {
+    params: Params,
+    expansion: Expansion,
+    max_step: f64,
+    /// The segment's start time: step starts are kept in time since it (`local`), so that they
+    /// accumulate rounding of their own size, not of the absolute time's.
+    origin: f64,
+    /// The computed step: its start (since `origin`), length (up to its switch when it holds
+    /// one) and start state.
+    local: f64,
+    length: f64,
+    start: State,
+    /// The state at the step's end (the next step's start).
+    end: State,
+    stepped: bool,
+    /// Whether the current step is the segment's first (its start counts as inside).
+    first_step: bool,
+    /// The switch that ends the segment, once a step holds it.
+    exit: Option<Event>,
+    regime: Regime,
+    slip: f64,
+}
+
+impl TaylorContact {
+    /// A solver for `params` at tolerance `tol`, started at `(t0, s0)` in frictionless contact.
+    pub fn new(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
+        TaylorContact {
+            params: *params,
+            expansion: Expansion::new(params, order_for(tol)),
+            // A quarter of the shorter of the forcing period and 2π, as the other methods.
+            max_step: 0.25 * params.forcing_period().min(core::f64::consts::TAU),
+            origin: t0,
+            local: 0.0,
+            length: 0.0,
+            start: s0,
+            end: s0,
+            stepped: false,
+            first_step: true,
+            exit: None,
+            regime: Regime::Contact,
+            slip: 0.0,
+        }
+    }
+
+    fn phasor(&self, t: f64) -> (f64, f64) {
+        let (s, c) = math::sin_cos(self.params.speed_ratio * t + self.params.phase);
+        (c, s)
+    }
+
+    /// The earliest switch in the current expansion over `[0, h]`: local time and which.
+    fn earliest(&self, h: f64, skip: Option<Switch>) -> Option<(f64, Switch)> {
+        let mut first: Option<(f64, Switch)> = None;
+        for &sw in self.expansion.switches() {
+            if Some(sw) == skip {
+                continue;
+            }
+            let c = self.expansion.switch_polynomial(sw);
+            let scale = self.expansion.rounding_scale(sw, &self.params);
+            if let Some(s) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
+                && first.is_none_or(|(f, _)| s < f)
+            {
+                first = Some((s, sw));
+            }
+        }
+        first
+    }
+}
+
+impl SegmentSolver for TaylorContact {
+    fn start(
+        &mut self,
+        regime: Regime,
+        slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError> {
+        self.regime = regime;
+        self.slip = slip;
+        self.expansion.set_regime(&self.params, regime, slip);
+        self.origin = time;
+        self.local = 0.0;
+        self.length = 0.0;
+        self.start = state;
+        self.stepped = false;
+        self.first_step = true;
+        self.exit = None;
+        Ok(())
+    }
+
+    fn locate(&mut self, target: f64) -> Located {
+        if let Some(e) = self.exit.filter(|e| e.time <= target) {
+            return Located::Switch(e);
+        }
+        let since = target - self.origin;
+        if self.stepped && since <= self.local + self.length {
+            Located::Reached(self.expansion.state_at(since - self.local))
+        } else {
+            Located::NeedStep
+        }
+    }
+
+    fn step(&mut self) -> Result<(), PropagationError> {
+        // The forcing phasor from the time at a segment's start, then carried by its series.
+        let phasor = if self.stepped {
+            self.start = self.end;
+            let phasor = self.expansion.phasor_at(self.length);
+            self.local += self.length;
+            phasor
+        } else {
+            self.phasor(self.origin)
+        };
+        self.expansion.expand(&self.start, phasor);
+        let h = self.expansion.step_size().min(self.max_step);
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(PropagationError::StepSizeUnderflow {
+                time: self.origin + self.local,
+            });
+        }
+        self.length = h;
+        self.first_step = !self.stepped;
+        self.stepped = true;
+        let mut skip = None;
+        // A touch of w = 0 ends the step there (the next one starts on it); one found at the
+        // step start itself is rounding and looked past.
+        for _ in 0..2 {
+            let Some((s, sw)) = self.earliest(h, skip) else {
+                break;
+            };
+            let s = match sw {
+                Switch::Boundary => self.expansion.polish_boundary(&self.params, s, h),
+                _ => s,
+            };
+            let time = self.origin + (self.local + s);
+            let state = self.expansion.state_at(s);
+            let kind = match sw {
+                Switch::Boundary => Some(EventKind::Exit),
+                Switch::ConeUpper | Switch::ConeLower => Some(EventKind::Slip),
+                Switch::SlipVelocity => {
+                    match field::at_slip_zero(&self.params, time, &state, self.slip) {
+                        SlipZero::Roll => Some(EventKind::Roll),
+                        SlipZero::Reverse => Some(EventKind::Reverse),
+                        SlipZero::Touch => None,
+                    }
+                }
+            };
+            match kind {
+                Some(kind) => {
+                    self.length = s;
+                    self.exit = Some(Event { time, kind, state });
+                    break;
+                }
+                None if s > 0.0 => {
+                    self.length = s;
+                    break;
+                }
+                None => skip = Some(sw),
+            }
+        }
+        let end = self.expansion.state_at(self.length);
+        self.end = end;
+        if !within_bounds(&end) {
+            return Err(PropagationError::Diverged {
+                time: self.origin + (self.local + self.length),
+                state: end,
+            });
+        }
+        Ok(())
+    }
+
+    fn computed_to(&self) -> f64 {
+        self.origin + (self.local + self.length)
+    }
+}
