@@ -198,14 +198,15 @@ impl DefaultMethod for SingleRun {
     const METHOD: Method = Method::Analytic;
 }
 
-/// `sweep`, `poincare`, `spectrum`: many periods or many runs, where speed counts. Hybrid is the
-/// fastest method that meets the default accuracy (BENCHMARKS.md: 15× faster than analytic on a
-/// 21-value sweep, switch times within 1e-9 of DOP853 at tol 1e-13).
+/// `sweep`, `poincare`, `spectrum`: many periods or many runs, where speed counts. Taylor is the
+/// fastest method that meets the default accuracy (BENCHMARKS.md: as fast as hybrid on the
+/// paper's sweep and contact-heavy case, 6× faster on rolling, with switch times 50–100× closer to
+/// DOP853 at tol 1e-13; hybrid was the default before it, 15× faster than analytic).
 #[derive(Clone, Debug, Default)]
 pub struct Survey;
 
 impl DefaultMethod for Survey {
-    const METHOD: Method = Method::Hybrid;
+    const METHOD: Method = Method::Taylor;
 }
 
 /// Method selection plus its settings; `D` gives the command's default method.
@@ -285,7 +286,7 @@ mod tests {
     #[test]
     fn each_command_kind_has_its_default_method() {
         let survey = SurveyCommand::try_parse_from(["x"]).unwrap();
-        assert_eq!(survey.method.method, Method::Hybrid);
+        assert_eq!(survey.method.method, Method::Taylor);
         let single = Single::try_parse_from(["x"]).unwrap();
         assert_eq!(single.method.method, Method::Analytic);
         let chosen = SurveyCommand::try_parse_from(["x", "--method", "rk45"]).unwrap();

@@ -128,7 +128,8 @@ def simulate(
         Run length: an end time τ, or a number of forcing periods 2π/η (default 20).
     method : str, optional
         ``"analytic"`` (default: exact free flight, closed-form contact), ``"hybrid"``,
-        ``"dop853"`` or ``"rk45"``.
+        ``"taylor"`` (exact free flight, generated Taylor series in contact), ``"dop853"`` or
+        ``"rk45"``.
     tol : float, optional
         Accuracy target; each method's default and valid range as in ``rotor-rub simulate
         --help`` (analytic 1e-9, the others 1e-10).
@@ -201,7 +202,7 @@ def poincare(
 ) -> Section:
     """The Poincaré section: the state at τ = k·2π/η for ``keep`` periods k after ``transient``,
     classified (period-n, quasi-periodic, chaotic); with ``lyapunov`` also the largest Lyapunov
-    exponent. Default method ``hybrid``. Same points as ``rotor-rub poincare``."""
+    exponent. Default method ``taylor``. Same points as ``rotor-rub poincare``."""
     r = _core.poincare(
         preset=preset,
         config=_path(config),
@@ -243,7 +244,7 @@ def spectrum(
     """Amplitude spectrum (Hann window) over ``periods`` forcing periods after ``transient``, in
     orders of the running speed (½× and ⅓× rub sub-harmonics fall on 0.5 and 0.333 when
     ``periods`` is a multiple of 6). With ``whirl``, the spectrum of x + i y: negative orders are
-    backward whirl. Default method ``hybrid``. Same bins as ``rotor-rub spectrum``."""
+    backward whirl. Default method ``taylor``. Same bins as ``rotor-rub spectrum``."""
     r = _core.spectrum(
         preset=preset,
         config=_path(config),
@@ -346,7 +347,7 @@ def sweep(
 ) -> Sweep:
     """Bifurcation diagram: the Poincaré points of ``keep`` periods after ``transient`` at each
     of ``values`` of ``param``, every value from the same initial state, in parallel in Rust
-    (``threads`` workers, default all cores) with the GIL released. Default method ``hybrid``.
+    (``threads`` workers, default all cores) with the GIL released. Default method ``taylor``.
 
     With ``skip_errors`` values whose propagation fails are left out (listed in
     ``Sweep.skipped``). The rows equal ``rotor-rub sweep``'s for the same values.

@@ -188,7 +188,7 @@ pub fn poincare<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Hybrid, tol, contact_scheme, step)?;
+    let options = inputs::options(method, Method::Taylor, tol, contact_scheme, step)?;
     let transient = inputs::count("transient", transient, 0)?;
     let keep = inputs::count("keep", keep, 1)?;
     add_counts(("--transient", transient), ("--keep", keep)).map_err(cli)?;
@@ -235,7 +235,7 @@ pub fn spectrum<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Hybrid, tol, contact_scheme, step)?;
+    let options = inputs::options(method, Method::Taylor, tol, contact_scheme, step)?;
     let transient = inputs::count("transient", transient, 0)?;
     let periods = inputs::count("periods", periods, 1)?;
     let per_period = inputs::count("samples_per_period", samples_per_period, 2)?;

@@ -53,7 +53,7 @@ pub fn sweep_points<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Hybrid, tol, contact_scheme, step)?;
+    let options = inputs::options(method, Method::Taylor, tol, contact_scheme, step)?;
     let transient = inputs::count("transient", transient, 0)?;
     let keep = inputs::count("keep", keep, 1)?;
     add_counts(("--transient", transient), ("--keep", keep)).map_err(cli)?;
