@@ -4,8 +4,8 @@
 
 use super::free::FreeConstants;
 use super::free_flight::{FreeAdvance, FreeFlight};
-use super::linear::max_contact_stiffness;
-use super::schemes::{SubStep, exprb2_into, exprb43_into};
+use super::linear::{ContactConstants, max_contact_stiffness};
+use super::schemes::{SubStep, exprb2_with, exprb43_with};
 use super::segment::{Segment, point_of};
 use super::switch::{Budget, Direction, SlipVelocity, first_crossing_to, first_slip_switch};
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
@@ -85,6 +85,8 @@ impl SegmentSolver for FreeFlightSolver {
 /// its exit searched on the sub-step's closed form.
 pub struct ExprbContact {
     params: Params,
+    /// What every linearization of `params` shares.
+    constants: ContactConstants,
     scheme: ContactScheme,
     tol: f64,
     fixed_step: Option<f64>,
@@ -117,6 +119,7 @@ impl ExprbContact {
         let omega_contact = math::sqrt(max_contact_stiffness(params)).max(omega);
         ExprbContact {
             params: *params,
+            constants: ContactConstants::new(params),
             scheme,
             tol,
             fixed_step: match scheme {
@@ -154,9 +157,9 @@ impl ExprbContact {
                 .unwrap_or(self.next_step.clamp(min_step, self.max_step));
             let slip = self.slip;
             match self.scheme {
-                ContactScheme::Exprb2 => exprb2_into(&self.params, slip, t0, state, dt, slot),
+                ContactScheme::Exprb2 => exprb2_with(&self.constants, slip, t0, state, dt, slot),
                 ContactScheme::Exprb43 => {
-                    exprb43_into(&self.params, slip, t0, state, dt, self.tol, slot)
+                    exprb43_with(&self.constants, slip, t0, state, dt, self.tol, slot)
                 }
             }
             .map_err(|_| PropagationError::SingularContact { time: t0 })?;

@@ -10,7 +10,7 @@
 //!   (`polynomial_particular`, derived by the generator), and w1's segment evaluated at 0 < s < h
 //!   is the scheme's continuous extension used for exit location and sampling.
 
-use super::linear::{LinearSegment, Linearization, Singular};
+use super::linear::{ContactConstants, LinearSegment, Linearization, Part, Singular};
 use crate::math;
 use crate::params::{Params, State};
 
@@ -63,12 +63,26 @@ pub fn exprb2_into(
     h: f64,
     out: &mut SubStep,
 ) -> Result<(), Singular> {
-    let lin = Linearization::slipping(params, slip, t, state.x, state.y)?;
+    exprb2_with(&ContactConstants::new(params), slip, t, state, h, out)
+}
+
+/// [`exprb2_into`] with the parameter set's [`ContactConstants`].
+pub fn exprb2_with(
+    constants: &ContactConstants,
+    slip: f64,
+    t: f64,
+    state: State,
+    h: f64,
+    out: &mut SubStep,
+) -> Result<(), Singular> {
+    let (lin, part) = out.segment.split_mut();
+    Linearization::slipping_with(constants, slip, t, state.x, state.y, lin)?;
+    let lin = &*lin;
     if !lin.supports(h) {
         return Err(Singular);
     }
-    lin.segment_into(state, [0.0; 8], h, &mut out.segment);
-    out.end = out.segment.state_with(h, &lin.scalars(h));
+    lin.fill(state, [0.0; 8], h, || lin.cubic_terms(h), part);
+    out.end = lin.state_of(part, h, &lin.scalars(h));
     out.length = h;
     out.error = 0.0;
     Ok(())
@@ -99,39 +113,58 @@ pub fn exprb43_into(
     tol: f64,
     out: &mut SubStep,
 ) -> Result<(), Singular> {
-    let lin = Linearization::slipping(params, slip, t, state.x, state.y)?;
+    exprb43_with(&ContactConstants::new(params), slip, t, state, h, tol, out)
+}
+
+/// [`exprb43_into`] with the parameter set's [`ContactConstants`]. The linearization is written
+/// in place into the output slot and the stages are parts evaluated with it (no copy of it).
+pub fn exprb43_with(
+    constants: &ContactConstants,
+    slip: f64,
+    t: f64,
+    state: State,
+    h: f64,
+    tol: f64,
+    out: &mut SubStep,
+) -> Result<(), Singular> {
+    let (lin, part) = out.segment.split_mut();
+    Linearization::slipping_with(constants, slip, t, state.x, state.y, lin)?;
+    let lin = &*lin;
     if !lin.supports(h) {
         return Err(Singular);
     }
-    // The unforced segment, built in the output slot and evaluated before the slot receives
-    // the scheme's own segment.
-    lin.segment_into(state, [0.0; 8], h, &mut out.segment);
-    let free = &out.segment;
-    let u2 = free.state_with(0.5 * h, &lin.scalars(0.5 * h));
-    let (n2x, n2y) = remainder(&lin, &u2);
+    // The unforced segment's part (the slot's part receives the scheme's own segment).
+    let mut free = Part::empty();
+    lin.fill(state, [0.0; 8], h, || lin.cubic_terms(h), &mut free);
+    let u2 = lin.state_of(&free, 0.5 * h, &lin.scalars(0.5 * h));
+    let (n2x, n2y) = remainder(lin, &u2);
     let at_h = lin.scalars(h);
     // The unforced segment at h: the stages share its homogeneous and harmonic parts whenever
     // their response to the extra forcing is a series (short steps), so only that response is
     // evaluated for them (bit for bit what evaluating each stage's own segment gives).
-    let unforced = free.state_with(h, &at_h);
+    let unforced = lin.state_of(&free, h, &at_h);
     // The series length of the stages' cubic responses, computed once.
     let terms = lin.cubic_terms(h);
     let stage_state = |forcing: [f64; 8]| {
         lin.forced_state_with(&unforced, &forcing, terms, h)
-            .unwrap_or_else(|| lin.segment(state, forcing, h).state_with(h, &at_h))
+            .unwrap_or_else(|| {
+                let mut stage = Part::empty();
+                lin.fill(state, forcing, h, || lin.cubic_terms(h), &mut stage);
+                lin.state_of(&stage, h, &at_h)
+            })
     };
     let u3 = stage_state([n2x, n2y, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
-    let (n3x, n3y) = remainder(&lin, &u3);
+    let (n3x, n3y) = remainder(lin, &u3);
     let (h2, h3) = (h * h, h * h * h);
     let a2 = ((8.0 * n2x - n3x) / h2, (8.0 * n2y - n3y) / h2);
     let a3 = ((-8.0 * n2x + 2.0 * n3x) / h3, (-8.0 * n2y + 2.0 * n3y) / h3);
     let embedded = stage_state([0.0, 0.0, 0.0, 0.0, a2.0, a2.1, 0.0, 0.0]);
     let forcing = [0.0, 0.0, 0.0, 0.0, a2.0, a2.1, a3.0, a3.1];
-    lin.segment_with(state, forcing, h, || terms, &mut out.segment);
-    let segment = &out.segment;
-    let end = segment
-        .state_from_unforced(h, &unforced)
-        .unwrap_or_else(|| segment.state_with(h, &at_h));
+    lin.fill(state, forcing, h, || terms, part);
+    let part = &*part;
+    let end = lin
+        .state_from_unforced(part, h, &unforced)
+        .unwrap_or_else(|| lin.state_of(part, h, &at_h));
     let (e, y0, y1) = (embedded.to_array(), state.to_array(), end.to_array());
     let mut error: f64 = 0.0;
     for ((a, b), c) in y0.iter().zip(&y1).zip(&e) {

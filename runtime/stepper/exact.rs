@@ -6,7 +6,7 @@ use super::report::StepReport;
 use super::search::locate_with;
 use super::{Stepper, StepperError, check_bounded};
 use crate::analytic::free::FreeSegment;
-use crate::analytic::schemes::{SubStep, exprb2_into, exprb43_into};
+use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
 use crate::analytic::segment::{Point, Segment, point_of};
 use crate::analytic::switch::{Direction, Search};
 use crate::field;
@@ -32,6 +32,8 @@ impl Stepper {
         let mut budget = self.config.max_substeps;
         let (mut s, mut state, mut regime) = (0.0, self.state, self.regime);
         let mut slip = self.slip;
+        // The contact sub-steps' slot (written in place: a sub-step is too large to return).
+        let mut sub = SubStep::zeroed();
         loop {
             let rem = dt - s;
             if rem <= 0.0 || rem.is_nan() {
@@ -62,7 +64,8 @@ impl Stepper {
                     let end = if regime == Regime::Rolling {
                         self.rolling_substep(t, state, rem, &slip, report)?.0
                     } else {
-                        self.substep(t, state, rem, slip.sigma, report)?.end
+                        self.substep(t, state, rem, slip.sigma, report, &mut sub)?;
+                        sub.end
                     };
                     let end_regime = field::regime_of(&self.params, t0 + dt, &end);
                     let slip = Slip::at(&self.params, end_regime, t0 + dt, &end, None);
@@ -81,7 +84,7 @@ impl Stepper {
                     let (end, found) = if regime == Regime::Rolling {
                         self.rolling_substep(t, state, h, &slip, report)?
                     } else {
-                        let sub = self.substep(t, state, h, slip.sigma, report)?;
+                        self.substep(t, state, h, slip.sigma, report, &mut sub)?;
                         let exit = self
                             .exit_in(&sub, state, report)
                             .map(|(sx, p)| (sx, p.state, EventKind::Exit));
@@ -136,7 +139,7 @@ impl Stepper {
         resolve(found, report).ok_or(end.state)
     }
 
-    /// One contact sub-step of the configured scheme from `state` at `t` over `h`.
+    /// One contact sub-step of the configured scheme from `state` at `t` over `h`, into `sub`.
     fn substep(
         &self,
         t: f64,
@@ -144,17 +147,17 @@ impl Stepper {
         h: f64,
         sigma: f64,
         report: &mut StepReport,
-    ) -> Result<SubStep, StepperError> {
-        let mut sub = SubStep::zeroed();
+        sub: &mut SubStep,
+    ) -> Result<(), StepperError> {
         match self.config.scheme {
-            ContactScheme::Exprb2 => exprb2_into(&self.params, sigma, t, state, h, &mut sub),
-            ContactScheme::Exprb43 => exprb43_into(&self.params, sigma, t, state, h, 1.0, &mut sub),
+            ContactScheme::Exprb2 => exprb2_with(&self.contact, sigma, t, state, h, sub),
+            ContactScheme::Exprb43 => exprb43_with(&self.contact, sigma, t, state, h, 1.0, sub),
         }
         .map_err(|_| PropagationError::SingularContact { time: t })?;
         check_bounded(t + h, sub.end)?;
         report.substeps += 1;
         report.error_estimate = report.error_estimate.max(sub.error);
-        Ok(sub)
+        Ok(())
     }
 
     /// The contact exit on the sub-step's continuous extension, if any.

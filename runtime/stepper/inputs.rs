@@ -6,6 +6,7 @@
 use super::friction::Slip;
 use super::{FreeTransition, OnCap, Stepper, StepperConfig, StepperError, SwitchStart};
 use crate::analytic::free::FreeConstants;
+use crate::analytic::linear::ContactConstants;
 use crate::math;
 use crate::method::ContactScheme;
 use crate::params::{Parameter, Params, Problem, State};
@@ -26,6 +27,7 @@ impl Stepper {
         self.params.force_x = fx;
         self.params.force_y = fy;
         self.free = self.free.with_input((fx, fy));
+        self.contact.set_input(fx, fy);
         self.transition.set_input(&self.free);
         Ok(())
     }
@@ -102,6 +104,7 @@ impl Stepper {
             params: s.params,
             config: s.config,
             free,
+            contact: ContactConstants::new(&s.params),
             transition: FreeTransition::new(&s.params, &free, s.dt),
             time: s.time,
             anchor_time: s.anchor_time,

@@ -83,6 +83,7 @@ pub use search::{
 pub use transition::FreeTransition;
 
 use crate::analytic::free::FreeConstants;
+use crate::analytic::linear::ContactConstants;
 use crate::analytic::segment::point_of;
 use crate::field;
 use crate::math;
@@ -104,6 +105,8 @@ pub struct Stepper {
     params: Params,
     config: StepperConfig,
     free: FreeConstants,
+    /// What every contact linearization of `params` shares.
+    contact: ContactConstants,
     transition: FreeTransition,
     time: f64,
     /// Time at which the current step length (or parameter set) took effect.
@@ -138,6 +141,7 @@ impl Stepper {
             params,
             config,
             free,
+            contact: ContactConstants::new(&params),
             transition: FreeTransition::new(&params, &free, config.dt),
             time: t0,
             anchor_time: t0,
@@ -240,6 +244,7 @@ impl Stepper {
         params.validate()?;
         self.params = *params;
         self.free = FreeConstants::new(params);
+        self.contact = ContactConstants::new(params);
         self.transition = FreeTransition::new(params, &self.free, self.transition.dt());
         self.anchor_time = self.time;
         self.anchor_steps = 0;

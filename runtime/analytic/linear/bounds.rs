@@ -18,28 +18,40 @@ pub(super) fn frobenius(m: [[f64; 2]; 2]) -> f64 {
     math::sqrt(a * a + d * d + b * b + c * c)
 }
 
-/// Gains of the homogeneous linearized contact acceleration q'' = −2ν q' − Kl q (the generated
-/// `linear_acceleration` with no extra force): |q''| ≤ g_v |q'| + g_q |q| with g_v the largest
-/// singular value of its Jacobian in q' and g_q the Frobenius norm (≥ the largest singular value,
-/// one root instead of three on this per-sub-step path) of its Jacobian in q, read off as its
-/// values at unit vectors (the map is linear).
-pub(super) fn acceleration_gains(model: &ModelParams, kl: &LinearizedContact) -> (f64, f64) {
-    let acc = |q: [f64; 2], v: [f64; 2]| {
-        let a = coef::linear_acceleration(
-            model,
-            &Position { x: q[0], y: q[1] },
-            &Velocity { vx: v[0], vy: v[1] },
-            &Force::default(),
-            kl,
-        );
-        [a.ax, a.ay]
-    };
-    let spectral = |c1: [f64; 2], c2: [f64; 2]| harmonic_amplitude(c1[0], c2[0], c1[1], c2[1]);
-    let (q1, q2) = (acc([1.0, 0.0], [0.0; 2]), acc([0.0, 1.0], [0.0; 2]));
-    (
-        spectral(acc([0.0; 2], [1.0, 0.0]), acc([0.0; 2], [0.0, 1.0])),
-        frobenius([q1, q2]),
-    )
+/// The homogeneous linearized contact acceleration q'' = −2ν q' − Kl q (the generated
+/// `linear_acceleration` with no extra force) at position `q` and velocity `v`.
+#[inline]
+fn homogeneous_acceleration(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    q: [f64; 2],
+    v: [f64; 2],
+) -> [f64; 2] {
+    let a = coef::linear_acceleration(
+        model,
+        &Position { x: q[0], y: q[1] },
+        &Velocity { vx: v[0], vy: v[1] },
+        &Force::default(),
+        kl,
+    );
+    [a.ax, a.ay]
+}
+
+/// Gains of the homogeneous linearized contact acceleration: |q''| ≤ g_v |q'| + g_q |q| with g_v
+/// the largest singular value of its Jacobian in q' (this function) and g_q the Frobenius norm
+/// (≥ the largest singular value, one root instead of three on this per-sub-step path) of its
+/// Jacobian in q ([`position_gain`]), read off as its values at unit vectors (the map is
+/// linear).
+pub(super) fn velocity_gain(model: &ModelParams, kl: &LinearizedContact) -> f64 {
+    let acc = |v: [f64; 2]| homogeneous_acceleration(model, kl, [0.0; 2], v);
+    let (c1, c2) = (acc([1.0, 0.0]), acc([0.0, 1.0]));
+    harmonic_amplitude(c1[0], c2[0], c1[1], c2[1])
+}
+
+/// The position gain g_q of [`velocity_gain`].
+pub(super) fn position_gain(model: &ModelParams, kl: &LinearizedContact) -> f64 {
+    let acc = |q: [f64; 2]| homogeneous_acceleration(model, kl, q, [0.0; 2]);
+    frobenius([acc([1.0, 0.0]), acc([0.0, 1.0])])
 }
 
 /// An upper bound of ‖Kl‖₂ over every linearization point with z ≥ 1: the square of the fastest
@@ -142,7 +154,7 @@ impl Segment for LinearSegment {
         let ch = math::cosh(math::sqrt(l.norm_a) * hi);
         let decay = math::exp(-l.nu * lo);
         // |q0|, |w0| (no overflow: states are bounded by the divergence radius).
-        let h = &self.start;
+        let h = &self.part.start;
         let q0 = math::sqrt(h.q0x * h.q0x + h.q0y * h.q0y);
         let w0 = math::sqrt(h.w0x * h.w0x + h.w0y * h.w0y);
         let rh = decay * ch * (q0 + hi * w0);
@@ -152,7 +164,7 @@ impl Segment for LinearSegment {
         // |Σ c_m s^m| and its derivatives, bounded term by term at s = hi (1-norms bound the
         // Euclidean ones).
         let norm = |c: &[f64]| c.iter().take(2).map(|v| math::abs(*v)).sum::<f64>();
-        let (pr, pv, pa) = match &self.response {
+        let (pr, pv, pa) = match &self.part.response {
             Response::None => (0.0, 0.0, 0.0),
             Response::Polynomial(b) => {
                 let c = [b.b0x, b.b0y, b.b1x, b.b1y, b.b2x, b.b2y, b.b3x, b.b3y];

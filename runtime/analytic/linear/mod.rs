@@ -6,16 +6,15 @@ mod bounds;
 mod segment;
 
 pub use bounds::max_contact_stiffness;
-use bounds::{acceleration_gains, frobenius, harmonic_condition};
-pub use segment::{LinearSegment, Response};
+use bounds::{frobenius, harmonic_condition, position_gain, velocity_gain};
+pub use segment::{LinearSegment, Part, Response};
 
 use super::basis::{MatrixFunction, matrix_function};
 use super::free::harmonic_amplitude;
 use super::series::{MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, Series, len_for_rate, rate};
 use crate::coefficients::{
     self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
-    HomogeneousStart, LinearizedContact, ModelParams, Phasor, PolynomialParticular, Position, Slip,
-    Velocity,
+    LinearizedContact, ModelParams, Phasor, PolynomialParticular, Position, Slip, Velocity,
 };
 
 /// Gain of the harmonic particular solution (its amplitude over the forcing amplitude F) above
@@ -26,6 +25,36 @@ use crate::coefficients::{
 pub const RESONANT_GAIN: f64 = 1e3;
 use crate::math;
 use crate::params::{Params, State};
+
+/// What every linearization of one parameter set shares, computed once per parameter set
+/// (the contact solvers keep it): the model parameters in the generated code's form, the forcing
+/// phase, and the velocity gain of the segment bounds (the homogeneous acceleration's Jacobian in
+/// q' is −2ν I whatever Kl: see [`Linearization::slipping_with`]).
+#[derive(Clone, Copy, Debug)]
+pub struct ContactConstants {
+    model: ModelParams,
+    phase: f64,
+    velocity_gain: f64,
+}
+
+impl ContactConstants {
+    /// The constants of `params`.
+    pub fn new(params: &Params) -> Self {
+        let model = ModelParams::of(params);
+        ContactConstants {
+            model,
+            phase: params.phase,
+            velocity_gain: velocity_gain(&model, &LinearizedContact::default()),
+        }
+    }
+
+    /// The constants after the input force of the parameters became (`fx`, `fy`) (what
+    /// [`ContactConstants::new`] of the changed parameters gives: the gain does not depend on it).
+    pub fn set_input(&mut self, fx: f64, fy: f64) {
+        self.model.force_x = fx;
+        self.model.force_y = fy;
+    }
+}
 
 /// Everything fixed by the linearization point: Kl, Fd, modes, particular constants, phase.
 #[derive(Clone, Copy, Debug)]
@@ -77,26 +106,45 @@ impl Linearization {
         x0: f64,
         y0: f64,
     ) -> Result<Self, Singular> {
-        let p = params;
-        let model = ModelParams::of(p);
+        let mut out = LinearSegment::zeroed().lin;
+        Self::slipping_with(&ContactConstants::new(params), slip, t0, x0, y0, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Linearization::slipping`] with the parameter set's [`ContactConstants`], written into
+    /// `out` (unspecified on error).
+    ///
+    /// The velocity gain comes from the constants: the generated `linear_acceleration` at q = 0
+    /// and unit q' is 0 − 2ν q' − 0·Kl, and with Kl finite (checked before: `disc` and
+    /// `omega_sq_mean` are finite only if every entry is) 0·Kl is a signed zero that leaves
+    /// every entry as computed with Kl = 0, so the gain is the same bits for every Kl.
+    pub fn slipping_with(
+        constants: &ContactConstants,
+        slip: f64,
+        t0: f64,
+        x0: f64,
+        y0: f64,
+        out: &mut Linearization,
+    ) -> Result<(), Singular> {
+        let model = &constants.model;
         let at = Position { x: x0, y: y0 };
         let kl = if slip == 0.0 {
-            let t = coef::taylor_terms(&model, &at);
-            coef::linearized_stiffness(&model, &t)
+            let t = coef::taylor_terms(model, &at);
+            coef::linearized_stiffness(model, &t)
         } else {
-            coef::slipping_linearized_stiffness(&model, &at, &Slip { sigma: slip })
+            coef::slipping_linearized_stiffness(model, &at, &Slip { sigma: slip })
         };
-        let nu = p.damping_ratio;
-        let modes = coef::contact_modes(&model, &kl);
+        let nu = model.nu;
+        let modes = coef::contact_modes(model, &kl);
         let scale =
             1.0 + math::abs(kl.fa1) + math::abs(kl.fa2) + math::abs(kl.fb1) + math::abs(kl.fb2);
         if math::abs(modes.det) <= 1e-12 * scale * scale {
             return Err(Singular);
         }
-        let mut particular = coef::contact_particular(&model, &kl);
+        let mut particular = coef::contact_particular(model, &kl);
         if model.force_x != 0.0 || model.force_y != 0.0 {
             // A constant input force adds the constant response Kl⁻¹u (`docs/MODEL.md` §15).
-            let q = coef::input_contact_constant(&model, &kl);
+            let q = coef::input_contact_constant(model, &kl);
             particular.c55 += q.x;
             particular.c66 += q.y;
         }
@@ -111,7 +159,7 @@ impl Linearization {
         // (Exact resonance gives NaN or infinite constants.)
         let resonant = amplitude.is_nan()
             || amplitude > RESONANT_GAIN * math::abs(model.f)
-            || harmonic_condition(&model, &kl) > RESONANT_GAIN;
+            || harmonic_condition(model, &kl) > RESONANT_GAIN;
         if resonant {
             (
                 particular.c11,
@@ -122,28 +170,29 @@ impl Linearization {
             amplitude = 0.0;
         }
         let c = &particular;
-        let (st, ct) = math::sin_cos(math::wrap_angle(p.speed_ratio * t0 + p.phase));
-        let a = coef::shifted_stiffness(&model, &kl);
+        let (st, ct) = math::sin_cos(math::wrap_angle(model.eta * t0 + constants.phase));
+        let a = coef::shifted_stiffness(model, &kl);
         let norm_a = frobenius([[a.a11, a.a12], [a.a21, a.a22]]);
         let norm_kl = frobenius([[kl.fa1, kl.fb1], [kl.fb2, kl.fa2]]);
-        let gains = acceleration_gains(&model, &kl);
-        Ok(Linearization {
+        let gains = (constants.velocity_gain, position_gain(model, &kl));
+        *out = Linearization {
             kl,
             modes,
             particular,
-            model,
+            model: *model,
             nu,
-            eta: p.speed_ratio,
+            eta: model.eta,
             phase0: (ct, st),
-            offset: (p.offset_x, p.offset_y),
+            offset: (model.ex, model.ey),
             norm_a,
             norm_kl,
             gains,
             harmonic_amplitude: amplitude,
-            harmonic_shift: math::hypot(c.c55 - p.offset_x, c.c66 - p.offset_y),
+            harmonic_shift: math::hypot(c.c55 - model.ex, c.c66 - model.ey),
             resonant,
             slip,
-        })
+        };
+        Ok(())
     }
 
     /// The slip direction σ this linearization was made for (0: frictionless).
@@ -238,11 +287,15 @@ impl Linearization {
     pub fn segment(&self, state: State, forcing: [f64; 8], horizon: f64) -> LinearSegment {
         let mut out = LinearSegment {
             lin: *self,
-            response: Response::None,
-            start: HomogeneousStart::default(),
-            forcing: [0.0; 8],
+            part: Part::empty(),
         };
-        self.segment_into(state, forcing, horizon, &mut out);
+        self.fill(
+            state,
+            forcing,
+            horizon,
+            || self.cubic_terms(horizon),
+            &mut out.part,
+        );
         out
     }
 
@@ -267,8 +320,23 @@ impl Linearization {
         cubic_terms: impl FnOnce() -> Option<usize>,
         out: &mut LinearSegment,
     ) {
-        let k = &self.kl;
         out.lin = *self;
+        self.fill(state, forcing, horizon, cubic_terms, &mut out.part);
+    }
+
+    /// The [`Part`] of the segment of this linearization from `state` with the extra cubic
+    /// `forcing` over `horizon` ([`Self::segment_with`] without copying the linearization: a
+    /// segment whose linearization is already in place, or a part evaluated with
+    /// [`Self::state_of`]).
+    pub fn fill(
+        &self,
+        state: State,
+        forcing: [f64; 8],
+        horizon: f64,
+        cubic_terms: impl FnOnce() -> Option<usize>,
+        out: &mut Part,
+    ) {
+        let k = &self.kl;
         out.forcing = forcing;
         if self.resonant {
             // The harmonic forcing and the extra cubic, as one series (`docs/MODEL.md` §11).

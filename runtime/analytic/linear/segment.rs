@@ -86,23 +86,37 @@ impl Linearization {
     }
 }
 
-/// A linearized contact segment: [`Linearization`] plus initial state and cubic forcing.
+/// What a segment adds to its [`Linearization`]: the response to its extra cubic forcing, its
+/// homogeneous start and the forcing. Evaluated with its linearization by
+/// [`Linearization::state_of`]; kept apart so that a sub-step builds the stages it only evaluates
+/// without copying the linearization.
 #[derive(Clone, Copy, Debug)]
-pub struct LinearSegment {
-    pub(super) lin: Linearization,
+pub struct Part {
     pub(super) response: Response,
     pub(super) start: HomogeneousStart,
     /// The extra cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`.
     pub(super) forcing: [f64; 8],
 }
 
-impl LinearSegment {
-    /// The state at `s` given precomputed scalars (see [`Linearization::scalars`]).
-    pub fn state_with(&self, s: f64, scalars: &ContactBasis) -> State {
-        let l = &self.lin;
-        let h = coef::contact_homogeneous_eval(&l.model, &l.kl, &l.modes, &self.start, scalars);
+impl Part {
+    /// No response, a zero start and no forcing (a slot for [`Linearization::fill`]).
+    pub fn empty() -> Part {
+        Part {
+            response: Response::None,
+            start: HomogeneousStart::default(),
+            forcing: [0.0; 8],
+        }
+    }
+}
+
+impl Linearization {
+    /// The state at `s` of the segment of this linearization with the part `part`, given
+    /// precomputed scalars (see [`Linearization::scalars`]).
+    pub fn state_of(&self, part: &Part, s: f64, scalars: &ContactBasis) -> State {
+        let l = self;
+        let h = coef::contact_homogeneous_eval(&l.model, &l.kl, &l.modes, &part.start, scalars);
         let p = l.particular_state(s);
-        let q = match &self.response {
+        let q = match &part.response {
             Response::None => [0.0; 4],
             Response::Polynomial(b) => {
                 let q = coef::polynomial_eval(&LocalTime { s }, b);
@@ -118,18 +132,45 @@ impl LinearSegment {
         )
     }
 
-    /// The state at `s` given `unforced`, the state at `s` of the segment without extra forcing
-    /// from the same start (see [`Linearization::forced_state`]), when this segment's response
-    /// shares its homogeneous part (a series or none); `None` for a polynomial response.
-    pub fn state_from_unforced(&self, s: f64, unforced: &State) -> Option<State> {
-        if self.lin.resonant {
+    /// [`LinearSegment::state_from_unforced`] of the segment of this linearization with the
+    /// part `part`.
+    pub fn state_from_unforced(&self, part: &Part, s: f64, unforced: &State) -> Option<State> {
+        if self.resonant {
             return None;
         }
-        match &self.response {
+        match &part.response {
             Response::None => Some(*unforced),
             Response::Series(c) => Some(add_response(unforced, &c.eval(s))),
             Response::Polynomial(_) => None,
         }
+    }
+}
+
+/// A linearized contact segment: [`Linearization`] plus initial state and cubic forcing.
+#[derive(Clone, Copy, Debug)]
+pub struct LinearSegment {
+    pub(super) lin: Linearization,
+    pub(super) part: Part,
+}
+
+impl LinearSegment {
+    /// The state at `s` given precomputed scalars (see [`Linearization::scalars`]).
+    pub fn state_with(&self, s: f64, scalars: &ContactBasis) -> State {
+        self.lin.state_of(&self.part, s, scalars)
+    }
+
+    /// The state at `s` given `unforced`, the state at `s` of the segment without extra forcing
+    /// from the same start (see [`Linearization::forced_state`]), when this segment's response
+    /// shares its homogeneous part (a series or none); `None` for a polynomial response.
+    pub fn state_from_unforced(&self, s: f64, unforced: &State) -> Option<State> {
+        self.lin.state_from_unforced(&self.part, s, unforced)
+    }
+
+    /// The linearization and the part, the part writable (to build a segment in place with
+    /// [`Linearization::fill`] after writing the linearization with
+    /// [`Linearization::slipping_with`]).
+    pub fn split_mut(&mut self) -> (&mut Linearization, &mut Part) {
+        (&mut self.lin, &mut self.part)
     }
 
     /// A segment with every coefficient zero (a slot to be filled by
@@ -153,9 +194,7 @@ impl LinearSegment {
                 resonant: false,
                 slip: 0.0,
             },
-            response: Response::None,
-            start: HomogeneousStart::default(),
-            forcing: [0.0; 8],
+            part: Part::empty(),
         }
     }
 
@@ -183,7 +222,7 @@ impl LinearSegment {
                 ay: unbalance.ay + u.ay,
             }
         };
-        let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
+        let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = self.part.forcing;
         let load = Force {
             fx: unbalance.ax - l.kl.fd1 + a0x + s * (a1x + s * (a2x + s * a3x)),
             fy: unbalance.ay - l.kl.fd2 + a0y + s * (a1y + s * (a2y + s * a3y)),
@@ -209,7 +248,7 @@ impl LinearSegment {
     /// ([`Segment::bounds`]; ‖Kl‖₂ ≤ its Frobenius norm).
     pub fn jerk_bound(&self, hi: f64, b: &Bounds) -> f64 {
         let l = &self.lin;
-        let [_, _, a1x, a1y, a2x, a2y, a3x, a3y] = self.forcing;
+        let [_, _, a1x, a1y, a2x, a2y, a3x, a3y] = self.part.forcing;
         let h = math::abs(hi);
         let extra = math::hypot(a1x, a1y)
             + 2.0 * h * math::hypot(a2x, a2y)
