@@ -49,27 +49,38 @@ pub fn acceleration_with_phasor(
     sin_theta: f64,
     s: &State,
 ) -> (f64, f64) {
-    let (model, at, rate, phasor) = inputs(params, cos_theta, sin_theta, s);
+    acceleration_of_model(
+        &ModelParams::of(params),
+        regime,
+        slip,
+        cos_theta,
+        sin_theta,
+        s,
+    )
+}
+
+/// As [`acceleration_with_phasor`], with the model parameters in the generated code's form
+/// prepared by the caller (`ModelParams::of`, once per parameter set instead of once per call:
+/// the same inputs, so the same bits).
+#[inline]
+pub fn acceleration_of_model(
+    model: &ModelParams,
+    regime: Regime,
+    slip: f64,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> (f64, f64) {
+    let (at, rate, phasor) = state_inputs(cos_theta, sin_theta, s);
     let (ax, ay) = match regime {
         Regime::Free => {
-            let a = coef::free_acceleration(&model, &at, &rate, &phasor);
+            let a = coef::free_acceleration(model, &at, &rate, &phasor);
             (a.ax, a.ay)
         }
-        // Frictionless contact (μ = 0 tracks no slip: σ = 0) adds the elastic contact force.
-        Regime::Contact if slip == 0.0 => {
-            let a = coef::free_acceleration(&model, &at, &rate, &phasor);
-            let f = coef::contact_force(&model, &at);
-            (a.ax - f.fx, a.ay - f.fy)
-        }
-        // Slipping adds the elastic force and friction μσN t.
-        Regime::Contact => {
-            let a = coef::free_acceleration(&model, &at, &rate, &phasor);
-            let f = coef::slipping_contact_force(&model, &at, &Slip { sigma: slip });
-            (a.ax - f.fx, a.ay - f.fy)
-        }
+        Regime::Contact => return contact_acceleration(model, slip, cos_theta, sin_theta, s),
         // The rolling field has the input force inside G (it changes λ).
         Regime::Rolling => {
-            let a = coef::rolling_acceleration(&model, &at, &rate, &phasor);
+            let a = coef::rolling_acceleration(model, &at, &rate, &phasor);
             return (a.ax, a.ay);
         }
     };
@@ -78,7 +89,37 @@ pub fn acceleration_with_phasor(
     }
     // A constant input force adds its acceleration in free flight and slipping contact
     // (`docs/MODEL.md` §15); without one nothing is added, so the field keeps its bits.
-    let u = coef::input_acceleration(&model);
+    let u = coef::input_acceleration(model);
+    (ax + u.ax, ay + u.ay)
+}
+
+/// [`acceleration_of_model`] in contact (`slip` as there): the contact phase's right-hand side,
+/// inlined into the integrators' stages (the other regimes stay out of line).
+#[inline(always)]
+pub fn contact_acceleration(
+    model: &ModelParams,
+    slip: f64,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> (f64, f64) {
+    let (at, rate, phasor) = state_inputs(cos_theta, sin_theta, s);
+    let a = coef::free_acceleration(model, &at, &rate, &phasor);
+    // Frictionless contact (μ = 0 tracks no slip: σ = 0) adds the elastic contact force;
+    // slipping adds the elastic force and friction μσN t.
+    let (ax, ay) = if slip == 0.0 {
+        let f = coef::contact_force(model, &at);
+        (a.ax - f.fx, a.ay - f.fy)
+    } else {
+        let f = coef::slipping_contact_force(model, &at, &Slip { sigma: slip });
+        (a.ax - f.fx, a.ay - f.fy)
+    };
+    if model.force_x == 0.0 && model.force_y == 0.0 {
+        return (ax, ay);
+    }
+    // A constant input force adds its acceleration (`docs/MODEL.md` §15); without one nothing
+    // is added, so the field keeps its bits.
+    let u = coef::input_acceleration(model);
     (ax + u.ax, ay + u.ay)
 }
 
@@ -258,6 +299,19 @@ pub fn rolling_rates_with_phasor(
     let (model, at, rate, phasor) = inputs(params, cos_theta, sin_theta, s);
     let r = coef::rolling_rates(&model, &at, &rate, &phasor);
     (r.normal_rate, r.lambda_rate)
+}
+
+/// The generated functions' inputs for a state and forcing direction, without the model.
+#[inline]
+fn state_inputs(cos_theta: f64, sin_theta: f64, s: &State) -> (Position, Velocity, Phasor) {
+    (
+        Position { x: s.x, y: s.y },
+        Velocity { vx: s.vx, vy: s.vy },
+        Phasor {
+            ct: cos_theta,
+            st: sin_theta,
+        },
+    )
 }
 
 /// The generated functions' inputs for a state and forcing direction.

@@ -7,14 +7,37 @@
 //! relative and absolute tolerance per step, as for [`crate::Method::Dop853`].
 
 use crate::analytic::propagator::FreeFlightSolver;
+use crate::coefficients::ModelParams;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
+use crate::field;
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, Propagate, PropagationError, Regime, within_bounds};
 use crate::reference::{
-    Dop853, Dop853Dense, Dop853Step, Found, Integrator, Interpolant, PhasorRotorSystem,
+    Dop853, Dop853Dense, Dop853Step, Found, Integrator, Interpolant, OdeSystem, PhasorRotorSystem,
     REFERENCE_BUDGET, ReferenceSolver, SUBDIVISIONS, Switches, Tolerance, switch_in_deferred_step,
 };
+
+/// The contact field of [`PhasorRotorSystem`] with the model parameters in the generated code's
+/// form prepared once per segment instead of at every stage ([`field::contact_acceleration`]:
+/// the same arithmetic, so the same bits).
+#[derive(Clone, Copy, Debug)]
+struct ContactField {
+    model: ModelParams,
+    /// The slip direction σ of slipping contact (±1), 0 when none is tracked.
+    slip: f64,
+}
+
+impl OdeSystem<6> for ContactField {
+    #[inline(always)]
+    fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
+        let [x, yy, vx, vy, c, s] = *y;
+        let state = State::new(x, yy, vx, vy);
+        let (ax, ay) = field::contact_acceleration(&self.model, self.slip, c, s, &state);
+        let eta = self.model.eta;
+        [vx, vy, ax, ay, -eta * s, eta * c]
+    }
+}
 
 /// DOP853 on the 6-state contact field (rotor plus forcing phasor).
 ///
@@ -27,7 +50,7 @@ use crate::reference::{
 /// the previous contact ended with, instead of a fresh initial guess.
 pub struct Dop853Contact {
     params: Params,
-    system: PhasorRotorSystem,
+    system: ContactField,
     integrator: Integrator<Dop853, 6>,
     max_step: f64,
     /// The step size proposed at the end of the last contact.
@@ -45,9 +68,8 @@ pub struct Dop853Contact {
 
 impl Dop853Contact {
     fn new(params: &Params, tol: f64, slip: f64, t0: f64, s0: State) -> Self {
-        let system = PhasorRotorSystem {
-            params: *params,
-            regime: Regime::Contact,
+        let system = ContactField {
+            model: ModelParams::of(params),
             slip,
         };
         // A quarter of the shorter of the forcing period and 2π, as the reference integrators.
