@@ -94,16 +94,20 @@ impl Recurrence<'_> {
     /// at position c_m, velocity (m + 1) c_{m+1} and force a_m, divided by (m + 2)(m + 1). The
     /// forcing's coefficients are walked by pairs and zero after them (no per-term lookup).
     #[inline(always)]
-    fn run(&self, len: usize, mut visit: impl FnMut(usize, [f64; 2])) {
+    /// `visit` also gets m + 1 as a float (counted in floats: small integers are exact, and no
+    /// integer conversion per term).
+    fn run(&self, len: usize, mut visit: impl FnMut(usize, f64, [f64; 2])) {
         let len = len.clamp(6, SERIES_TERMS);
         let mut forcing = self.forcing.chunks_exact(2);
         let (mut cm, mut cn) = ([0.0; 2], [0.0; 2]);
+        // (m + 1) as f64.
+        let mut k = 0.0;
         for (m, &divisor) in DIVISORS.iter().take(len - 2).enumerate() {
             let (fx, fy) = match forcing.next() {
                 Some(&[fx, fy]) => (fx, fy),
                 _ => (0.0, 0.0),
             };
-            let k = (m + 1) as f64;
+            k += 1.0;
             let acc = coef::linear_acceleration(
                 self.model,
                 &Position { x: cm[0], y: cm[1] },
@@ -115,7 +119,7 @@ impl Recurrence<'_> {
                 self.kl,
             );
             let next = [acc.ax * divisor, acc.ay * divisor];
-            visit(m, next);
+            visit(m, k, next);
             (cm, cn) = (cn, next);
         }
     }
@@ -127,20 +131,22 @@ impl Recurrence<'_> {
         for slot in slots.by_ref().take(2) {
             *slot = [0.0; 2];
         }
-        // [`used`], tracked as the terms come (c0, c1 and the terms after `len` are zero).
-        let mut last = 0;
-        self.run(len, |m, next| {
+        self.run(len, |_, _, next| {
             if let Some(slot) = slots.next() {
                 *slot = next;
-            }
-            if next[0] != 0.0 || next[1] != 0.0 {
-                last = m + 3;
             }
         });
         for slot in slots {
             *slot = [0.0; 2];
         }
-        out.used = last;
+        // [`used`]: the terms after `len` are zero, so the search starts there (it usually
+        // stops at once: the last computed term is rarely zero).
+        let len = len.clamp(6, SERIES_TERMS);
+        out.used = out
+            .coefficients
+            .get(..len)
+            .and_then(|c| c.iter().rposition(|t| t[0] != 0.0 || t[1] != 0.0))
+            .map_or(0, |i| i + 1);
     }
 
     /// Position and velocity at `s` of the first `len` terms in one pass, without storing the
@@ -150,9 +156,10 @@ impl Recurrence<'_> {
         let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
         // s^(m+1) for the term c_{m+2} s^(m+2).
         let mut pow1 = s;
-        self.run(len, |m, next| {
+        self.run(len, |_, k, next| {
             let pow2 = pow1 * s;
-            let d = (m + 2) as f64 * pow1;
+            // (m + 2) as f64, exactly.
+            let d = (k + 1.0) * pow1;
             x += next[0] * pow2;
             y += next[1] * pow2;
             vx += next[0] * d;
@@ -213,12 +220,14 @@ fn eval_terms(c: &[[f64; 2]], s: f64) -> [f64; 4] {
     let Some((c0, rest)) = c.split_first() else {
         return [x, y, vx, vy];
     };
-    for (i, cm) in rest.iter().enumerate().rev() {
-        let m = (i + 1) as f64;
+    // The index of `cm` in `c` as a float (exact for these small counts), counted down.
+    let mut m = rest.len() as f64;
+    for cm in rest.iter().rev() {
         x = x * s + cm[0];
         y = y * s + cm[1];
         vx = vx * s + m * cm[0];
         vy = vy * s + m * cm[1];
+        m -= 1.0;
     }
     x = x * s + c0[0];
     y = y * s + c0[1];
