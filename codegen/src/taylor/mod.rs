@@ -308,7 +308,10 @@ mod tests {
                 Op::Product(a, b) => vec![*a, *b],
                 Op::Square(a) | Op::Power(a, _) | Op::Sqrt(a) => vec![*a],
             };
-            assert!(refs.iter().all(|&r| r < i || matches!(op, Op::State)), "{i}: {op:?}");
+            assert!(
+                refs.iter().all(|&r| r < i || matches!(op, Op::State)),
+                "{i}: {op:?}"
+            );
         }
     }
 
