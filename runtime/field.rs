@@ -123,6 +123,22 @@ pub fn contact_acceleration(
     (ax + u.ax, ay + u.ay)
 }
 
+/// [`contact_acceleration`] for frictionless contact (σ = 0) without an input force: the same
+/// arithmetic without its two run-time tests, for an integrator that picks its field once per
+/// segment (the hybrid method's contact steps).
+#[inline(always)]
+pub fn frictionless_contact_acceleration(
+    model: &ModelParams,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> (f64, f64) {
+    let (at, rate, phasor) = state_inputs(cos_theta, sin_theta, s);
+    let a = coef::free_acceleration(model, &at, &rate, &phasor);
+    let f = coef::contact_force(model, &at);
+    (a.ax - f.fx, a.ay - f.fy)
+}
+
 /// The force a changing running speed adds to the unbalance forcing F (cos θ, sin θ)
 /// (`docs/MODEL.md` §14): −η_m ρ̂ η' (−sin θ, cos θ), generated from the model's
 /// `unbalance_at_varying_speed`. It acts in every regime (it is part of the forcing).

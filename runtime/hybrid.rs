@@ -8,11 +8,12 @@
 
 use crate::analytic::propagator::FreeFlightSolver;
 use crate::coefficients::ModelParams;
+use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::field;
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, Propagate, PropagationError, Regime, within_bounds};
+use crate::propagate::{Event, Propagate, PropagationError, Regime};
 use crate::reference::{
     Dop853, Dop853Dense, Dop853Step, Found, Integrator, Interpolant, OdeSystem, PhasorRotorSystem,
     REFERENCE_BUDGET, ReferenceSolver, SUBDIVISIONS, Switches, Tolerance, switch_in_deferred_step,
@@ -35,6 +36,30 @@ impl OdeSystem<6> for ContactField {
         let state = State::new(x, yy, vx, vy);
         let (ax, ay) = field::contact_acceleration(&self.model, self.slip, c, s, &state);
         let eta = self.model.eta;
+        [vx, vy, ax, ay, -eta * s, eta * c]
+    }
+}
+
+impl ContactField {
+    /// Whether the field is frictionless contact without an input force, so that
+    /// [`Frictionless`] is the same field.
+    fn frictionless(&self) -> bool {
+        self.slip == 0.0 && self.model.force_x == 0.0 && self.model.force_y == 0.0
+    }
+}
+
+/// A [`ContactField`] that is [`ContactField::frictionless`]: its right-hand side without the
+/// run-time tests for friction and an input force ([`field::frictionless_contact_acceleration`],
+/// the same arithmetic, so the same bits).
+struct Frictionless<'a>(&'a ContactField);
+
+impl OdeSystem<6> for Frictionless<'_> {
+    #[inline(always)]
+    fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
+        let [x, yy, vx, vy, c, s] = *y;
+        let state = State::new(x, yy, vx, vy);
+        let (ax, ay) = field::frictionless_contact_acceleration(&self.0.model, c, s, &state);
+        let eta = self.0.model.eta;
         [vx, vy, ax, ay, -eta * s, eta * c]
     }
 }
@@ -109,7 +134,11 @@ impl Dop853Contact {
             let dense = match self.dense {
                 Some(d) => d,
                 None => {
-                    let d = self.step.dense(&self.system);
+                    let d = if self.system.frictionless() {
+                        self.step.dense(&Frictionless(&self.system))
+                    } else {
+                        self.step.dense(&self.system)
+                    };
                     self.dense = Some(d);
                     d
                 }
@@ -159,9 +188,26 @@ impl SegmentSolver for Dop853Contact {
     }
 
     fn step(&mut self) -> Result<(), PropagationError> {
+        let system = self.system;
+        if system.frictionless() {
+            self.step_on(&Frictionless(&system))
+        } else {
+            self.step_on(&system)
+        }
+    }
+
+    fn computed_to(&self) -> f64 {
+        self.integrator.time()
+    }
+}
+
+impl Dop853Contact {
+    /// [`SegmentSolver::step`] on `system`, the segment's field.
+    #[inline(always)]
+    fn step_on<F: OdeSystem<6>>(&mut self, system: &F) -> Result<(), PropagationError> {
         self.dense = None;
         self.integrator
-            .step_deferred(&self.system, f64::INFINITY, &mut self.step)?;
+            .step_deferred(system, f64::INFINITY, &mut self.step)?;
         let end = PhasorRotorSystem::rotor_state(&self.step.y1);
         if !within_bounds(&end) {
             return Err(PropagationError::Diverged {
@@ -178,7 +224,7 @@ impl SegmentSolver for Dop853Contact {
         };
         self.exit = switch_in_deferred_step(
             &mut self.integrator,
-            &self.system,
+            system,
             &self.step,
             &self.switches,
             subdivisions,
@@ -186,10 +232,6 @@ impl SegmentSolver for Dop853Contact {
         );
         self.stepped = true;
         Ok(())
-    }
-
-    fn computed_to(&self) -> f64 {
-        self.integrator.time()
     }
 }
 

@@ -8,13 +8,14 @@ use super::linear::{ContactConstants, max_contact_stiffness};
 use super::schemes::{SubStep, exprb2_with, exprb43_with};
 use super::segment::{Segment, point_of};
 use super::switch::{Budget, Direction, SlipVelocity, first_crossing_to, first_slip_switch};
+use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::math;
 use crate::method::{
     ContactScheme, Method, MethodInfo, Options, Registered, ValidRange, check_step,
 };
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime, within_bounds};
+use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime};
 use crate::reference::{Dop853, ReferenceSolver};
 
 /// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `docs/MODEL.md`

@@ -106,3 +106,22 @@ pub struct StepBudget {
 /// Band around z = 1, in h = z² − 1, within which a start counts as on z = 1 (64 ulps of 1; the
 /// rounding of h near z = 1 is a few ulps).
 pub const TOUCH_DEPTH: f64 = 64.0 * f64::EPSILON;
+
+/// [`within_bounds`] with its common case decided without `hypot`: |x|, |y| ≤ 7000 puts the
+/// position within 7000·√2 < 9900 of the rest position, inside [`DIVERGENCE_RADIUS`] whatever
+/// `hypot`'s rounding (within an ulp); only outside that square the exact test runs. The same
+/// answer for every state, about 50 instructions fewer per test.
+///
+/// [`DIVERGENCE_RADIUS`]: crate::propagate::DIVERGENCE_RADIUS
+#[inline(always)]
+pub(crate) fn within_bounds(state: &State) -> bool {
+    const SQUARE: f64 = 7.0e3;
+    const _: () = assert!(SQUARE * 1.415 < crate::propagate::DIVERGENCE_RADIUS);
+    if state.is_finite()
+        && crate::math::abs(state.x) <= SQUARE
+        && crate::math::abs(state.y) <= SQUARE
+    {
+        return true;
+    }
+    crate::propagate::within_bounds(state)
+}

@@ -1,10 +1,11 @@
 //! The state machine itself: one [`Piecewise`] behind [`Propagate`] for every method.
 
 use super::boundary::start_side;
+use super::within_bounds;
 use super::{Located, Solvers, StepBudget};
 use crate::field;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target, within_bounds};
+use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target};
 
 /// A piecewise propagation: the current regime's solver serves targets until it reports a
 /// switch; the next regime's solver starts there. See the module documentation of

@@ -196,6 +196,7 @@ impl<const N: usize> Default for Dop853Step<N> {
 impl<const N: usize> Dop853Step<N> {
     /// Fill from an accepted attempt of size `h` from `(t0, y0)` ending at `t1`: evaluates
     /// f(t0 + h, y1), the next step's first stage.
+    #[inline(always)]
     pub(crate) fn set<S: OdeSystem<N> + ?Sized>(
         &mut self,
         sys: &S,

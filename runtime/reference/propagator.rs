@@ -33,10 +33,11 @@ use super::rk45::Rk45;
 use super::scheme::{Interpolant, Scheme, Tolerance};
 use super::switch::{Switches, switch_in_step};
 use super::system::RotorSystem;
+use crate::driver::within_bounds;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, StepBudget};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, Propagate, PropagationError, Regime, within_bounds};
+use crate::propagate::{Event, Propagate, PropagationError, Regime};
 
 /// Step budget of one [`Propagate::advance`] call: this many steps plus
 /// [`STEPS_PER_TIME_UNIT`] per unit of the requested time span. Exceeding it reports

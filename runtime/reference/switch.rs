@@ -104,10 +104,20 @@ impl Switches {
     }
 
     /// The value (positive inside the regime) and its time derivative.
+    ///
+    /// Inlined so that the boundary function (a few multiplications, the only one without
+    /// friction) is computed in place; the friction functions are a call.
+    #[inline(always)]
     pub fn measure<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> (f64, f64) {
         if f == Function::Boundary {
             return inside_measure(&self.params, self.regime, y);
         }
+        self.friction_measure(f, t, y)
+    }
+
+    /// [`Switches::measure`] of a friction function.
+    #[inline(never)]
+    fn friction_measure<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> (f64, f64) {
         let state = rotor_state(y);
         let (ct, st) = phasor(&self.params, t, y);
         let fr = field::friction_with_phasor(&self.params, ct, st, &state);
@@ -199,6 +209,15 @@ fn first_switch<const N: usize, D: Interpolant<N>>(
     mut rhs: impl FnMut(f64, &[f64; N]) -> [f64; N],
 ) -> Option<Found<N>> {
     let (t0, t1) = (dense.start(), dense.end());
+    if switches.friction_function().is_none() {
+        // The boundary alone (no friction): the loop below with one function and no touch.
+        let boundary = |t: f64, y: &[f64; N]| switches.measure(Function::Boundary, t, y);
+        let t = first_crossing_subdivided(subdivisions, dense, y0, y1, boundary)?;
+        let (t, y) = on_step_solution(t, (t0, t1, *y1), &mut redo, &mut rhs, boundary);
+        return switches
+            .classify(Function::Boundary, t, &y)
+            .map(|kind| (t, y, kind));
+    }
     let functions = switches.functions();
     let (mut from, mut y_from) = (t0, *y0);
     for _ in 0..=MAX_TOUCHES {

@@ -85,10 +85,11 @@ pub use transition::FreeTransition;
 use crate::analytic::free::FreeConstants;
 use crate::analytic::linear::ContactConstants;
 use crate::analytic::segment::point_of;
+use crate::driver::within_bounds;
 use crate::field;
 use crate::math;
 use crate::params::{Params, Problem, State};
-use crate::propagate::{PropagationError, Regime, within_bounds};
+use crate::propagate::{PropagationError, Regime};
 
 /// Longest accepted step (time units). Longer spans: take several steps.
 pub const MAX_STEP: f64 = 1.0;
