@@ -1,7 +1,7 @@
 //! The switching function of contact, g = ±(z² − 1), as an [`EventFunction`] on a closed-form
 //! [`Segment`], its curvature bound, and the analytic method's entry points to the kernel.
 
-use super::{Budget, EventFunction, locate};
+use super::{Budget, EventFunction, TOUCH, locate, no_crossing};
 use crate::analytic::segment::{Point, Segment};
 use crate::math;
 
@@ -107,6 +107,19 @@ pub fn first_crossing_to<S: Segment>(
     direction: Direction,
 ) -> Option<(f64, Point)> {
     let f = Boundary::new(seg, direction);
+    // The common case, a sub-step proved free by one bound test, as `locate` decides it (its
+    // chunk's first test: the same values, bound and comparison) without setting up the search.
+    if lo < hi {
+        let (ga, dga) = f.value(&start);
+        let (gb, dgb) = f.value(&end);
+        let len = hi - lo;
+        if gb <= TOUCH && len > Budget::EXPLORE.min_interval * (1.0 + math::abs(hi)) {
+            let m2 = f.curvature(lo, &start, hi);
+            if no_crossing(ga.min(0.0), dga, gb, dgb, m2, len, TOUCH) {
+                return None;
+            }
+        }
+    }
     locate(
         &f,
         lo,
