@@ -199,9 +199,10 @@ impl DefaultMethod for SingleRun {
 }
 
 /// `sweep`, `poincare`, `spectrum`: many periods or many runs, where speed counts. Taylor is the
-/// fastest method that meets the default accuracy (BENCHMARKS.md: as fast as hybrid on the
-/// paper's sweep and contact-heavy case, 6× faster on rolling, with switch times 50–100× closer to
-/// DOP853 at tol 1e-13; hybrid was the default before it, 15× faster than analytic).
+/// fastest method at equal accuracy (BENCHMARKS.md, "The taylor method": within 10 % of hybrid's
+/// time at the same default tolerance with switch times 50–100× closer to DOP853 at tol 1e-13,
+/// faster than hybrid at equal switch-time accuracy, 6× faster on rolling; hybrid, the default
+/// before it, is 15× faster than analytic).
 #[derive(Clone, Debug, Default)]
 pub struct Survey;
 
