@@ -90,19 +90,25 @@ pub struct Recurrence<'a> {
 
 impl Recurrence<'_> {
     /// Runs the recurrence for the first `len` (6 … [`SERIES_TERMS`]) coefficients and hands
-    /// each c_{m+2} (m = 0 … len − 3) to `visit`: c_{m+2} is the generated linear acceleration
-    /// at position c_m, velocity (m + 1) c_{m+1} and force a_m, divided by (m + 2)(m + 1). The
-    /// forcing's coefficients are walked by pairs and zero after them (no per-term lookup).
+    /// each c_{m+2} (m = 0 … len − 3) to `visit` with the next of `slots` (the run stops early
+    /// when they run out): c_{m+2} is the generated linear acceleration at position c_m,
+    /// velocity (m + 1) c_{m+1} and force a_m, divided by (m + 2)(m + 1). The forcing's
+    /// coefficients are walked by pairs and zero after them (no per-term lookup). `visit` also
+    /// gets m + 1 as a float (counted in floats: small integers are exact, and no integer
+    /// conversion per term).
     #[inline(always)]
-    /// `visit` also gets m + 1 as a float (counted in floats: small integers are exact, and no
-    /// integer conversion per term).
-    fn run(&self, len: usize, mut visit: impl FnMut(usize, f64, [f64; 2])) {
+    fn run<S>(
+        &self,
+        len: usize,
+        slots: impl Iterator<Item = S>,
+        mut visit: impl FnMut(S, f64, [f64; 2]),
+    ) {
         let len = len.clamp(6, SERIES_TERMS);
         let mut forcing = self.forcing.chunks_exact(2);
         let (mut cm, mut cn) = ([0.0; 2], [0.0; 2]);
         // (m + 1) as f64.
         let mut k = 0.0;
-        for (m, &divisor) in DIVISORS.iter().take(len - 2).enumerate() {
+        for (&divisor, slot) in DIVISORS.iter().take(len - 2).zip(slots) {
             let (fx, fy) = match forcing.next() {
                 Some(&[fx, fy]) => (fx, fy),
                 _ => (0.0, 0.0),
@@ -119,29 +125,34 @@ impl Recurrence<'_> {
                 self.kl,
             );
             let next = [acc.ax * divisor, acc.ay * divisor];
-            visit(m, k, next);
+            visit(slot, k, next);
             (cm, cn) = (cn, next);
         }
     }
 
     /// The first `len` (6 … [`SERIES_TERMS`]) coefficients into `out`, the others zero.
     pub fn coefficients_into(&self, len: usize, out: &mut Series) {
-        let mut slots = out.coefficients.iter_mut();
+        // Any term of `out` may be non-zero: clear every one after `len`.
+        out.used = SERIES_TERMS;
+        self.refill(len, out);
+    }
+
+    /// [`Self::coefficients_into`] for a slot whose terms from its `used` on are zero (what
+    /// every series this module writes holds, and [`Series::ZERO`]): of the terms after `len`
+    /// only those up to the old `used` are cleared. The same coefficients and count.
+    pub(crate) fn refill(&self, len: usize, out: &mut Series) {
+        let len = len.clamp(6, SERIES_TERMS);
+        let stale = out.used;
         // c0 = c1 = 0.
-        for slot in slots.by_ref().take(2) {
-            *slot = [0.0; 2];
-        }
-        self.run(len, |_, _, next| {
-            if let Some(slot) = slots.next() {
-                *slot = next;
-            }
-        });
-        for slot in slots {
-            *slot = [0.0; 2];
+        let [c0, c1, rest @ ..] = &mut out.coefficients;
+        (*c0, *c1) = ([0.0; 2], [0.0; 2]);
+        self.run(len, rest.iter_mut(), |slot, _, next| *slot = next);
+        // The terms after `len` are zero from here on: those after `stale` were already.
+        if let Some(tail) = out.coefficients.get_mut(len..stale) {
+            tail.fill([0.0; 2]);
         }
         // [`used`]: the terms after `len` are zero, so the search starts there (it usually
         // stops at once: the last computed term is rarely zero).
-        let len = len.clamp(6, SERIES_TERMS);
         out.used = out
             .coefficients
             .get(..len)
@@ -156,7 +167,7 @@ impl Recurrence<'_> {
         let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
         // s^(m+1) for the term c_{m+2} s^(m+2).
         let mut pow1 = s;
-        self.run(len, |_, k, next| {
+        self.run(len, core::iter::repeat(()), |(), k, next| {
             let pow2 = pow1 * s;
             // (m + 2) as f64, exactly.
             let d = (k + 1.0) * pow1;

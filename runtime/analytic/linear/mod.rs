@@ -355,7 +355,7 @@ impl Linearization {
                     kl: &self.kl,
                     forcing: &all,
                 }
-                .coefficients_into(len, c);
+                .refill(len, c);
             }
         } else if forcing.iter().all(|&a| a == 0.0) {
             out.response = Response::None;
@@ -364,7 +364,7 @@ impl Linearization {
                 out.response = Response::Series(Series::ZERO);
             }
             if let Response::Series(c) = &mut out.response {
-                self.recurrence(&forcing).coefficients_into(len, c);
+                self.recurrence(&forcing).refill(len, c);
             }
         } else {
             let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = forcing;
