@@ -13,7 +13,7 @@ use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::field;
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, Propagate, PropagationError, Regime};
+use crate::propagate::{Event, PropagationError, Regime};
 use crate::reference::{
     Dop853, Dop853Dense, Dop853Step, Found, Integrator, Interpolant, OdeSystem, PhasorRotorSystem,
     REFERENCE_BUDGET, ReferenceSolver, SUBDIVISIONS, Switches, Tolerance, switch_in_deferred_step,
@@ -288,17 +288,4 @@ impl Registered for HybridPropagator {
     }
 }
 
-impl Propagate for HybridPropagator {
-    fn time(&self) -> f64 {
-        self.0.time()
-    }
-    fn state(&self) -> State {
-        self.0.state()
-    }
-    fn regime(&self) -> Regime {
-        self.0.regime()
-    }
-    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        self.0.advance(target)
-    }
-}
+crate::driver::propagate_through_driver!(HybridPropagator);

@@ -1,5 +1,5 @@
 //! The method registry (`docs/MODEL.md` §13): every propagation method, its name, description,
-//! default tolerance and valid tolerance range, listed once in [`registry!`]'s invocation below.
+//! default tolerance and valid tolerance range, listed once in `registry!`'s invocation below.
 //! [`Method`], [`Method::ALL`], [`Propagator`] and the option validation follow from that list,
 //! and so do the CLI's `--method` values and help and the benches' method lists.
 //!

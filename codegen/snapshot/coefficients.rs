@@ -203,13 +203,13 @@ pub struct TaylorTerms {
 /// Linearized contact stiffness Kl = [[Fa1, Fb1], [Fb2, Fa2]] and constant Fd (`docs/MODEL.md` §3).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LinearizedContact {
-    /// Fa1 = Kl[0][0] (x equation, coefficient of x)
+    /// Fa1 = Kl\[0\]\[0\] (x equation, coefficient of x)
     pub fa1: f64,
-    /// Fb1 = Kl[0][1] (x equation, coefficient of y)
+    /// Fb1 = Kl\[0\]\[1\] (x equation, coefficient of y)
     pub fb1: f64,
-    /// Fb2 = Kl[1][0] (y equation, coefficient of x)
+    /// Fb2 = Kl\[1\]\[0\] (y equation, coefficient of x)
     pub fb2: f64,
-    /// Fa2 = Kl[1][1] (y equation, coefficient of y)
+    /// Fa2 = Kl\[1\]\[1\] (y equation, coefficient of y)
     pub fa2: f64,
     /// Fd1 = (K_s D)_x, the x equation's constant
     pub fd1: f64,
@@ -1280,13 +1280,13 @@ pub fn linear_acceleration(
 /// Outputs of [`shifted_stiffness`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShiftedStiffness {
-    /// A[0][0]
+    /// A\[0\]\[0\]
     pub a11: f64,
-    /// A[0][1]
+    /// A\[0\]\[1\]
     pub a12: f64,
-    /// A[1][0]
+    /// A\[1\]\[0\]
     pub a21: f64,
-    /// A[1][1]
+    /// A\[1\]\[1\]
     pub a22: f64,
 }
 /// A = Kl − ν²I, the stiffness of the homogeneous contact equations after the substitution q = e^{−νs} p (p'' + A p = 0): its norm bounds the closed form's growth.

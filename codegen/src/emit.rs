@@ -291,7 +291,7 @@ pub fn emit_group(group: &Group) -> TokenStream {
     let mut decls = TokenStream::new();
     for &(_, field, meaning) in group.fields {
         let name = ident(field);
-        let d = format!(" {meaning}");
+        let d = format!(" {}", meaning.replace('[', "\\[").replace(']', "\\]"));
         decls.extend(quote!(#[doc = #d] pub #name: f64,));
     }
     quote! {
@@ -378,7 +378,8 @@ pub fn emit_formula(g: &Graph, f: &Formula, groups: &'static [Group]) -> Emitted
         let name = ident(&o.name);
         let (e, _) = em.reference(o.expr);
         fields.extend(quote!(#name: #e,));
-        let doc = format!(" {}", o.doc);
+        // Brackets in a field's meaning (Kl[0][1]) are text, not intra-doc links.
+        let doc = format!(" {}", o.doc.replace('[', "\\[").replace(']', "\\]"));
         decls.extend(quote!(#[doc = #doc] pub #name: f64,));
     }
     let mut arg_groups: Vec<usize> = used.iter().map(|u| u.0).collect();

@@ -242,7 +242,7 @@ pub unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], Message> {
 /// A mutable slice from an FMI array argument.
 ///
 /// # Safety
-/// As [`slice`], for writes.
+/// As [`slice`](fn@slice), for writes.
 pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], Message> {
     if n == 0 {
         return Ok(&mut []);

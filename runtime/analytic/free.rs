@@ -11,14 +11,14 @@
 //!
 //! # The free-flight bound
 //! One bound serves the analytic search ([`Segment::bounds`]) and the stepper's transition:
-//! [`FreeReach::bounds`]. Each form writes r − ε = X·EC + P·ES + M·b(s) − ε with constant
+//! `FreeReach::bounds`. Each form writes r − ε = X·EC + P·ES + M·b(s) − ε with constant
 //! vectors X = (X, Y), P = (P, Q), a constant real 2×2 matrix M and a vector b of scalar
 //! functions: b = (cos θ, sin θ) for the steady state (M = [[c11, c22], [c33, c44]]) and
 //! b = (FC, FS) for the forced form (M = [[ax, bx], [ay, by]]). So on [lo, hi]
 //! |r − ε| ≤ |X|·max|EC| + |P|·max|ES| + σ(M)·max|b| + |ε|, and likewise for r' and r'' with the
-//! derivative bounds of EC, ES ([`BasisBound`]) and of b: |b| = 1, |b'| = η, |b''| = η² for the
+//! derivative bounds of EC, ES (`BasisBound`) and of b: |b| = 1, |b'| = η, |b''| = η² for the
 //! phasor; max|K|, max|K'| ≤ κ and max|K''| ≤ κ + 1 for the forced basis (`super::forced`).
-//! σ(M) is the largest singular value ([`harmonic_amplitude`]), the tightest constant with
+//! σ(M) is the largest singular value (`harmonic_amplitude`), the tightest constant with
 //! |M·b| ≤ σ|b| (the Frobenius norm it replaces is larger by up to √2). Where both forms are
 //! available, each bound is the smaller of the two (both bound the same trajectory).
 

@@ -15,7 +15,7 @@ use crate::method::{
     ContactScheme, Method, MethodInfo, Options, Registered, ValidRange, check_step,
 };
 use crate::params::{Params, Problem, State};
-use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime};
+use crate::propagate::{Event, EventKind, PropagationError, Regime};
 use crate::reference::{Dop853, ReferenceSolver};
 
 /// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `docs/MODEL.md`
@@ -359,17 +359,4 @@ impl Registered for AnalyticPropagator {
     }
 }
 
-impl Propagate for AnalyticPropagator {
-    fn time(&self) -> f64 {
-        self.0.time()
-    }
-    fn state(&self) -> State {
-        self.0.state()
-    }
-    fn regime(&self) -> Regime {
-        self.0.regime()
-    }
-    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        self.0.advance(target)
-    }
-}
+crate::driver::propagate_through_driver!(AnalyticPropagator);

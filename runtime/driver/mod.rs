@@ -10,7 +10,7 @@
 //! a request for the next step), and [`SegmentSolver::step`] computes the next step and searches it
 //! for the switch. [`Solvers`] hands the driver the solver of each [`Regime`]; [`ByRegime`] pairs a
 //! free-flight solver with a contact solver. A new regime (rolling, under friction) is one more
-//! solver and one more arm in the [`Solvers`] impl; a new switch is one more [`EventKind`] with its
+//! solver and one more arm in the [`Solvers`] impl; a new switch is one more [`crate::propagate::EventKind`] with its
 //! regime after: the state machine stays as it is.
 //!
 //! # Starts on z = 1
@@ -27,7 +27,32 @@ mod boundary;
 mod piecewise;
 
 pub(crate) use boundary::start_side;
+
+/// `impl Propagate for $ty` by delegation to the [`Piecewise`] it wraps (field 0): a method's
+/// propagator is a newtype over the driver, and this is all its `Propagate` says.
+macro_rules! propagate_through_driver {
+    ($ty:ty) => {
+        impl $crate::propagate::Propagate for $ty {
+            fn time(&self) -> f64 {
+                $crate::propagate::Propagate::time(&self.0)
+            }
+            fn state(&self) -> $crate::params::State {
+                $crate::propagate::Propagate::state(&self.0)
+            }
+            fn regime(&self) -> $crate::propagate::Regime {
+                $crate::propagate::Propagate::regime(&self.0)
+            }
+            fn advance(
+                &mut self,
+                target: f64,
+            ) -> Result<Option<$crate::propagate::Event>, $crate::propagate::PropagationError> {
+                $crate::propagate::Propagate::advance(&mut self.0, target)
+            }
+        }
+    };
+}
 pub use piecewise::Piecewise;
+pub(crate) use propagate_through_driver;
 
 use crate::params::State;
 use crate::propagate::{Event, PropagationError, Regime};

@@ -167,7 +167,7 @@ const LINEAR_SHIFT: f64 = 1e-6;
 /// `(t_start, t_end]`, moves `t` by at most `max_shift`, and reduces |s|. Returns the best
 /// `(t, y)`; its |s| is then at the rounding level of the step, not at the dense output's error.
 ///
-/// A shift no longer than [`LINEAR_SHIFT`]·(t_end − t_start) moves the state along the field,
+/// A shift no longer than `LINEAR_SHIFT`·(t_end − t_start) moves the state along the field,
 /// `y ← y − shift·f(t, y)` (one evaluation of `rhs`), instead of recomputing the step (`redo`, a
 /// whole explicit step): the shifts the dense output's error calls for are of that size, and the
 /// linear move errs only to second order in the shift.

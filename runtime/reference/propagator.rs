@@ -345,20 +345,7 @@ macro_rules! reference_propagator {
             }
         }
 
-        impl Propagate for $name {
-            fn time(&self) -> f64 {
-                self.0.time()
-            }
-            fn state(&self) -> State {
-                self.0.state()
-            }
-            fn regime(&self) -> Regime {
-                self.0.regime()
-            }
-            fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-                self.0.advance(target)
-            }
-        }
+        crate::driver::propagate_through_driver!($name);
     };
 }
 

@@ -43,7 +43,7 @@ pub enum SwitchStart {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum OnCap {
     /// Finish the step: the last contact sub-step covers the rest, a capped search gives its
-    /// last bracket; [`StepReport::capped`] / [`StepReport::search_capped`] say so.
+    /// last bracket; [`crate::StepReport::capped`] / [`crate::StepReport::search_capped`] say so.
     #[default]
     Degrade,
     /// Return [`StepperError::BudgetExceeded`] instead; the stepper is unchanged.

@@ -24,8 +24,8 @@ pub use solver::TaylorContact;
 use crate::analytic::propagator::FreeFlightSolver;
 use crate::driver::{ByRegime, Piecewise, SegmentSolver};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
-use crate::params::{Problem, State};
-use crate::propagate::{Event, Propagate, PropagationError, Regime};
+use crate::params::Problem;
+use crate::propagate::{PropagationError, Regime};
 use crate::reference::REFERENCE_BUDGET;
 
 /// The taylor method (see [`crate::Method::Taylor`]).
@@ -81,17 +81,4 @@ impl Registered for TaylorPropagator {
     }
 }
 
-impl Propagate for TaylorPropagator {
-    fn time(&self) -> f64 {
-        self.0.time()
-    }
-    fn state(&self) -> State {
-        self.0.state()
-    }
-    fn regime(&self) -> Regime {
-        self.0.regime()
-    }
-    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        self.0.advance(target)
-    }
-}
+crate::driver::propagate_through_driver!(TaylorPropagator);

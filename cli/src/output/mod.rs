@@ -3,7 +3,7 @@
 //! truncates an existing one. What "reaching the destination" means depends on what is there
 //! ([`target`]): a rename over a regular file or new path (a symlink's target, for a symlink), a
 //! copy into a device node or FIFO. The report on stdout comes after every file is in place
-//! ([`print`]).
+//! ([`print`](fn@print)).
 
 pub mod target;
 pub mod temps;

@@ -2,7 +2,7 @@
 //!
 //! Every node is interned: building the same expression twice returns the same [`ExprId`], so
 //! common sub-expressions are shared by construction and CSE only has to decide which shared
-//! nodes get a name. Constructors simplify as they build (see [`simplify`](self::simplify)):
+//! nodes get a name. Constructors simplify as they build (see `simplify`):
 //! constant folding, neutral and absorbing elements, flattening, like-term and like-factor
 //! collection. Sums and products are n-ary with their operands sorted by id, so equal sums are
 //! equal nodes.

@@ -13,7 +13,7 @@
 //!
 //! Every sub-expression that does not change in time (parameters, 2ν, μσ, …) becomes one entry of
 //! a constants formula, emitted through the ordinary formula emitter (CSE, typed input structs);
-//! [`emit`](self::emit) writes the recurrences as straight-line code over the operations, one
+//! [`emit`] writes the recurrences as straight-line code over the operations, one
 //! function for order 0 and one for any order n ≥ 1, calling the runtime's series kernels
 //! (`crate::taylor::kernels`, `ts::…`). A time-dependent call other than the square root fails
 //! the build naming the system.

@@ -219,7 +219,7 @@ impl Linearization {
 
     /// Whether segments of this linearization are exact over `horizon`: always, except near
     /// resonance, where the series that carries the harmonic forcing needs
-    /// max(μ, η)·horizon ≤ [`MAX_RATE_HORIZON`] (μ of [`series::rate`]). The contact schemes'
+    /// max(μ, η)·horizon ≤ [`MAX_RATE_HORIZON`] (μ of `series::rate`). The contact schemes'
     /// step caps keep it (their steps are at most 1/√‖Kl‖ and 1/η); a longer fixed step is
     /// reported as singular rather than answered inaccurately.
     pub fn supports(&self, horizon: f64) -> bool {

@@ -245,7 +245,7 @@ impl LinearSegment {
 
     /// A bound of |q‴| on [lo, hi]: from q‴ = −2ν q″ − Kl q′ + F η (−sin θ, cos θ) + a′(s)
     /// with the segment's speed and acceleration bounds `b` on the same interval
-    /// ([`Segment::bounds`]; ‖Kl‖₂ ≤ its Frobenius norm).
+    /// ([`crate::analytic::segment::Segment::bounds`]; ‖Kl‖₂ ≤ its Frobenius norm).
     pub fn jerk_bound(&self, hi: f64, b: &Bounds) -> f64 {
         let l = &self.lin;
         let [_, _, a1x, a1y, a2x, a2y, a3x, a3y] = self.part.forcing;
