@@ -56,7 +56,7 @@ pub use propagator::{
 pub use rk45::{Rk45, Rk45Dense};
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
 pub use switch::{Found, Function, Switches, switch_in_deferred_step, switch_in_step};
-pub use system::{PhasorRotorSystem, RotorSystem, inside_measure};
+pub use system::{PhasorRotorSystem, PreparedRotorSystem, RotorSystem, inside_measure};
 
 /// Default `tol` (relative and absolute) of the reference integrators.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;

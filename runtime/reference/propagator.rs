@@ -32,7 +32,7 @@ use super::ode::OdeSystem;
 use super::rk45::Rk45;
 use super::scheme::{Interpolant, Scheme, Tolerance};
 use super::switch::{Switches, switch_in_step};
-use super::system::RotorSystem;
+use super::system::PreparedRotorSystem;
 use crate::driver::within_bounds;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, StepBudget};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
@@ -54,7 +54,7 @@ pub const REFERENCE_BUDGET: StepBudget = StepBudget {
 };
 
 /// The fields a [`ReferenceSolver`] integrates: one 4-state system per regime and slip
-/// direction. The model's parameters are one ([`RotorSystem`], constant speed); a speed profile's
+/// direction. The model's parameters are one ([`PreparedRotorSystem`], constant speed); a speed profile's
 /// piece is another (`variable_speed::RampField`).
 pub trait FieldFamily: Copy {
     /// The system of one regime.
@@ -66,15 +66,11 @@ pub trait FieldFamily: Copy {
 }
 
 impl FieldFamily for Params {
-    type System = RotorSystem;
+    type System = PreparedRotorSystem;
 
     #[inline]
-    fn system(&self, regime: Regime, slip: f64) -> RotorSystem {
-        RotorSystem {
-            params: *self,
-            regime,
-            slip,
-        }
+    fn system(&self, regime: Regime, slip: f64) -> PreparedRotorSystem {
+        PreparedRotorSystem::new(self, regime, slip)
     }
 
     fn params(&self) -> &Params {

@@ -3,6 +3,7 @@
 //! the hybrid method's contact phase, `docs/MODEL.md` §8).
 
 use super::ode::OdeSystem;
+use crate::coefficients::ModelParams;
 use crate::field;
 use crate::params::{Params, State};
 use crate::propagate::Regime;
@@ -31,6 +32,55 @@ impl OdeSystem<4> for RotorSystem {
             &State::from_array(*y),
         )
         .to_array()
+    }
+}
+
+/// [`RotorSystem`] with the model's parameters prepared once, in the generated code's form, and the
+/// field picked once (the constant-speed reference propagators build one per step): frictionless
+/// contact without an input force runs [`field::frictionless_contact_acceleration`], every other
+/// case [`field::acceleration_of_model`] — the arithmetic of [`field::derivative`], so the same
+/// bits, without rebuilding the parameters and testing friction at every stage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreparedRotorSystem {
+    model: ModelParams,
+    speed_ratio: f64,
+    phase: f64,
+    regime: Regime,
+    slip: f64,
+    /// Frictionless contact without an input force.
+    frictionless_contact: bool,
+}
+
+impl PreparedRotorSystem {
+    /// The field of `regime` (slip direction `slip`) for `params`.
+    #[inline]
+    pub fn new(params: &Params, regime: Regime, slip: f64) -> Self {
+        let model = ModelParams::of(params);
+        PreparedRotorSystem {
+            model,
+            speed_ratio: params.speed_ratio,
+            phase: params.phase,
+            regime,
+            slip,
+            frictionless_contact: regime == Regime::Contact
+                && slip == 0.0
+                && model.force_x == 0.0
+                && model.force_y == 0.0,
+        }
+    }
+}
+
+impl OdeSystem<4> for PreparedRotorSystem {
+    #[inline]
+    fn rhs(&self, t: f64, y: &[f64; 4]) -> [f64; 4] {
+        let s = State::from_array(*y);
+        let (sin_t, cos_t) = crate::math::sin_cos(self.speed_ratio * t + self.phase);
+        let (ax, ay) = if self.frictionless_contact {
+            field::frictionless_contact_acceleration(&self.model, cos_t, sin_t, &s)
+        } else {
+            field::acceleration_of_model(&self.model, self.regime, self.slip, cos_t, sin_t, &s)
+        };
+        [s.vx, s.vy, ax, ay]
     }
 }
 
