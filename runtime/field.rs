@@ -84,11 +84,17 @@ pub fn acceleration_of_model(
             return (a.ax, a.ay);
         }
     };
+    with_input_force(model, (ax, ay))
+}
+
+/// The acceleration `(ax, ay)` plus the input force's share (`docs/MODEL.md` §15): a constant
+/// input force adds its acceleration in free flight and contact; without one nothing is added,
+/// so the field keeps its bits.
+#[inline(always)]
+fn with_input_force(model: &ModelParams, (ax, ay): (f64, f64)) -> (f64, f64) {
     if model.force_x == 0.0 && model.force_y == 0.0 {
         return (ax, ay);
     }
-    // A constant input force adds its acceleration in free flight and slipping contact
-    // (`docs/MODEL.md` §15); without one nothing is added, so the field keeps its bits.
     let u = coef::input_acceleration(model);
     (ax + u.ax, ay + u.ay)
 }
@@ -107,20 +113,14 @@ pub fn contact_acceleration(
     let a = coef::free_acceleration(model, &at, &rate, &phasor);
     // Frictionless contact (μ = 0 tracks no slip: σ = 0) adds the elastic contact force;
     // slipping adds the elastic force and friction μσN t.
-    let (ax, ay) = if slip == 0.0 {
+    let acceleration = if slip == 0.0 {
         let f = coef::contact_force(model, &at);
         (a.ax - f.fx, a.ay - f.fy)
     } else {
         let f = coef::slipping_contact_force(model, &at, &Slip { sigma: slip });
         (a.ax - f.fx, a.ay - f.fy)
     };
-    if model.force_x == 0.0 && model.force_y == 0.0 {
-        return (ax, ay);
-    }
-    // A constant input force adds its acceleration (`docs/MODEL.md` §15); without one nothing
-    // is added, so the field keeps its bits.
-    let u = coef::input_acceleration(model);
-    (ax + u.ax, ay + u.ay)
+    with_input_force(model, acceleration)
 }
 
 /// [`contact_acceleration`] for frictionless contact (σ = 0) without an input force: the same
