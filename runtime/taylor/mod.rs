@@ -22,14 +22,30 @@ mod solver;
 pub use solver::TaylorContact;
 
 use crate::analytic::propagator::FreeFlightSolver;
-use crate::driver::{ByRegime, Piecewise, SegmentSolver};
+use crate::driver::{Piecewise, SegmentSolver, Solvers};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::Problem;
 use crate::propagate::{PropagationError, Regime};
 use crate::reference::REFERENCE_BUDGET;
 
 /// The taylor method (see [`crate::Method::Taylor`]).
-pub struct TaylorPropagator(Piecewise<ByRegime<FreeFlightSolver, TaylorContact, TaylorContact>>);
+pub struct TaylorPropagator(Piecewise<TaylorSolvers>);
+
+/// Free flight in closed form; contact and rolling by one [`TaylorContact`] (a segment of either
+/// starts it afresh, so one set of series serves both: 8 KB less than two).
+pub struct TaylorSolvers {
+    free: FreeFlightSolver,
+    contact: TaylorContact,
+}
+
+impl Solvers for TaylorSolvers {
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver {
+        match regime {
+            Regime::Free => &mut self.free,
+            Regime::Contact | Regime::Rolling => &mut self.contact,
+        }
+    }
+}
 
 impl TaylorPropagator {
     /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
@@ -49,10 +65,9 @@ impl TaylorPropagator {
             if regime == Regime::Contact {
                 contact.start(regime, slip, t0, s0)?;
             }
-            Ok(ByRegime {
+            Ok(TaylorSolvers {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact,
-                rolling: TaylorContact::new(&params, tol, t0, s0),
             })
         })
         .map(TaylorPropagator)
