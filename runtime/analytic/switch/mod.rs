@@ -324,8 +324,20 @@ pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slac
     if !(ga <= slack && gb <= slack && m2 >= 0.0 && m2.is_finite()) {
         return false;
     }
-    let c0 = ga - gb + dgb * len - 0.5 * m2 * len * len;
     let c1 = dga - dgb + m2 * len;
+    if c1 > 0.0 {
+        // The common case without the division below: Ua is convex, so on [0, len]
+        // Ua(t) ≤ max(ga, Ua(len)); with room for the rounding of the general evaluation (≤ 6 ulps
+        // of the terms' size; 16 taken) a bound under `slack` means that evaluation answers true
+        // as well. Same decision, so the same steps.
+        let quad = 0.5 * m2 * len * len;
+        let end = ga + dga * len + quad;
+        let size = math::abs(ga) + math::abs(dga * len) + quad;
+        if ga.max(end) + 16.0 * f64::EPSILON * size <= slack {
+            return true;
+        }
+    }
+    let c0 = ga - gb + dgb * len - 0.5 * m2 * len * len;
     let meet = if c1 > 0.0 {
         let t = (-c0 / c1).clamp(0.0, len);
         ga + dga * t + 0.5 * m2 * t * t
