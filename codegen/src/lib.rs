@@ -2,11 +2,11 @@
 //!
 //! A pipeline read top to bottom:
 //! [`expr`] (hash-consed DAG with simplifying constructors) → [`model`] (the equations of motion,
-//! stated once, and the derivation of each formula from them) → [`derive`](mod@derive) (differentiation,
-//! linear solves) → [`optimize`] (common-subexpression elimination, operation counts) →
-//! [`emit`] (`quote`) → [`format`](mod@format) (`syn` + `prettyplease`); [`taylor`] decomposes the regimes'
-//! fields into series operations and emits their Taylor recurrences. This file only wires the
-//! stages.
+//! stated once, and the derivation of each formula from them) → [`derive`](mod@derive)
+//! (differentiation, linear solves) → [`optimize`] (common-subexpression elimination, operation
+//! counts) → [`emit`] (`quote`) → [`format`](mod@format) (`syn` + `prettyplease`); [`taylor`]
+//! decomposes the regimes' fields into series operations and emits their Taylor recurrences. This
+//! file only wires the stages.
 //!
 //! The generator is a build tool read by the model's developers: its module documentation links
 //! to the crate-internal derivation steps on purpose (`cargo doc --document-private-items`).

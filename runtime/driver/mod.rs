@@ -10,8 +10,8 @@
 //! a request for the next step), and [`SegmentSolver::step`] computes the next step and searches it
 //! for the switch. [`Solvers`] hands the driver the solver of each [`Regime`]; [`ByRegime`] pairs a
 //! free-flight solver with a contact solver. A new regime (rolling, under friction) is one more
-//! solver and one more arm in the [`Solvers`] impl; a new switch is one more [`crate::propagate::EventKind`] with its
-//! regime after: the state machine stays as it is.
+//! solver and one more arm in the [`Solvers`] impl; a new switch is one more
+//! [`crate::propagate::EventKind`] with its regime after: the state machine stays as it is.
 //!
 //! # Starts on z = 1
 //! The regime at the start comes from [`crate::field::regime_of`] (the sign of h = z² − 1). On
