@@ -200,8 +200,8 @@ impl DefaultMethod for SingleRun {
 
 /// `sweep`, `poincare`, `spectrum`: many periods or many runs, where speed counts. Taylor
 /// (BENCHMARKS.md, "The taylor method"): 0–15 % more time than hybrid at the same default
-/// tolerance with switch times 50–150× closer to DOP853 at tol 1e-13; within 5 % of it at equal
-/// switch-time accuracy 1e-8 and 1.2–1.5× faster at 1e-9 to 1e-11; 6× faster on rolling. Hybrid,
+/// tolerance with switch times 100–160× closer to DOP853 at tol 1e-13; within 5 % of it at equal
+/// switch-time accuracy 1e-8 and 1.1–1.5× faster at 1e-9 to 1e-11; 6× faster on rolling. Hybrid,
 /// the default before it, is 15× faster than analytic.
 #[derive(Clone, Debug, Default)]
 pub struct Survey;

@@ -7,11 +7,11 @@ use std::path::PathBuf;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rotor_rub::{EventKind, Method, Regime, State};
+use rotor_rub::{EventKind, Regime, State};
 use rotor_rub_cli::analysis::classify::distinct_points;
 use rotor_rub_cli::analysis::spectrum::{real_amplitudes, whirl_amplitudes};
 use rotor_rub_cli::limits::{add_counts, fits_memory};
-use rotor_rub_cli::options::{describe, positive};
+use rotor_rub_cli::options::{DefaultMethod, SingleRun, Survey, describe, positive};
 use rotor_rub_cli::trajectory::{self, uniform_times};
 use rotor_rub_cli::{poincare as section, spectrum as fft};
 
@@ -107,7 +107,7 @@ pub fn simulate<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Analytic, tol, contact_scheme, step)?;
+    let options = inputs::options(method, SingleRun::METHOD, tol, contact_scheme, step)?;
     let end = end_time(t_end, periods, problem.params.forcing_period())?;
     if samples == 1 {
         return Err(input(
@@ -188,7 +188,7 @@ pub fn poincare<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Taylor, tol, contact_scheme, step)?;
+    let options = inputs::options(method, Survey::METHOD, tol, contact_scheme, step)?;
     let transient = inputs::count("transient", transient, 0)?;
     let keep = inputs::count("keep", keep, 1)?;
     add_counts(("--transient", transient), ("--keep", keep)).map_err(cli)?;
@@ -235,7 +235,7 @@ pub fn spectrum<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let problem = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Taylor, tol, contact_scheme, step)?;
+    let options = inputs::options(method, Survey::METHOD, tol, contact_scheme, step)?;
     let transient = inputs::count("transient", transient, 0)?;
     let periods = inputs::count("periods", periods, 1)?;
     let per_period = inputs::count("samples_per_period", samples_per_period, 2)?;

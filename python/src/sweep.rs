@@ -8,9 +8,10 @@ use std::path::PathBuf;
 use numpy::{IntoPyArray, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rotor_rub::{Method, Parameter, Problem, State};
+use rotor_rub::{Parameter, Problem, State};
 use rotor_rub_cli::error::{CliError, EXIT_INPUT, num};
 use rotor_rub_cli::limits::{add_counts, fits_memory};
+use rotor_rub_cli::options::{DefaultMethod, Survey};
 use rotor_rub_cli::problem::parse_parameter;
 use rotor_rub_cli::sweep::sections;
 
@@ -53,7 +54,7 @@ pub fn sweep_points<'py>(
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Method::Taylor, tol, contact_scheme, step)?;
+    let options = inputs::options(method, Survey::METHOD, tol, contact_scheme, step)?;
     let transient = inputs::count("transient", transient, 0)?;
     let keep = inputs::count("keep", keep, 1)?;
     add_counts(("--transient", transient), ("--keep", keep)).map_err(cli)?;

@@ -157,21 +157,12 @@ impl Expansion {
     /// The forcing phasor (cos θ, sin θ) at local time `s`, from its series (exact to the
     /// truncation, like the states).
     pub fn phasor_at(&self, s: f64) -> (f64, f64) {
-        let v = |i: usize| {
-            self.series
-                .get(i)
-                .map_or(0.0, |c| kernels::evaluate(c, self.order, s))
-        };
-        (v(4), v(5))
+        (self.value(4, s), self.value(5, s))
     }
 
     /// The rotor state at local time `s` of the step.
     pub fn state_at(&self, s: f64) -> State {
-        let v = |i: usize| {
-            self.series
-                .get(i)
-                .map_or(0.0, |c| kernels::evaluate(c, self.order, s))
-        };
+        let v = |i| self.value(i, s);
         State::new(v(0), v(1), v(2), v(3))
     }
 
@@ -239,6 +230,14 @@ impl Expansion {
         s
     }
 
+    /// Series `i`'s polynomial at local time `s`.
+    fn value(&self, i: usize, s: f64) -> f64 {
+        self.series
+            .get(i)
+            .map_or(0.0, |c| kernels::evaluate(c, self.order, s))
+    }
+
+    /// Series `i`'s polynomial and its derivative at local time `s`.
     fn eval_d(&self, i: usize, s: f64) -> (f64, f64) {
         self.series.get(i).map_or((0.0, 0.0), |c| {
             kernels::evaluate_with_derivative(c, self.order, s)

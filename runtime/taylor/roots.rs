@@ -13,7 +13,7 @@
 //! not chatter where the function starts on a double zero (after `slip`: w = 0 and
 //! w' = λ − μσN = 0 together).
 
-use super::kernels::CAPACITY;
+use super::kernels::{self, CAPACITY};
 use crate::math;
 
 /// Rounding band of a switch function's start value, relative to its scale (64 ulps).
@@ -35,20 +35,11 @@ struct Poly {
 
 impl Poly {
     fn eval(&self, t: f64) -> f64 {
-        self.c
-            .iter()
-            .take(self.degree + 1)
-            .rev()
-            .fold(0.0, |acc, &ck| acc * t + ck)
+        kernels::evaluate(&self.c, self.degree, t)
     }
 
     fn eval_with_derivative(&self, t: f64) -> (f64, f64) {
-        let (mut p, mut d) = (0.0, 0.0);
-        for &ck in self.c.iter().take(self.degree + 1).rev() {
-            d = d * t + p;
-            p = p * t + ck;
-        }
-        (p, d)
+        kernels::evaluate_with_derivative(&self.c, self.degree, t)
     }
 
     /// Sign variations of (1 + x)^d P(a + (b − a)/(1 + x)): Descartes' bound on the number of
