@@ -139,6 +139,21 @@ pub fn frictionless_contact_acceleration(
     (a.ax - f.fx, a.ay - f.fy)
 }
 
+/// [`acceleration_of_model`] in free flight without an input force: the generated free field
+/// alone, inlined, for an integrator that picks its field once per segment (the reference
+/// propagators' free steps). The same arithmetic, so the same bits.
+#[inline(always)]
+pub fn unforced_free_acceleration(
+    model: &ModelParams,
+    cos_theta: f64,
+    sin_theta: f64,
+    s: &State,
+) -> (f64, f64) {
+    let (at, rate, phasor) = state_inputs(cos_theta, sin_theta, s);
+    let a = coef::free_acceleration(model, &at, &rate, &phasor);
+    (a.ax, a.ay)
+}
+
 /// The force a changing running speed adds to the unbalance forcing F (cos θ, sin θ)
 /// (`docs/MODEL.md` §14): −η_m ρ̂ η' (−sin θ, cos θ), generated from the model's
 /// `unbalance_at_varying_speed`. It acts in every regime (it is part of the forcing).

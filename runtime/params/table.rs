@@ -60,6 +60,14 @@ macro_rules! parameter_table {
             /// The number of model parameters (the leading entries, the fields of [`Params`]).
             pub const MODEL_COUNT: usize = [$(stringify!($mvar),)*].len();
 
+            /// The parameter's valid range (the table's; [`Self::info`] without the texts).
+            pub const fn range(self) -> Range {
+                match self {
+                    $( Parameter::$mvar => $mrange, )*
+                    $( Parameter::$svar => $srange, )*
+                }
+            }
+
             /// The parameter's table entry.
             pub const fn info(self) -> Info {
                 match self {
@@ -90,6 +98,19 @@ macro_rules! parameter_table {
         impl Params {
             /// The table's defaults (the `paper` preset).
             pub const DEFAULT: Params = Params { $( $mname: $mdef, )* };
+
+            /// The values in table order (the first [`Parameter::MODEL_COUNT`] entries of
+            /// [`Parameter::ALL`]).
+            pub const fn values(&self) -> [f64; Parameter::MODEL_COUNT] {
+                [$( self.$mname, )*]
+            }
+        }
+
+        impl Problem {
+            /// Every table value of the problem, in the order of [`Parameter::ALL`].
+            pub const fn values(&self) -> [f64; Parameter::COUNT] {
+                [$( self.params.$mname, )* $( self.$($spath).+, )*]
+            }
         }
     };
 }

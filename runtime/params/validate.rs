@@ -157,7 +157,7 @@ impl Parameter {
 
     /// Check one value against the parameter's own rule (finite, within its range).
     pub fn check(self, value: f64) -> Result<(), ParamError> {
-        let range = self.info().range;
+        let range = self.range();
         if !value.is_finite() {
             Err(ParamError::NonFinite {
                 parameter: self,
@@ -185,12 +185,9 @@ impl Params {
     /// Check every model parameter against the table, then the rules that tie parameters together
     /// (`cross_checks`). Returns the first violation in table order.
     pub fn validate(&self) -> Result<(), ParamError> {
-        let problem = Problem {
-            params: *self,
-            ..Problem::DEFAULT
-        };
-        for parameter in Parameter::ALL.into_iter().filter(|p| p.is_model()) {
-            parameter.check(parameter.get(&problem))?;
+        // The model parameters lead the table, so the zip stops after them.
+        for (parameter, value) in Parameter::ALL.into_iter().zip(self.values()) {
+            parameter.check(value)?;
         }
         cross_checks(self)
     }
@@ -218,8 +215,8 @@ impl Problem {
     /// Check every value against the table (finite, in range), then the cross-parameter rules.
     /// Returns the first violation in [`Parameter::ALL`] order.
     pub fn validate(&self) -> Result<(), ParamError> {
-        for parameter in Parameter::ALL {
-            parameter.check(parameter.get(self))?;
+        for (parameter, value) in Parameter::ALL.into_iter().zip(self.values()) {
+            parameter.check(value)?;
         }
         cross_checks(&self.params)
     }

@@ -208,6 +208,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
     /// [`PropagationError::StepSizeUnderflow`] when the step falls below the resolution of the
     /// time (h ≤ 10·ε·|t|) or [`MAX_REJECTIONS`] trials in a row fail;
     /// [`PropagationError::InvalidTarget`] when `t_limit` is not after the current time.
+    #[inline(always)]
     pub fn step<F: OdeSystem<N> + ?Sized>(
         &mut self,
         sys: &F,

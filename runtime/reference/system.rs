@@ -36,10 +36,11 @@ impl OdeSystem<4> for RotorSystem {
 }
 
 /// [`RotorSystem`] with the model's parameters prepared once, in the generated code's form, and the
-/// field picked once (the constant-speed reference propagators build one per step): frictionless
-/// contact without an input force runs [`field::frictionless_contact_acceleration`], every other
-/// case [`field::acceleration_of_model`] — the arithmetic of [`field::derivative`], so the same
-/// bits, without rebuilding the parameters and testing friction at every stage.
+/// field picked once (the constant-speed reference propagators build one per step): free flight
+/// and frictionless contact without an input force run [`field::unforced_free_acceleration`] and
+/// [`field::frictionless_contact_acceleration`] inlined, every other case
+/// [`field::acceleration_of_model`] — the arithmetic of [`field::derivative`], so the same bits,
+/// without rebuilding the parameters and testing regime, friction and input force at every stage.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PreparedRotorSystem {
     model: ModelParams,
@@ -47,8 +48,18 @@ pub struct PreparedRotorSystem {
     phase: f64,
     regime: Regime,
     slip: f64,
+    field: PreparedField,
+}
+
+/// Which field a [`PreparedRotorSystem`] runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum PreparedField {
+    /// Free flight without an input force.
+    UnforcedFree,
     /// Frictionless contact without an input force.
-    frictionless_contact: bool,
+    UnforcedFrictionlessContact,
+    /// Any other regime, slip or input force.
+    General,
 }
 
 impl PreparedRotorSystem {
@@ -56,29 +67,40 @@ impl PreparedRotorSystem {
     #[inline]
     pub fn new(params: &Params, regime: Regime, slip: f64) -> Self {
         let model = ModelParams::of(params);
+        let unforced = model.force_x == 0.0 && model.force_y == 0.0;
+        let field = match regime {
+            Regime::Free if unforced => PreparedField::UnforcedFree,
+            Regime::Contact if unforced && slip == 0.0 => {
+                PreparedField::UnforcedFrictionlessContact
+            }
+            _ => PreparedField::General,
+        };
         PreparedRotorSystem {
             model,
             speed_ratio: params.speed_ratio,
             phase: params.phase,
             regime,
             slip,
-            frictionless_contact: regime == Regime::Contact
-                && slip == 0.0
-                && model.force_x == 0.0
-                && model.force_y == 0.0,
+            field,
         }
     }
 }
 
 impl OdeSystem<4> for PreparedRotorSystem {
-    #[inline]
+    #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64; 4]) -> [f64; 4] {
         let s = State::from_array(*y);
         let (sin_t, cos_t) = crate::math::sin_cos(self.speed_ratio * t + self.phase);
-        let (ax, ay) = if self.frictionless_contact {
-            field::frictionless_contact_acceleration(&self.model, cos_t, sin_t, &s)
-        } else {
-            field::acceleration_of_model(&self.model, self.regime, self.slip, cos_t, sin_t, &s)
+        let (ax, ay) = match self.field {
+            PreparedField::UnforcedFree => {
+                field::unforced_free_acceleration(&self.model, cos_t, sin_t, &s)
+            }
+            PreparedField::UnforcedFrictionlessContact => {
+                field::frictionless_contact_acceleration(&self.model, cos_t, sin_t, &s)
+            }
+            PreparedField::General => {
+                field::acceleration_of_model(&self.model, self.regime, self.slip, cos_t, sin_t, &s)
+            }
         };
         [s.vx, s.vy, ax, ay]
     }

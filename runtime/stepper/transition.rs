@@ -14,9 +14,7 @@
 //! b = d − Φ·d, recomputed (16 multiplications) when u changes; Φ and G do not depend on u.
 
 use super::search::local_curvature;
-use crate::analytic::free::{BasisBound, FreeConstants, FreeSegment, plain_norm};
-use crate::analytic::segment::Segment;
-use crate::math;
+use crate::analytic::free::{BasisBound, FreeConstants, FreeInstant, FreeSegment, plain_norm};
 use crate::params::{Params, State};
 
 /// The exact free-flight map over one step of fixed length, with the constants of the switch
@@ -47,14 +45,12 @@ pub struct FreeTransition {
 impl FreeTransition {
     /// The map over `dt` (> 0) for `params`, with their free constants.
     pub fn new(params: &Params, constants: &FreeConstants, dt: f64) -> Self {
-        let (sd, cd) = math::sin_cos(params.speed_ratio * dt);
-        // The unforced free step from start state `w` and start phasor (ct, st), offsets zero.
+        // The unforced free step from start state `w` and start phasor (ct, st), offsets zero;
+        // the basis and the rotation at dt once for all six columns.
         let unforced = constants.with_input((0.0, 0.0));
+        let at_dt = FreeInstant::at(&unforced, dt);
         let map = |w: [f64; 4], phasor: (f64, f64)| -> [f64; 4] {
-            FreeSegment::with_phasor(&unforced, (0.0, 0.0), phasor, State::from_array(w))
-                .point(dt)
-                .state
-                .to_array()
+            FreeSegment::state_at(&unforced, phasor, State::from_array(w), &at_dt).to_array()
         };
         let mut phi = [[0.0; 4]; 4];
         for j in 0..4 {
@@ -78,7 +74,7 @@ impl FreeTransition {
             dt,
             phi,
             g,
-            rotation: (cd, sd),
+            rotation: at_dt.rotation(),
             constants: unforced,
             basis: BasisBound::on(constants, 0.0, dt),
             offset: (params.offset_x, params.offset_y),

@@ -1,7 +1,7 @@
 //! The switching function of contact, g = ±(z² − 1), as an [`EventFunction`] on a closed-form
 //! [`Segment`], its curvature bound, and the analytic method's entry points to the kernel.
 
-use super::{Budget, EventFunction, TOUCH, locate, no_crossing};
+use super::{Budget, EventFunction, TOUCH, locate, locate_knowing, no_crossing};
 use crate::analytic::segment::{Point, Segment};
 use crate::math;
 
@@ -108,7 +108,9 @@ pub fn first_crossing_to<S: Segment>(
 ) -> Option<(f64, Point)> {
     let f = Boundary::new(seg, direction);
     // The common case, a sub-step proved free by one bound test, as `locate` decides it (its
-    // chunk's first test: the same values, bound and comparison) without setting up the search.
+    // chunk's first test: the same values, bound and comparison) without setting up the search;
+    // when the test fails, the search takes its bound instead of computing it again.
+    let mut known = None;
     if lo < hi {
         let (ga, dga) = f.value(&start);
         let (gb, dgb) = f.value(&end);
@@ -118,9 +120,10 @@ pub fn first_crossing_to<S: Segment>(
             if no_crossing(ga.min(0.0), dga, gb, dgb, m2, len, TOUCH) {
                 return None;
             }
+            known = Some((lo, hi, m2));
         }
     }
-    locate(
+    locate_knowing(
         &f,
         lo,
         start,
@@ -128,6 +131,7 @@ pub fn first_crossing_to<S: Segment>(
         Some(end),
         f64::INFINITY,
         &Budget::EXPLORE,
+        known,
     )
     .found()
 }

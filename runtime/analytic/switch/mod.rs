@@ -171,6 +171,22 @@ pub fn locate<F: EventFunction>(
     chunk: f64,
     budget: &Budget,
 ) -> Search<F::Point> {
+    locate_knowing(f, lo, start, hi, end, chunk, budget, None)
+}
+
+/// [`locate`] given the bound `known` = (lo, hi, M) the caller already computed on [lo, hi]
+/// from `start` (a failed quick test before the search): not computed again.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn locate_knowing<F: EventFunction>(
+    f: &F,
+    lo: f64,
+    start: F::Point,
+    hi: f64,
+    end: Option<F::Point>,
+    chunk: f64,
+    budget: &Budget,
+    known: Option<(f64, f64, f64)>,
+) -> Search<F::Point> {
     if lo >= hi || lo.is_nan() || hi.is_nan() {
         return Search::None;
     }
@@ -179,11 +195,12 @@ pub fn locate<F: EventFunction>(
     let mut work = Work {
         tests: budget.tests,
         capped: false,
+        bound: known,
     };
     if let Some(end) = end.filter(|_| hi - lo > chunk) {
         // The whole span at once: one bound test, no evaluation.
         let b = Knot::at(f, hi, end);
-        if b.g <= TOUCH && proves_free(f, &a, &b) {
+        if b.g <= TOUCH && work.proves_free(f, &a, &b) {
             return Search::None;
         }
     }
@@ -216,16 +233,41 @@ pub fn locate<F: EventFunction>(
     }
 }
 
-/// The budget left in one call, and whether anything was dropped unproved.
+/// The budget left in one call, whether anything was dropped unproved, and the last bound.
 struct Work {
     tests: u32,
     capped: bool,
+    /// The last curvature bound computed, as (lo, hi, M): a chunk's quick test and its search's
+    /// first interval are the same interval (and a caller's failed test before the search, see
+    /// [`locate_knowing`]), so their bound is computed once. Within one search the point at a
+    /// time is always the same, so (lo, hi) identifies the bound.
+    bound: Option<(f64, f64, f64)>,
 }
 
-/// Whether the bound proves g ≤ [`TOUCH`] on [a, b] (one curvature bound, no evaluation).
-fn proves_free<F: EventFunction>(f: &F, a: &Knot<F::Point>, b: &Knot<F::Point>) -> bool {
-    let m2 = f.curvature(a.s, &a.p, b.s);
-    no_crossing(a.g, a.dg, b.g, b.dg, m2, b.s - a.s, TOUCH)
+impl Work {
+    /// [`EventFunction::curvature`] on [x, hi], or the same bound computed last.
+    fn curvature<F: EventFunction>(&mut self, f: &F, x: &Knot<F::Point>, hi: f64) -> f64 {
+        if let Some((lo, known_hi, m2)) = self.bound
+            && lo == x.s
+            && known_hi == hi
+        {
+            return m2;
+        }
+        let m2 = f.curvature(x.s, &x.p, hi);
+        self.bound = Some((x.s, hi, m2));
+        m2
+    }
+
+    /// Whether the bound proves g ≤ [`TOUCH`] on [a, b] (one curvature bound, no evaluation).
+    fn proves_free<F: EventFunction>(
+        &mut self,
+        f: &F,
+        a: &Knot<F::Point>,
+        b: &Knot<F::Point>,
+    ) -> bool {
+        let m2 = self.curvature(f, a, b.s);
+        no_crossing(a.g, a.dg, b.g, b.dg, m2, b.s - a.s, TOUCH)
+    }
 }
 
 /// The first crossing in one chunk [a, b] (both ends known, g(a) ≤ 0).
@@ -242,7 +284,7 @@ fn search_chunk<F: EventFunction>(
         // within rounding of g = 0 (just after a switch): the secant would be drawn to the
         // rounding noise there; the interval search proves the start's neighbourhood first.
         let (x, converged) = refine(f, a, b, budget);
-        if x.s > a.s && proves_free(f, &a, &x) {
+        if x.s > a.s && work.proves_free(f, &a, &x) {
             return found(x, converged && !work.capped);
         }
     }
@@ -254,7 +296,7 @@ fn search_chunk<F: EventFunction>(
         && !b.g.is_nan()
         && len > budget.min_interval * (1.0 + math::abs(b.s))
     {
-        let m2 = f.curvature(a.s, &a.p, b.s);
+        let m2 = work.curvature(f, &a, b.s);
         if no_crossing(a.g, a.dg, b.g, b.dg, m2, len, TOUCH) {
             work.tests -= 1;
             return Search::None;
@@ -277,7 +319,7 @@ fn search_chunk<F: EventFunction>(
             f64::NAN
         } else {
             work.tests -= 1;
-            f.curvature(x.s, &x.p, y.s)
+            work.curvature(f, &x, y.s)
         };
         if y.g > TOUCH && (short || spent || x.dg > m2 * len) {
             // g(x) ≤ 0 < g(y): one crossing (g increases throughout), or no more splitting.

@@ -22,36 +22,21 @@
 //! |M·b| ≤ σ|b| (the Frobenius norm it replaces is larger by up to √2). Where both forms are
 //! available, each bound is the smaller of the two (both bound the same trajectory).
 
-use super::basis::{free_basis, free_basis_bound};
+mod bound;
+mod instant;
+
+use bound::Amplitudes;
+pub(crate) use bound::{BasisBound, FreeReach, harmonic_amplitude, plain_norm};
+pub(crate) use instant::FreeInstant;
+use instant::evaluate;
+
 use super::forced::Resonance;
 use super::segment::{Bounds, Point, Segment};
 use crate::coefficients::{
-    self as coef, FreeBasis, FreeDampedFrequency, FreeForcing, FreeHomogeneous, FreeParticular,
-    ModelParams, Phasor,
+    self as coef, FreeForcing, FreeHomogeneous, FreeParticular, ModelParams, Phasor,
 };
 use crate::math;
 use crate::params::{Params, State};
-
-/// The largest |(c11 cos θ + c22 sin θ, c33 cos θ + c44 sin θ)| over θ: the largest singular
-/// value of [[c11, c22], [c33, c44]] (σ² = (S + √(S² − 4 det²))/2, S the sum of squares), with a
-/// relative margin for rounding, never above the Frobenius norm √S.
-pub(crate) fn harmonic_amplitude(c11: f64, c22: f64, c33: f64, c44: f64) -> f64 {
-    let sum = c11 * c11 + c22 * c22 + c33 * c33 + c44 * c44;
-    let det = c11 * c44 - c22 * c33;
-    let disc = (sum * sum - 4.0 * det * det).max(0.0);
-    let sigma = math::sqrt(0.5 * (sum + math::sqrt(disc)));
-    (sigma * (1.0 + 1e-12)).min(math::sqrt(sum))
-}
-
-/// √(x² + y²) with one rounded root, where libm's `hypot` (four times the instructions) guards
-/// against overflow and keeps extra precision. For the stepper's per-step free-flight bound,
-/// which only decides whether a step is provably free: its rounding (a few ulps of the bound)
-/// moves that decision only when the two-parabola test's margin is at rounding level, and an
-/// overflowing square gives an infinite bound, which sends the step to the exact path.
-#[inline]
-pub(crate) fn plain_norm(x: f64, y: f64) -> f64 {
-    math::sqrt(x * x + y * y)
-}
 
 /// Per-parameter-set constants of free flight (computed once per propagation).
 #[derive(Clone, Copy, Debug)]
@@ -124,90 +109,6 @@ fn deflection(model: &ModelParams) -> (f64, f64) {
     (d.x, d.y)
 }
 
-/// Bounds of the scalar basis functions and their derivatives on one interval.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BasisBound {
-    /// max |EC|, |ES|, |EC'|, |ES'|, |EC''|, |ES''|.
-    e: [f64; 6],
-    /// κ ≥ max(|FC + iFS|, |FC' + iFS'|) (forced form only).
-    kappa: f64,
-    eta: f64,
-}
-
-impl BasisBound {
-    /// The bounds on s ∈ [lo, hi] (`hi` may be infinite).
-    pub(crate) fn on(constants: &FreeConstants, lo: f64, hi: f64) -> Self {
-        let (nu, b2) = (constants.model.nu, math::abs(constants.beta_sq));
-        let (ec, es) = free_basis_bound(nu, constants.beta_sq, lo, hi);
-        // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
-        let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
-        let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
-        BasisBound {
-            e: [ec, es, dec, des, ddec, ddes],
-            kappa: constants.resonance.map_or(0.0, |r| r.bound(hi)),
-            eta: constants.model.eta,
-        }
-    }
-}
-
-/// |X|, |P| and σ(M) of one form (module docs).
-#[derive(Clone, Copy, Debug)]
-struct Amplitudes {
-    pos: f64,
-    vel: f64,
-    drive: f64,
-}
-
-impl Amplitudes {
-    /// Radius, speed and acceleration bounds for drive-function bounds `b` (value, first and
-    /// second derivative).
-    fn bounds(&self, e: &[f64; 6], b: [f64; 3], off: f64) -> Bounds {
-        let [ec, es, dec, des, ddec, ddes] = *e;
-        Bounds {
-            radius: self.pos * ec + self.vel * es + self.drive * b[0] + off,
-            speed: self.pos * dec + self.vel * des + self.drive * b[1],
-            accel: self.pos * ddec + self.vel * ddes + self.drive * b[2],
-        }
-    }
-}
-
-/// The amplitudes of one free segment that [`FreeReach::bounds`] combines with interval bounds of
-/// the basis: the one free-flight bound (module docs).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct FreeReach {
-    steady: Option<Amplitudes>,
-    forced: Option<Amplitudes>,
-    off: f64,
-}
-
-impl FreeReach {
-    /// Bounds on the interval `basis` was computed for.
-    #[inline]
-    pub(crate) fn bounds(&self, basis: &BasisBound) -> Bounds {
-        let eta = basis.eta;
-        let steady = self
-            .steady
-            .map(|a| a.bounds(&basis.e, [1.0, eta, eta * eta], self.off));
-        let forced = self.forced.map(|a| {
-            let k = basis.kappa;
-            a.bounds(&basis.e, [k, k, k + 1.0], self.off)
-        });
-        match (steady, forced) {
-            (Some(s), Some(f)) => Bounds {
-                radius: s.radius.min(f.radius),
-                speed: s.speed.min(f.speed),
-                accel: s.accel.min(f.accel),
-            },
-            (Some(b), None) | (None, Some(b)) => b,
-            (None, None) => Bounds {
-                radius: f64::INFINITY,
-                speed: f64::INFINITY,
-                accel: f64::INFINITY,
-            },
-        }
-    }
-}
-
 /// The constants of the closed form in use.
 #[derive(Clone, Copy, Debug)]
 enum Form {
@@ -219,7 +120,9 @@ enum Form {
     },
 }
 
-/// Free flight from a state at time τ0, valid for all s = τ − τ0 ≥ 0 until contact.
+/// Free flight from a state at time τ0, valid for all s = τ − τ0 ≥ 0 until contact. Under an
+/// input force the closed form describes q − d about the static deflection d of its constants
+/// (`docs/MODEL.md` §15), with the stator offset moved by −d.
 #[derive(Clone, Copy, Debug)]
 pub struct FreeSegment {
     constants: FreeConstants,
@@ -228,9 +131,6 @@ pub struct FreeSegment {
     phase0: (f64, f64),
     form: Form,
     reach: FreeReach,
-    /// The static deflection the closed form is written about (`docs/MODEL.md` §15): the form
-    /// describes q − shift, with the stator offset moved by −shift; (0, 0) without input force.
-    shift: (f64, f64),
 }
 
 impl FreeSegment {
@@ -246,8 +146,7 @@ impl FreeSegment {
     }
 
     /// The free segment through `state` with forcing phasor `phasor` = (cos θ0, sin θ0) at its
-    /// start and stator offset `offset` (the stepper's transition uses unit inputs and no offset).
-    /// Under an input force the closed form is written about the static deflection d: free
+    /// start and stator offset `offset`. Under an input force the closed form is written about the static deflection d: free
     /// flight of q − d, with the offset ε − d (`docs/MODEL.md` §15).
     pub(crate) fn with_phasor(
         constants: &FreeConstants,
@@ -263,7 +162,6 @@ impl FreeSegment {
             phase0: phasor,
             form,
             reach,
-            shift: constants.deflection,
         }
     }
 
@@ -380,45 +278,32 @@ impl FreeSegment {
     }
 }
 
+impl FreeSegment {
+    /// The point at `at` (computed for this segment's constants): [`Segment::point`] with the
+    /// time-dependent values supplied.
+    pub(crate) fn point_at(&self, at: &FreeInstant) -> Point {
+        evaluate(&self.constants, &self.model, self.phase0, &self.form, at)
+    }
+
+    /// The state at `at` of the free segment through `state` with start phasor `phasor` and no
+    /// stator offset, without building the segment (no copy of the constants, no bound
+    /// amplitudes): the stepper's transition takes its columns so. The same arithmetic as
+    /// [`Self::with_phasor`] followed by [`Self::point_at`].
+    #[inline(always)]
+    pub(crate) fn state_at(
+        constants: &FreeConstants,
+        phasor: (f64, f64),
+        state: State,
+        at: &FreeInstant,
+    ) -> State {
+        let (model, form, _) = Self::parts(constants, (0.0, 0.0), 0.0, phasor, state, |_, _| 0.0);
+        evaluate(constants, &model, phasor, &form, at).state
+    }
+}
+
 impl Segment for FreeSegment {
     fn point(&self, s: f64) -> Point {
-        let c = &self.constants;
-        let model = &self.model;
-        let (ec, es) = free_basis(model.nu, c.beta_sq, s);
-        let (sd, cd) = math::sin_cos(model.eta * s);
-        let basis = FreeBasis { ec, es };
-        let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
-        let (x, y, vx, vy, h, dh) = match &self.form {
-            Form::Steady(homogeneous) => {
-                // The forcing phasor at s by angle addition from the segment start.
-                let (c0, s0) = self.phase0;
-                let phasor = Phasor {
-                    ct: c0 * cd - s0 * sd,
-                    st: s0 * cd + c0 * sd,
-                };
-                let r = coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &basis);
-                (r.x, r.y, r.vx, r.vy, r.h, r.dh)
-            }
-            Form::Forced {
-                start,
-                forcing,
-                resonance,
-            } => {
-                let forced = resonance.basis(s, ec, es, (cd, sd));
-                let r = coef::free_forced_eval(model, &beta, start, &basis, forcing, &forced);
-                (r.x, r.y, r.vx, r.vy, r.h, r.dh)
-            }
-        };
-        let (x, y) = if self.shift == (0.0, 0.0) {
-            (x, y)
-        } else {
-            (x + self.shift.0, y + self.shift.1)
-        };
-        Point {
-            state: State::new(x, y, vx, vy),
-            h,
-            dh,
-        }
+        self.point_at(&FreeInstant::at(&self.constants, s))
     }
 
     fn bounds(&self, lo: f64, hi: f64) -> Bounds {
