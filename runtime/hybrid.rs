@@ -126,6 +126,29 @@ impl Dop853Contact {
         }
     }
 
+    /// As [`Dop853Contact::new`], not started: built ahead of the first contact, it evaluates
+    /// nothing until the driver starts it there (see [`ReferenceSolver::unstarted`]).
+    fn unstarted(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
+        let system = ContactField {
+            model: ModelParams::of(params),
+            slip: 0.0,
+        };
+        let max_step = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
+        let y0 = PhasorRotorSystem::initial(params, t0, &s0);
+        Dop853Contact {
+            params: *params,
+            system,
+            integrator: Integrator::unstarted(t0, y0, Tolerance::uniform(tol), max_step),
+            max_step,
+            carried_step: None,
+            stepped: false,
+            step: Dop853Step::default(),
+            dense: None,
+            exit: None,
+            switches: Switches::with_offset(params, Regime::Contact, 0.0, 0.0),
+        }
+    }
+
     /// The state at `t` inside the current step (from its dense output).
     fn state_at(&mut self, t: f64) -> State {
         let y = if t == self.step.t1 {
@@ -253,13 +276,23 @@ impl HybridPropagator {
         Method::Hybrid.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
-        Piecewise::new(problem, Some(REFERENCE_BUDGET), |_, slip, s0| {
-            // The integrators start at the problem start, ready for a start in contact.
-            let contact = Dop853Contact::new(&params, tol, slip, t0, s0);
+        Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
+            // The solver of the starting regime starts at the problem start; the others are
+            // started by the driver at their first segment.
+            let contact = if regime == Regime::Contact {
+                Dop853Contact::new(&params, tol, slip, t0, s0)
+            } else {
+                Dop853Contact::unstarted(&params, tol, t0, s0)
+            };
+            let rolling = if regime == Regime::Rolling {
+                ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol)
+            } else {
+                ReferenceSolver::unstarted(&params, Regime::Rolling, t0, s0, tol)
+            };
             Ok(ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact,
-                rolling: ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol),
+                rolling,
             })
         })
         .map(HybridPropagator)

@@ -315,8 +315,13 @@ impl AnalyticPropagator {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact: ExprbContact::new(&params, scheme, tol, fixed_step),
                 // Rolling has no known closed form (`docs/MODEL.md` §10): DOP853 at the
-                // method's tolerance.
-                rolling: ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol),
+                // method's tolerance, started by the driver at the first roll unless the run
+                // starts rolling.
+                rolling: if regime == Regime::Rolling {
+                    ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol)
+                } else {
+                    ReferenceSolver::unstarted(&params, Regime::Rolling, t0, s0, tol)
+                },
             };
             if regime == Regime::Contact {
                 solvers.contact.start(regime, slip, t0, s0)?;

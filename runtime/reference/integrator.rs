@@ -74,7 +74,17 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         tol: Tolerance,
         h_max: f64,
     ) -> Self {
-        let mut me = Integrator {
+        let mut me = Self::unstarted(t, y, tol, h_max);
+        me.restart(sys, t, y);
+        me
+    }
+
+    /// An integrator at `(t, y)` not yet started on a field: [`Self::restart`] it before the
+    /// first step (a step before that fails with [`PropagationError::StepSizeUnderflow`]: its
+    /// step size is 0). For a solver built ahead of the segment it will be started at, so that
+    /// building it evaluates nothing.
+    pub(crate) fn unstarted(t: f64, y: [f64; N], tol: Tolerance, h_max: f64) -> Self {
+        Integrator {
             t,
             y,
             f: [0.0; N],
@@ -86,9 +96,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             rejected_last: false,
             stats: Stats::default(),
             scheme: PhantomData,
-        };
-        me.restart(sys, t, y);
-        me
+        }
     }
 
     /// Restart at `(t, y)` on the field `sys` (for example after a regime switch): fresh first

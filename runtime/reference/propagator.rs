@@ -104,6 +104,33 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
     ) -> Self {
         Self::with_field(*params, regime, slip, t0, state, tol)
     }
+
+    /// A solver of `regime`'s field built ahead of its segment: nothing is evaluated until the
+    /// driver starts it ([`SegmentSolver::start`]) at the segment's first switch. For the
+    /// regimes a run does not start in (building a started one costs two field evaluations, the
+    /// initial step's power and the switch measures, for a solver that is restarted anyway).
+    pub(crate) fn unstarted(
+        params: &Params,
+        regime: Regime,
+        t0: f64,
+        state: State,
+        tol: f64,
+    ) -> Self {
+        ReferenceSolver {
+            field: *params,
+            regime,
+            slip: 0.0,
+            switches: Switches::with_offset(params, regime, 0.0, 0.0),
+            integrator: Integrator::unstarted(
+                t0,
+                state.to_array(),
+                Tolerance::uniform(tol),
+                max_step(params),
+            ),
+            step: None,
+            pending: None,
+        }
+    }
 }
 
 impl<S: Scheme<4>, F: FieldFamily> ReferenceSolver<S, F> {
