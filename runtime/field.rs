@@ -133,10 +133,9 @@ pub fn frictionless_contact_acceleration(
     sin_theta: f64,
     s: &State,
 ) -> (f64, f64) {
-    let (at, rate, phasor) = state_inputs(cos_theta, sin_theta, s);
-    let a = coef::free_acceleration(model, &at, &rate, &phasor);
-    let f = coef::contact_force(model, &at);
-    (a.ax - f.fx, a.ay - f.fy)
+    let (ax, ay) = unforced_free_acceleration(model, cos_theta, sin_theta, s);
+    let f = coef::contact_force(model, &Position { x: s.x, y: s.y });
+    (ax - f.fx, ay - f.fy)
 }
 
 /// [`acceleration_of_model`] in free flight without an input force: the generated free field
