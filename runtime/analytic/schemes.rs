@@ -66,6 +66,27 @@ pub fn exprb2_into(
     exprb2_with(&ContactConstants::new(params), slip, t, state, h, out)
 }
 
+/// A sub-step's start, shared by both schemes: the linearization at `state` written in place
+/// into the output slot's segment, and the slot's part to build the scheme's segment in;
+/// [`Singular`] when the linearization cannot take a step of `h`.
+#[inline(always)]
+fn linearize<'a>(
+    constants: &ContactConstants,
+    slip: f64,
+    t: f64,
+    state: State,
+    h: f64,
+    segment: &'a mut LinearSegment,
+) -> Result<(&'a Linearization, &'a mut Part), Singular> {
+    let (lin, part) = segment.split_mut();
+    Linearization::slipping_with(constants, slip, t, state.x, state.y, lin)?;
+    let lin = &*lin;
+    if !lin.supports(h) {
+        return Err(Singular);
+    }
+    Ok((lin, part))
+}
+
 /// [`exprb2_into`] with the parameter set's [`ContactConstants`].
 pub fn exprb2_with(
     constants: &ContactConstants,
@@ -75,12 +96,7 @@ pub fn exprb2_with(
     h: f64,
     out: &mut SubStep,
 ) -> Result<(), Singular> {
-    let (lin, part) = out.segment.split_mut();
-    Linearization::slipping_with(constants, slip, t, state.x, state.y, lin)?;
-    let lin = &*lin;
-    if !lin.supports(h) {
-        return Err(Singular);
-    }
+    let (lin, part) = linearize(constants, slip, t, state, h, &mut out.segment)?;
     lin.fill(state, [0.0; 8], h, || lin.cubic_terms(h), part);
     out.end = lin.state_of(part, h, &lin.scalars(h));
     out.length = h;
@@ -127,12 +143,7 @@ pub fn exprb43_with(
     tol: f64,
     out: &mut SubStep,
 ) -> Result<(), Singular> {
-    let (lin, part) = out.segment.split_mut();
-    Linearization::slipping_with(constants, slip, t, state.x, state.y, lin)?;
-    let lin = &*lin;
-    if !lin.supports(h) {
-        return Err(Singular);
-    }
+    let (lin, part) = linearize(constants, slip, t, state, h, &mut out.segment)?;
     // The unforced segment's part (the slot's part receives the scheme's own segment).
     let mut free = Part::empty();
     lin.fill(state, [0.0; 8], h, || lin.cubic_terms(h), &mut free);

@@ -162,6 +162,9 @@ impl Recurrence<'_> {
 
     /// Position and velocity at `s` of the first `len` terms in one pass, without storing the
     /// coefficients (the same value as [`eval`] of [`Self::coefficients_into`] up to rounding).
+    /// Kept out of line: inlined into its callers (as an unrelated change once let the compiler
+    /// decide) the analytic method and the stepper ran 0.5 % more instructions.
+    #[inline(never)]
     pub fn value(&self, len: usize, s: f64) -> [f64; 4] {
         // c0 = c1 = 0: the terms m = 0, 1 contribute nothing.
         let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);

@@ -363,3 +363,33 @@ impl<const N: usize> Integrator<Dop853, N> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// y' = −y: enough to step.
+    struct Decay;
+
+    impl OdeSystem<1> for Decay {
+        fn rhs(&self, _t: f64, y: &[f64; 1]) -> [f64; 1] {
+            [-y[0]]
+        }
+    }
+
+    #[test]
+    fn an_unstarted_integrator_refuses_to_step_until_restarted() {
+        let tol = Tolerance::uniform(1e-10);
+        let mut idle = Integrator::<Dop853, 1>::unstarted(0.0, [1.0], tol, 1.0);
+        assert_eq!(
+            idle.step(&Decay, 10.0).map(|s| s.t1),
+            Err(PropagationError::StepSizeUnderflow { time: 0.0 })
+        );
+        // Restarted, it steps exactly as one built started there.
+        idle.restart(&Decay, 0.0, [1.0]);
+        let mut started = Integrator::<Dop853, 1>::new(&Decay, 0.0, [1.0], tol, 1.0);
+        let (a, b) = (idle.step(&Decay, 10.0), started.step(&Decay, 10.0));
+        assert_eq!(a.map(|s| (s.t1, s.y1)), b.map(|s| (s.t1, s.y1)));
+        assert!(idle.time() > 0.0);
+    }
+}

@@ -55,6 +55,7 @@ import heyoka as hy
 import numpy as np
 
 import rotor_rub as rr
+from mp_reference import read_switch_times
 
 LADDER: Tuple[float, ...] = (1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14)
 OUR_METHODS: Tuple[str, ...] = ("hybrid", "dop853", "taylor")
@@ -312,14 +313,7 @@ def load_mp_reference(periods: float) -> Optional[Switches]:
     path = os.path.join(HERE, "data", f"contact_heavy_{periods:g}.csv")
     if not os.path.exists(path):
         return None
-    out: Switches = []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#") or line.startswith("kind,"):
-                continue
-            kind, t = line.split(",")[:2]
-            out.append((kind, float(t)))
-    return out
+    return read_switch_times(path, float)
 
 
 def print_table(title: str, runs: Sequence[Run], hybrid_best: Optional[float],

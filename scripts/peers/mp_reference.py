@@ -35,10 +35,12 @@ import os
 import sys
 import time
 from dataclasses import dataclass
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Optional, Sequence, Tuple, TypeVar
 
 import mpmath
 from mpmath import mp, mpf
+
+T = TypeVar("T")
 
 Vec = List[mpf]
 
@@ -427,6 +429,19 @@ def compare_with_ours(spec: CaseSpec, switches: Sequence[Switch]) -> None:
                   default=0.0)
         print(f"dop853 tol {tol:g}: {len(kinds)} switches (reference {len(switches)}), kinds "
               f"{'match' if ok else 'DIFFER'}, max|Δt| = {err:.2e}")
+
+
+def read_switch_times(path: str, number: Callable[[str], T]) -> List[Tuple[str, T]]:
+    """(kind, time) of every switch in a file `write_csv` made, the time parsed by `number`
+    (`float`, or `mpf` to keep its 30 digits)."""
+    out: List[Tuple[str, T]] = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or line.startswith("kind,"):
+                continue
+            kind, t = line.split(",")[:2]
+            out.append((kind, number(t)))
+    return out
 
 
 def write_csv(path: str, spec: CaseSpec, p: Dict[str, float], switches: Sequence[Switch],

@@ -28,6 +28,7 @@ from typing import Dict, List, Tuple
 from mpmath import mp, mpf
 
 import rotor_rub as rr
+from mp_reference import read_switch_times
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ETA = 2.5
@@ -35,14 +36,7 @@ CHUNKS = 10
 
 
 def reference() -> List[Tuple[str, mpf]]:
-    out = []
-    with open(os.path.join(HERE, "data", "contact_heavy_1000.csv")) as f:
-        for line in f:
-            if line.startswith("#") or line.startswith("kind,"):
-                continue
-            kind, t = line.split(",")[:2]
-            out.append((kind, mpf(t)))
-    return out
+    return read_switch_times(os.path.join(HERE, "data", "contact_heavy_1000.csv"), mpf)
 
 
 def main() -> int:

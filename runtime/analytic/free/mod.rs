@@ -276,19 +276,11 @@ impl FreeSegment {
     pub fn reach_after(&self, lo: f64) -> f64 {
         self.bounds(lo, f64::INFINITY).radius
     }
-}
-
-impl FreeSegment {
-    /// The point at `at` (computed for this segment's constants): [`Segment::point`] with the
-    /// time-dependent values supplied.
-    pub(crate) fn point_at(&self, at: &FreeInstant) -> Point {
-        evaluate(&self.constants, &self.model, self.phase0, &self.form, at)
-    }
 
     /// The state at `at` of the free segment through `state` with start phasor `phasor` and no
     /// stator offset, without building the segment (no copy of the constants, no bound
     /// amplitudes): the stepper's transition takes its columns so. The same arithmetic as
-    /// [`Self::with_phasor`] followed by [`Self::point_at`].
+    /// [`Self::with_phasor`] followed by [`Segment::point`].
     #[inline(always)]
     pub(crate) fn state_at(
         constants: &FreeConstants,
@@ -303,7 +295,8 @@ impl FreeSegment {
 
 impl Segment for FreeSegment {
     fn point(&self, s: f64) -> Point {
-        self.point_at(&FreeInstant::at(&self.constants, s))
+        let at = FreeInstant::at(&self.constants, s);
+        evaluate(&self.constants, &self.model, self.phase0, &self.form, &at)
     }
 
     fn bounds(&self, lo: f64, hi: f64) -> Bounds {
