@@ -64,7 +64,7 @@ pub trait EventFunction {
 /// g must exceed this to count as a crossing when an interval is discarded: h = z² − 1 is only
 /// known to ~4ε near z = 1, so a touch below 8ε (penetration z − 1 < 1e-15) is not a switch.
 pub const TOUCH: f64 = 8.0 * f64::EPSILON;
-/// Deepest interval split (the search's stack). Below [`Budget::min_interval`] = 1e-13 relative
+/// Deepest interval split (the search's recursion). Below [`Budget::min_interval`] = 1e-13 relative
 /// a chunk of length ≤ 1 is never split deeper than 44 levels.
 pub const MAX_DEPTH: usize = 48;
 /// |g| at which refinement stops (converged to rounding).
@@ -288,29 +288,28 @@ fn search_chunk<F: EventFunction>(
             return found(x, converged && !work.capped);
         }
     }
-    // The common case first: the whole chunk proved free by one bound test, exactly as the
-    // search's first step below would, without setting up its stack (a few kilobytes).
-    let len = b.s - a.s;
-    if b.g <= TOUCH
-        && work.tests > 0
-        && !b.g.is_nan()
-        && len > budget.min_interval * (1.0 + math::abs(b.s))
-    {
-        let m2 = work.curvature(f, &a, b.s);
-        if no_crossing(a.g, a.dg, b.g, b.dg, m2, len, TOUCH) {
-            work.tests -= 1;
-            return Search::None;
-        }
-    }
-    // Left-first depth-first search: the current interval is [x, top of the stack]; a
-    // discarded interval moves x to its right end.
-    let mut stack = [(b, 0usize); MAX_DEPTH + 1];
-    let mut top = 1usize;
+    // The common case, the whole chunk proved free by one bound test, is the search's first
+    // step.
     let mut x = a;
-    while let Some(&(y, depth)) = top.checked_sub(1).and_then(|i| stack.get(i)) {
+    interval_search(f, &mut x, b, 0, budget, work).unwrap_or(Search::None)
+}
+
+/// The left-first depth-first interval search on [x, y] at split depth `depth`: `None` when
+/// the interval is proved free (or dropped), with `x` moved to its right end, else what ends
+/// the search. A split examines its left half first (recursively, so the search's stack holds
+/// only the levels in use), then the rest [x, y] again from the moved `x`.
+fn interval_search<F: EventFunction>(
+    f: &F,
+    x: &mut Knot<F::Point>,
+    y: Knot<F::Point>,
+    depth: usize,
+    budget: &Budget,
+    work: &mut Work,
+) -> Option<Search<F::Point>> {
+    loop {
         if y.g.is_nan() {
             work.capped = true;
-            return Search::Unresolved;
+            return Some(Search::Unresolved);
         }
         let len = y.s - x.s;
         let short = len <= budget.min_interval * (1.0 + math::abs(y.s));
@@ -319,33 +318,29 @@ fn search_chunk<F: EventFunction>(
             f64::NAN
         } else {
             work.tests -= 1;
-            work.curvature(f, &x, y.s)
+            work.curvature(f, x, y.s)
         };
         if y.g > TOUCH && (short || spent || x.dg > m2 * len) {
             // g(x) ≤ 0 < g(y): one crossing (g increases throughout), or no more splitting.
-            let (r, converged) = refine(f, x, y, budget);
-            return found(r, converged && !spent && !work.capped);
+            let (r, converged) = refine(f, *x, y, budget);
+            return Some(found(r, converged && !spent && !work.capped));
         }
         if y.g <= TOUCH && (short || spent || no_crossing(x.g, x.dg, y.g, y.dg, m2, len, TOUCH)) {
             // Proved free, a touch, or (spent) dropped unproved.
             work.capped |= spent && !short;
-            top -= 1;
             // g ≤ TOUCH is within rounding of the boundary: inside, as the start.
-            x = Knot {
+            *x = Knot {
                 g: y.g.min(0.0),
                 ..y
             };
-            continue;
+            return None;
         }
         let mid = x.s + 0.5 * len;
-        let Some(slot) = stack.get_mut(top) else {
-            work.capped = true;
-            return Search::Unresolved;
-        };
-        *slot = (Knot::at(f, mid, f.point(mid)), depth + 1);
-        top += 1;
+        let m = Knot::at(f, mid, f.point(mid));
+        if let Some(end) = interval_search(f, x, m, depth + 1, budget, work) {
+            return Some(end);
+        }
     }
-    Search::None
 }
 
 fn found<P>(k: Knot<P>, certain: bool) -> Search<P> {
