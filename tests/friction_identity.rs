@@ -9,7 +9,8 @@ mod identity {
 use identity::fingerprint::{problems, record, run, variants};
 use rotor_rub::{Preset, Problem};
 
-/// The record made by the code before friction (commit c4bc988), see `identity/fingerprint.rs`.
+/// The record made by the code before friction (commit c4bc988 with
+/// `identity/before-friction.patch` applied), see `identity/fingerprint.rs`.
 const BEFORE: &str = include_str!("data/frictionless.txt");
 
 #[test]

@@ -21,8 +21,8 @@
 //!
 //! Two shortcuts keep the common case cheap: a span whose end is known is first tested whole,
 //! and a chunk whose end is past a switch has that sign change refined first, then one bound
-//! test over the part before it proves it the first (the interval search runs only if that
-//! fails).
+//! test over the part before it proves it the first (if that fails, the interval search runs on
+//! that part only: it proves it free, or finds the earlier crossing there).
 //!
 //! # Work
 //! Intervals are dropped without proof only when shorter than [`Budget::min_interval`]
@@ -284,8 +284,18 @@ fn search_chunk<F: EventFunction>(
         // within rounding of g = 0 (just after a switch): the secant would be drawn to the
         // rounding noise there; the interval search proves the start's neighbourhood first.
         let (x, converged) = refine(f, a, b, budget);
-        if x.s > a.s && work.proves_free(f, &a, &x) {
-            return found(x, converged && !work.capped);
+        if x.s > a.s {
+            if work.proves_free(f, &a, &x) {
+                return found(x, converged && !work.capped);
+            }
+            // The bound over the whole of [a, x] is too loose for one test (a long chunk): the
+            // interval search proves [a, x] free or finds the earlier crossing there, without
+            // refining the same switch again.
+            let mut start = a;
+            return match interval_search(f, &mut start, x, 0, budget, work) {
+                None => found(x, converged && !work.capped),
+                Some(end) => end,
+            };
         }
     }
     // The common case, the whole chunk proved free by one bound test, is the search's first
