@@ -117,15 +117,35 @@ macro_rules! registry {
                 })
             }
 
-            fn get(&self) -> &dyn Propagate {
+        }
+
+        // Static dispatch (a match, each arm inlinable) rather than through `&dyn Propagate`:
+        // `advance_to` asks for the time, state and regime after every advance.
+        impl Propagate for Inner {
+            #[inline]
+            fn time(&self) -> f64 {
                 match self {
-                    $(Inner::$variant(p) => p,)+
+                    $(Inner::$variant(p) => p.time(),)+
                 }
             }
 
-            fn get_mut(&mut self) -> &mut dyn Propagate {
+            #[inline]
+            fn state(&self) -> State {
                 match self {
-                    $(Inner::$variant(p) => p,)+
+                    $(Inner::$variant(p) => p.state(),)+
+                }
+            }
+
+            #[inline]
+            fn regime(&self) -> Regime {
+                match self {
+                    $(Inner::$variant(p) => p.regime(),)+
+                }
+            }
+
+            fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+                match self {
+                    $(Inner::$variant(p) => p.advance(target),)+
                 }
             }
         }
@@ -318,16 +338,19 @@ impl Propagator {
 }
 
 impl Propagate for Propagator {
+    #[inline]
     fn time(&self) -> f64 {
-        self.0.get().time()
+        self.0.time()
     }
+    #[inline]
     fn state(&self) -> State {
-        self.0.get().state()
+        self.0.state()
     }
+    #[inline]
     fn regime(&self) -> Regime {
-        self.0.get().regime()
+        self.0.regime()
     }
     fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
-        self.0.get_mut().advance(target)
+        self.0.advance(target)
     }
 }
