@@ -40,7 +40,7 @@ impl Stepper {
     /// Change the running speed η from the current time on, keeping the forcing phase θ
     /// continuous: the phase φ0 is re-based so that η'τ + φ0' = θ(τ) (wrapped to [0, 2π)).
     /// The unbalance amplitude follows η² (F = η_m ρ̂ η²). Costs a [`Stepper::set_params`]
-    /// (Φ recomputed) when η changes, nothing otherwise. On error (η not finite or outside
+    /// (G recomputed, Φ kept) when η changes, nothing otherwise. On error (η not finite or outside
     /// its range) nothing changes.
     pub fn set_speed_ratio(&mut self, eta: f64) -> Result<(), StepperError> {
         Parameter::SpeedRatio.check(eta)?;

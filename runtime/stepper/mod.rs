@@ -60,10 +60,11 @@
 //! an FMU's early return).
 //!
 //! # Changing parameters or the step length
-//! [`Stepper::set_params`] (a speed ramp, a stiffness change) and a `step` with a new `dt`
-//! recompute Φ, G and the bound constants ([`FreeTransition::new`]: the free basis at dt once
-//! (one `exp`, one `sin_cos`), six evaluations of the generated free formulas; `set_params`
-//! with validation and the contact constants measured ≈ 0.15 µs), once.
+//! A `step` with a new `dt` recomputes Φ, G and the bound constants ([`FreeTransition::new`]:
+//! the free basis at dt once (one `exp`, one `sin_cos`), six evaluations of the generated free
+//! formulas). [`Stepper::set_params`] (a speed ramp, a stiffness change) keeps Φ, the basis at
+//! dt and its bounds unless the damping changed ([`FreeTransition::set_params`]): a new speed
+//! costs the validation, the free and contact constants, G's two columns and one `sin_cos`.
 
 mod config;
 mod exact;
@@ -249,7 +250,8 @@ impl Stepper {
     }
 
     /// Replace the parameters from the current time on (e.g. one point of a speed ramp). Costs
-    /// a recomputation of the free constants and of Φ, G for the current step length. The
+    /// a recomputation of the free constants and of G for the current step length, and of Φ
+    /// when the damping changed (or near resonance, [`FreeTransition::set_params`]). The
     /// regime is re-decided from the current state (a changed offset can move the boundary);
     /// no event is reported for that. On error nothing changes.
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
@@ -257,7 +259,7 @@ impl Stepper {
         self.params = *params;
         self.free = FreeConstants::new(params);
         self.contact = ContactConstants::new(params);
-        self.transition = FreeTransition::new(params, &self.free, self.transition.dt());
+        self.transition.set_params(params, &self.free);
         self.anchor_time = self.time;
         self.anchor_steps = 0;
         self.phasor = phasor_at(params, self.time);

@@ -15,12 +15,15 @@
 
 use super::search::local_curvature;
 use crate::analytic::free::{BasisBound, FreeConstants, FreeInstant, FreeSegment, plain_norm};
+use crate::coefficients::FreeBasis;
 use crate::params::{Params, State};
 
 /// The exact free-flight map over one step of fixed length, with the constants of the switch
-/// bound on that step. Computing it costs six free-segment evaluations at `dt` (each one `exp`
-/// and two `sin_cos`, plus an `expm1` and a `sin_cos` in the resonance-stable form) and the basis
-/// bounds, paid once per step length and parameter set.
+/// bound on that step. Computing it costs the basis at `dt` (one `exp`, one `sin_cos`), the
+/// rotation (one `sin_cos`, plus an `expm1` and a `sin_cos` in the resonance-stable form), six
+/// closed-form evaluations and the basis bounds, paid once per step length and parameter set;
+/// a parameter change that keeps the damping reuses Φ, the basis and its bounds
+/// ([`Self::set_params`]).
 #[derive(Clone, Copy, Debug)]
 pub struct FreeTransition {
     dt: f64,
@@ -34,6 +37,8 @@ pub struct FreeTransition {
     constants: FreeConstants,
     /// Bounds of the basis functions on [0, dt].
     basis: BasisBound,
+    /// The basis (EC, ES) at dt, kept with Φ by [`Self::set_params`].
+    basis_at_dt: FreeBasis,
     /// (ε̂x, ε̂y).
     offset: (f64, f64),
     /// |ε − d| for the switch bound (`FreeSegment::offset_distance`), kept with `constants`.
@@ -45,44 +50,56 @@ pub struct FreeTransition {
 impl FreeTransition {
     /// The map over `dt` (> 0) for `params`, with their free constants.
     pub fn new(params: &Params, constants: &FreeConstants, dt: f64) -> Self {
-        // The unforced free step from start state `w` and start phasor (ct, st), offsets zero;
-        // the basis and the rotation at dt once for all six columns.
+        // The unforced free step, offsets zero; the basis and the rotation at dt once for all
+        // six columns.
         let unforced = constants.with_input((0.0, 0.0));
         let at_dt = FreeInstant::at(&unforced, dt);
-        let map = |w: [f64; 4], phasor: (f64, f64)| -> [f64; 4] {
-            FreeSegment::state_at(&unforced, phasor, State::from_array(w), &at_dt).to_array()
-        };
         let mut phi = [[0.0; 4]; 4];
         for j in 0..4 {
             let mut unit = [0.0; 4];
             if let Some(u) = unit.get_mut(j) {
                 *u = 1.0;
             }
-            let column = map(unit, (0.0, 0.0));
+            let column = column(&unforced, &at_dt, unit, (0.0, 0.0));
             for (row, value) in phi.iter_mut().zip(column) {
                 if let Some(r) = row.get_mut(j) {
                     *r = value;
                 }
             }
         }
-        let (gc, gs) = (map([0.0; 4], (1.0, 0.0)), map([0.0; 4], (0.0, 1.0)));
-        let mut g = [[0.0; 2]; 4];
-        for (row, (c, s)) in g.iter_mut().zip(gc.into_iter().zip(gs)) {
-            *row = [c, s];
-        }
         let mut transition = FreeTransition {
             dt,
             phi,
-            g,
+            g: forcing_columns(&unforced, &at_dt),
             rotation: at_dt.rotation(),
             constants: unforced,
             basis: BasisBound::on(constants, 0.0, dt),
+            basis_at_dt: at_dt.basis(),
             offset: (params.offset_x, params.offset_y),
             offset_distance: 0.0,
             input: None,
         };
         transition.set_input(constants);
         transition
+    }
+
+    /// Take changed parameters, the step kept: the map [`Self::new`] gives for them, with
+    /// Φ(dt), the basis at dt and its bounds kept when unforced free flight is unchanged
+    /// ([`FreeConstants::same_unforced`]: the same damping, no resonance-stable form) — a
+    /// change of speed, forcing, stator or input force recomputes G(dt) and the rotation only.
+    pub fn set_params(&mut self, params: &Params, constants: &FreeConstants) {
+        if !self.constants.same_unforced(constants) {
+            *self = Self::new(params, constants, self.dt);
+            return;
+        }
+        let unforced = constants.with_input((0.0, 0.0));
+        let at_dt = FreeInstant::with_basis(&unforced, self.dt, self.basis_at_dt);
+        self.g = forcing_columns(&unforced, &at_dt);
+        self.rotation = at_dt.rotation();
+        self.basis = self.basis.with_forcing(constants, self.dt);
+        self.constants = unforced;
+        self.offset = (params.offset_x, params.offset_y);
+        self.set_input(constants);
     }
 
     /// Take the input force of `constants` (the same parameters otherwise): b = d − Φ·d for
@@ -157,5 +174,123 @@ impl FreeTransition {
         let b = reach.bounds(&self.basis);
         let v0 = plain_norm(w.vx, w.vy);
         local_curvature(r0, v0, b.radius, b.speed, b.accel, self.dt)
+    }
+}
+
+/// The unforced free step (`unforced`: no input force) over `at_dt` from start state `w` and
+/// start phasor `phasor`, offsets zero: a column of the map.
+#[inline(always)]
+fn column(
+    unforced: &FreeConstants,
+    at_dt: &FreeInstant,
+    w: [f64; 4],
+    phasor: (f64, f64),
+) -> [f64; 4] {
+    FreeSegment::state_at(unforced, phasor, State::from_array(w), at_dt).to_array()
+}
+
+/// G(dt): the columns for a zero start state and the phasors (1, 0), (0, 1).
+fn forcing_columns(unforced: &FreeConstants, at_dt: &FreeInstant) -> [[f64; 2]; 4] {
+    let gc = column(unforced, at_dt, [0.0; 4], (1.0, 0.0));
+    let gs = column(unforced, at_dt, [0.0; 4], (0.0, 1.0));
+    let mut g = [[0.0; 2]; 4];
+    for (row, (c, s)) in g.iter_mut().zip(gc.into_iter().zip(gs)) {
+        *row = [c, s];
+    }
+    g
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Preset;
+
+    /// Equal as numbers, and bit for bit unless zero (a zero forcing term may carry either
+    /// sign).
+    fn same(a: f64, b: f64) -> bool {
+        a == b && (a == 0.0 || a.to_bits() == b.to_bits())
+    }
+
+    fn assert_same_map(kept: &FreeTransition, fresh: &FreeTransition, what: &str) {
+        let pairs = kept
+            .phi
+            .iter()
+            .flatten()
+            .zip(fresh.phi.iter().flatten())
+            .chain(kept.g.iter().flatten().zip(fresh.g.iter().flatten()))
+            .chain([
+                (&kept.rotation.0, &fresh.rotation.0),
+                (&kept.rotation.1, &fresh.rotation.1),
+                (&kept.basis_at_dt.ec, &fresh.basis_at_dt.ec),
+                (&kept.basis_at_dt.es, &fresh.basis_at_dt.es),
+            ]);
+        for (a, b) in pairs {
+            assert!(
+                same(*a, *b),
+                "{what}: {a:e} kept against {b:e} computed anew"
+            );
+        }
+        // The bound constants, through their one use.
+        for (w, phasor, r0) in [
+            (State::new(0.1, 0.2, -0.3, 0.4), (1.0, 0.0), 0.5),
+            (State::new(-0.4, 0.1, 0.7, -0.2), (0.6, 0.8), 0.9),
+        ] {
+            let (a, b) = (
+                kept.curvature_bound(&w, phasor, r0),
+                fresh.curvature_bound(&w, phasor, r0),
+            );
+            assert!(same(a, b), "{what}: curvature bound {a:e} against {b:e}");
+            let (a, b) = (kept.apply(&w, phasor), fresh.apply(&w, phasor));
+            for (x, y) in a.to_array().into_iter().zip(b.to_array()) {
+                assert!(same(x, y), "{what}: step {x:e} against {y:e}");
+            }
+        }
+    }
+
+    type Change = fn(&mut Params);
+
+    /// A parameter change that keeps the damping gives the map `new` computes for the changed
+    /// parameters (Φ and the basis kept, the rest recomputed); one that changes it, or near
+    /// resonance, recomputes everything.
+    #[test]
+    fn a_kept_map_is_the_map_computed_anew() {
+        let mut kept_phi = 0;
+        for preset in Preset::ALL {
+            let base = preset.problem().params;
+            for dt in [1e-3, 0.01, 0.3] {
+                let before = FreeTransition::new(&base, &FreeConstants::new(&base), dt);
+                let changes: [(&str, Change); 7] = [
+                    ("speed", |p| p.speed_ratio = 1.6),
+                    ("slow speed", |p| p.speed_ratio = 0.3),
+                    ("resonance", |p| p.speed_ratio = 1.0),
+                    ("unbalance and phase", |p| {
+                        p.eccentricity_ratio *= 2.0;
+                        p.phase = 1.0;
+                    }),
+                    ("offset and stiffness", |p| {
+                        p.offset_x = -0.2;
+                        p.k_xx *= 3.0;
+                    }),
+                    ("input force", |p| p.force_x = 0.3),
+                    ("damping", |p| p.damping_ratio *= 1.5),
+                ];
+                for (what, change) in changes {
+                    let mut params = base;
+                    change(&mut params);
+                    assert!(params.validate().is_ok(), "{what}");
+                    let constants = FreeConstants::new(&params);
+                    kept_phi += usize::from(before.constants.same_unforced(&constants));
+                    let mut kept = before;
+                    kept.set_params(&params, &constants);
+                    let fresh = FreeTransition::new(&params, &constants, dt);
+                    assert_same_map(&kept, &fresh, what);
+                }
+            }
+        }
+        // Speed, unbalance, stator and input changes away from resonance keep Φ.
+        assert!(
+            kept_phi >= 4 * 3 * Preset::ALL.len(),
+            "Φ kept {kept_phi} times"
+        );
     }
 }

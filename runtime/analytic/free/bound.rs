@@ -49,8 +49,20 @@ impl BasisBound {
         let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);
         BasisBound {
             e: [ec, es, dec, des, ddec, ddes],
+            kappa: 0.0,
+            eta: 0.0,
+        }
+        .with_forcing(constants, hi)
+    }
+
+    /// These bounds (on [lo, `hi`]) for `constants` with the same ν and β²: the basis bounds
+    /// depend on those only, the forcing's parts (η, the forced basis) are taken anew — what
+    /// [`Self::on`] gives for `constants`.
+    pub(crate) fn with_forcing(self, constants: &FreeConstants, hi: f64) -> Self {
+        BasisBound {
             kappa: constants.resonance.map_or(0.0, |r| r.bound(hi)),
             eta: constants.model.eta,
+            ..self
         }
     }
 }

@@ -26,15 +26,27 @@ pub(crate) struct FreeInstant {
 impl FreeInstant {
     /// The values at `s` for segments of `constants`.
     pub(crate) fn at(constants: &FreeConstants, s: f64) -> Self {
-        let model = &constants.model;
-        let (ec, es) = free_basis(model.nu, constants.beta_sq, s);
-        let (sd, cd) = math::sin_cos(model.eta * s);
+        let (ec, es) = free_basis(constants.model.nu, constants.beta_sq, s);
+        Self::with_basis(constants, s, FreeBasis { ec, es })
+    }
+
+    /// [`Self::at`] given the basis at `s`, which depends on ν and β² only: the stepper keeps
+    /// it across parameter changes that leave them ([`FreeConstants::same_unforced`]).
+    pub(crate) fn with_basis(constants: &FreeConstants, s: f64, basis: FreeBasis) -> Self {
+        let (sd, cd) = math::sin_cos(constants.model.eta * s);
         FreeInstant {
             s,
-            basis: FreeBasis { ec, es },
+            basis,
             rotation: (cd, sd),
-            forced: constants.resonance.map(|r| r.basis(s, ec, es, (cd, sd))),
+            forced: constants
+                .resonance
+                .map(|r| r.basis(s, basis.ec, basis.es, (cd, sd))),
         }
+    }
+
+    /// The basis (EC, ES) at `s`.
+    pub(crate) fn basis(&self) -> FreeBasis {
+        self.basis
     }
 
     /// (cos ηs, sin ηs): the forcing phasor's rotation over `s`.

@@ -97,6 +97,17 @@ impl FreeConstants {
     pub fn resonant(&self) -> bool {
         self.resonance.is_some()
     }
+
+    /// Whether unforced free flight is the same closed form under `other`: the same ν and β²
+    /// (bit for bit) and the steady-state form in both. The response to a start state without
+    /// forcing is then the same numbers (the forcing terms are exact zeros), so what depends on
+    /// it alone — the stepper's Φ(dt), the basis at dt and its bounds — can be kept.
+    pub(crate) fn same_unforced(&self, other: &FreeConstants) -> bool {
+        self.resonance.is_none()
+            && other.resonance.is_none()
+            && self.model.nu.to_bits() == other.model.nu.to_bits()
+            && self.beta_sq.to_bits() == other.beta_sq.to_bits()
+    }
 }
 
 /// The static deflection of free flight under the model's input force: (0, 0) exactly when
