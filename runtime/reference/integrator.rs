@@ -222,33 +222,35 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         sys: &F,
         t_limit: f64,
     ) -> Result<AcceptedStep<N, S::Dense>, PropagationError> {
-        let (h, t1, trial) = self.accepted_trial(sys, t_limit)?;
-        let (f1, dense) = S::accept(sys, self.t, &self.y, &self.f, h, &trial);
-        self.stats.evaluations = self.stats.evaluations.saturating_add(S::ACCEPT_EVALUATIONS);
-        let step = AcceptedStep {
-            t0: self.t,
-            y0: self.y,
-            f0: self.f,
-            t1,
-            y1: trial.y1,
-            dense,
-        };
-        self.t = t1;
-        self.y = trial.y1;
-        self.f = f1;
-        Ok(step)
+        self.accepted_trial(sys, t_limit, |me, h, t1, trial| {
+            let (f1, dense) = S::accept(sys, me.t, &me.y, &me.f, h, trial);
+            me.stats.evaluations = me.stats.evaluations.saturating_add(S::ACCEPT_EVALUATIONS);
+            let step = AcceptedStep {
+                t0: me.t,
+                y0: me.y,
+                f0: me.f,
+                t1,
+                y1: trial.y1,
+                dense,
+            };
+            me.t = t1;
+            me.y = trial.y1;
+            me.f = f1;
+            step
+        })
     }
 
     /// The trial loop of [`Self::step`]: retries until a trial is accepted and updates the
     /// controller (the next proposed step), but leaves the current time, state and derivative
-    /// for the caller to move to the step end. Returns the step size, the step end time and the
-    /// accepted trial.
+    /// for `accept` to move to the step end; it gets the step size, the step end time and the
+    /// accepted trial (by reference: the trial with its stages is not moved out of the loop).
     #[inline(always)]
-    fn accepted_trial<F: OdeSystem<N> + ?Sized>(
+    fn accepted_trial<F: OdeSystem<N> + ?Sized, R>(
         &mut self,
         sys: &F,
         t_limit: f64,
-    ) -> Result<(f64, f64, Attempt<N, S::Stages>), PropagationError> {
+        accept: impl FnOnce(&mut Self, f64, f64, &Attempt<N, S::Stages>) -> R,
+    ) -> Result<R, PropagationError> {
         if t_limit.is_nan() || t_limit <= self.t {
             return Err(PropagationError::InvalidTarget {
                 target: t_limit,
@@ -303,7 +305,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
                     self.t + h
                 };
                 self.h = h_new.min(self.h_max);
-                return Ok((h, t1, trial));
+                return Ok(accept(self, h, t1, &trial));
             }
             self.stats.rejected = self.stats.rejected.saturating_add(1);
             self.rejected_last = true;
@@ -354,13 +356,13 @@ impl<const N: usize> Integrator<Dop853, N> {
         t_limit: f64,
         out: &mut Dop853Step<N>,
     ) -> Result<(), PropagationError> {
-        let (h, t1, trial) = self.accepted_trial(sys, t_limit)?;
-        out.set(sys, self.t, &self.y, h, t1, &trial);
-        self.stats.evaluations = self.stats.evaluations.saturating_add(1);
-        self.t = t1;
-        self.y = trial.y1;
-        self.f = out.f1();
-        Ok(())
+        self.accepted_trial(sys, t_limit, |me, h, t1, trial| {
+            out.set(sys, me.t, &me.y, h, t1, trial);
+            me.stats.evaluations = me.stats.evaluations.saturating_add(1);
+            me.t = t1;
+            me.y = trial.y1;
+            me.f = out.f1();
+        })
     }
 }
 
