@@ -78,6 +78,13 @@ impl Resonance {
         let beta = math::sqrt(beta_sq);
         let delta_plus = (nu, eta - beta);
         let delta_minus = (nu, eta + beta);
+        // Far from resonance without the two `hypot`s: |δ±| ≥ max(|ν|, |η ∓ β|) (exact), so a
+        // product of those beyond the band (with room for the roundings) decides as they would.
+        let lower =
+            math::abs(nu).max(math::abs(eta - beta)) * math::abs(nu).max(math::abs(eta + beta));
+        if lower >= RESONANT_BAND * (1.0 + 8.0 * f64::EPSILON) {
+            return None;
+        }
         let (a, b) = (
             math::hypot(delta_plus.0, delta_plus.1),
             math::hypot(nu, eta + beta),

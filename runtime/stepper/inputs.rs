@@ -26,9 +26,9 @@ impl Stepper {
         }
         self.params.force_x = fx;
         self.params.force_y = fy;
-        self.free = self.free.with_input((fx, fy));
+        let free = self.transition.constants().with_input((fx, fy));
         self.contact.set_input(fx, fy);
-        self.transition.set_input(&self.free);
+        self.transition.set_input(&free);
         Ok(())
     }
 
@@ -103,7 +103,6 @@ impl Stepper {
         Ok(Stepper {
             params: s.params,
             config: s.config,
-            free,
             contact: ContactConstants::new(&s.params),
             transition: FreeTransition::new(&s.params, &free, s.dt),
             time: s.time,

@@ -107,7 +107,6 @@ pub const PHASOR_RESYNC: u64 = 256;
 pub struct Stepper {
     params: Params,
     config: StepperConfig,
-    free: FreeConstants,
     /// What every contact linearization of `params` shares.
     contact: ContactConstants,
     transition: FreeTransition,
@@ -143,7 +142,6 @@ impl Stepper {
         Ok(Stepper {
             params,
             config,
-            free,
             contact: ContactConstants::new(&params),
             transition: FreeTransition::new(&params, &free, config.dt),
             time: t0,
@@ -173,7 +171,7 @@ impl Stepper {
     fn advance(&mut self, dt: f64, stop_at_switch: bool) -> Result<StepReport, StepperError> {
         check_dt(dt, self.time)?;
         if dt != self.transition.dt() {
-            self.transition = FreeTransition::new(&self.params, &self.free, dt);
+            self.transition = FreeTransition::new(&self.params, self.transition.constants(), dt);
             self.anchor_time = self.time;
             self.anchor_steps = 0;
         }
@@ -257,9 +255,9 @@ impl Stepper {
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
         self.params = *params;
-        self.free = FreeConstants::new(params);
         self.contact = ContactConstants::new(params);
-        self.transition.set_params(params, &self.free);
+        self.transition
+            .set_params(params, &FreeConstants::new(params));
         self.anchor_time = self.time;
         self.anchor_steps = 0;
         self.phasor = phasor_at(params, self.time);

@@ -124,6 +124,12 @@ impl FreeTransition {
         self.dt
     }
 
+    /// The free constants of the parameters in force, input force included (the stepper's
+    /// only copy of them).
+    pub fn constants(&self) -> &FreeConstants {
+        &self.constants
+    }
+
     /// The forcing phasor after one step from `phasor` = (cos θ0, sin θ0).
     #[inline]
     pub fn rotate(&self, phasor: (f64, f64)) -> (f64, f64) {
