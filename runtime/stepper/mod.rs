@@ -255,7 +255,7 @@ impl Stepper {
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
         self.params = *params;
-        self.contact = ContactConstants::new(params);
+        self.contact.set_params(params);
         self.transition
             .set_params(params, &FreeConstants::new(params));
         self.anchor_time = self.time;
@@ -307,7 +307,7 @@ impl Stepper {
     #[inline]
     fn free_step(&self) -> Option<State> {
         let tr = &self.transition;
-        let (ex, ey) = (self.params.offset_x, self.params.offset_y);
+        let (ex, ey) = tr.offset();
         let end = tr.apply(&self.state, self.phasor);
         let b = point_of(end, ex, ey);
         if b.h >= 0.0 || b.h.is_nan() {

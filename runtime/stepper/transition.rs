@@ -32,19 +32,19 @@ pub struct FreeTransition {
     phi: [[f64; 4]; 4],
     /// G(dt): the end state for a zero start state and the forcing phasor (1, 0), (0, 1).
     g: [[f64; 2]; 4],
+    /// b = d − Φ·d for the input force's static deflection d; `None` without input force.
+    input: Option<[f64; 4]>,
     /// (cos η·dt, sin η·dt): the forcing phasor's rotation over one step.
     rotation: (f64, f64),
-    constants: FreeConstants,
-    /// Bounds of the basis functions on [0, dt].
-    basis: BasisBound,
-    /// The basis (EC, ES) at dt, kept with Φ by [`Self::set_params`].
-    basis_at_dt: FreeBasis,
     /// (ε̂x, ε̂y).
     offset: (f64, f64),
     /// |ε − d| for the switch bound (`FreeSegment::offset_distance`), kept with `constants`.
     offset_distance: f64,
-    /// b = d − Φ·d for the input force's static deflection d; `None` without input force.
-    input: Option<[f64; 4]>,
+    /// Bounds of the basis functions on [0, dt].
+    basis: BasisBound,
+    constants: FreeConstants,
+    /// The basis (EC, ES) at dt, kept with Φ by [`Self::set_params`].
+    basis_at_dt: FreeBasis,
 }
 
 impl FreeTransition {
@@ -97,7 +97,6 @@ impl FreeTransition {
         self.g = forcing_columns(&unforced, &at_dt);
         self.rotation = at_dt.rotation();
         self.basis = self.basis.with_forcing(constants, self.dt);
-        self.constants = unforced;
         self.offset = (params.offset_x, params.offset_y);
         self.set_input(constants);
     }
@@ -122,6 +121,12 @@ impl FreeTransition {
     /// The step length this map is for.
     pub fn dt(&self) -> f64 {
         self.dt
+    }
+
+    /// The stator offset (ε̂x, ε̂y).
+    #[inline]
+    pub fn offset(&self) -> (f64, f64) {
+        self.offset
     }
 
     /// The free constants of the parameters in force, input force included (the stepper's
