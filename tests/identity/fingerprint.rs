@@ -6,11 +6,13 @@
 //! `tests/record_before.rs` that declares `mod identity { pub mod fingerprint; }` and writes
 //! `identity::fingerprint::record()` to a file, run with `cargo test --test record_before`.
 //!
-//! A later change of the switch kernel that moves switch times in their last bits is applied to
-//! that old code too, and the record made again: `before-friction.patch` (next to this file,
+//! A later change that moves results in their last bits (the switch search, a bound) is applied
+//! to that old code too, and the record made again: `before-friction.patch` (next to this file,
 //! `git apply` in the worktree of c4bc988) is every such change so far — a failed proof after a
 //! sign change's refinement searches [a, x] instead of refining again (first switches move by
-//! ≤ 3 ulps). So the record stays "friction changes nothing at μ = 0", not "nothing changed".
+//! ≤ 3 ulps); the harmonic amplitude σ1 from two sums of squares instead of a nested root (a
+//! bound: the analytic method's first switches move by ≤ 7e-15 relative, through its step
+//! control). So the record stays "friction changes nothing at μ = 0", not "nothing changed".
 
 use std::fmt::Write as _;
 

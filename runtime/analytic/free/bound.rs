@@ -9,13 +9,20 @@ use super::FreeConstants;
 use crate::math;
 
 /// The largest |(c11 cos θ + c22 sin θ, c33 cos θ + c44 sin θ)| over θ: the largest singular
-/// value of [[c11, c22], [c33, c44]] (σ² = (S + √(S² − 4 det²))/2, S the sum of squares), with a
-/// relative margin for rounding, never above the Frobenius norm √S.
+/// value σ1 of [[c11, c22], [c33, c44]], with a relative margin for rounding, never above the
+/// Frobenius norm √S (S the sum of squares).
+///
+/// σ1 ± σ2 = √(S ± 2|det|) (σ1² + σ2² = S, σ1σ2 = |det|), and S ± 2det are the sums of squares
+/// (c11 ± c44)² + (c22 ∓ c33)², so σ1 is the mean of their two roots, in either order. Sums of
+/// squares round to a few ulps relative, so the 1e-12 margin holds; the form σ1² = (S + √(S² −
+/// 4det²))/2 loses up to √ε relative near a circular response (S² ≈ 4det²), where the margin
+/// did not cover it. The two roots are independent: one square-root latency on the
+/// parameter-change path.
 pub(crate) fn harmonic_amplitude(c11: f64, c22: f64, c33: f64, c44: f64) -> f64 {
     let sum = c11 * c11 + c22 * c22 + c33 * c33 + c44 * c44;
-    let det = c11 * c44 - c22 * c33;
-    let disc = (sum * sum - 4.0 * det * det).max(0.0);
-    let sigma = math::sqrt(0.5 * (sum + math::sqrt(disc)));
+    let (p, q) = (c11 + c44, c22 - c33);
+    let (r, t) = (c11 - c44, c22 + c33);
+    let sigma = 0.5 * (math::sqrt(p * p + q * q) + math::sqrt(r * r + t * t));
     (sigma * (1.0 + 1e-12)).min(math::sqrt(sum))
 }
 
@@ -121,6 +128,49 @@ impl FreeReach {
                 speed: f64::INFINITY,
                 accel: f64::INFINITY,
             },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::harmonic_amplitude;
+    use nalgebra::Matrix2;
+    use proptest::prelude::*;
+
+    /// σ1 by nalgebra's singular value decomposition (an independent computation).
+    fn reference(c: [f64; 4]) -> f64 {
+        Matrix2::new(c[0], c[1], c[2], c[3]).singular_values().max()
+    }
+
+    fn check(c: [f64; 4]) -> Result<(), TestCaseError> {
+        let (sigma, exact) = (harmonic_amplitude(c[0], c[1], c[2], c[3]), reference(c));
+        // An upper bound by the margin, never loose by more than it (and the rounding).
+        prop_assert!(sigma >= exact, "{c:?}: {sigma:e} below σ1 = {exact:e}");
+        prop_assert!(
+            sigma <= exact * (1.0 + 2e-12),
+            "{c:?}: {sigma:e} against σ1 = {exact:e}"
+        );
+        Ok(())
+    }
+
+    proptest! {
+        #[test]
+        fn the_amplitude_bounds_the_largest_singular_value(
+            c in prop::array::uniform4(-10.0f64..10.0),
+        ) {
+            check(c)?;
+        }
+
+        /// Near a circular response (c44 ≈ c11, c33 ≈ −c22: σ1 ≈ σ2), where a root of
+        /// S² − 4det² loses √ε relative.
+        #[test]
+        fn the_amplitude_holds_near_a_circular_response(
+            a in -10.0f64..10.0,
+            b in -10.0f64..10.0,
+            e in prop::array::uniform4(-1e-7f64..1e-7),
+        ) {
+            check([a + e[0], b + e[1], -b + e[2], a + e[3]])?;
         }
     }
 }
