@@ -16,7 +16,9 @@
 //! `STEPPER_BENCH=timing cargo bench --bench stepper` stops after the timing (1.).
 //!
 //! Criterion then measures single steps from fixed states (free, free with entry, contact,
-//! contact with exit), a parameter change (`set_params`, which recomputes Φ) and one RK4 step.
+//! contact with exit), two parameter changes (`set_params`: a new speed, which keeps Φ and
+//! recomputes the forcing's columns G — the bench named "set_params (recomputes Φ)" before Φ was
+//! kept —, and a new damping, which recomputes Φ) and one RK4 step.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -394,10 +396,19 @@ fn main() {
     let start = Stepper::new(&problem, StepperConfig::default()).expect("stepper");
     let mut faster = problem.params;
     faster.speed_ratio = 1.6;
-    c.bench_function("set_params (recomputes Φ)", |b| {
+    c.bench_function("set_params (speed change: keeps Φ)", |b| {
         b.iter_batched_ref(
             || start,
             |s| s.set_params(black_box(&faster)).expect("valid"),
+            BatchSize::SmallInput,
+        )
+    });
+    let mut damped = problem.params;
+    damped.damping_ratio = 0.2;
+    c.bench_function("set_params (damping change: recomputes Φ)", |b| {
+        b.iter_batched_ref(
+            || start,
+            |s| s.set_params(black_box(&damped)).expect("valid"),
             BatchSize::SmallInput,
         )
     });

@@ -146,8 +146,8 @@ impl Model {
 
     /// Set variable `vr` to `value`: checked against its range and causality; on error nothing
     /// changes. Before initialization every parameter and input may be set; after it the inputs
-    /// (cheap for fx, fy; a recomputation of the free map for speed_ratio) and the tunable
-    /// parameters (a recomputation of the free map).
+    /// (cheap for fx, fy; the free map's forcing columns recomputed for speed_ratio) and the
+    /// tunable parameters (the free map recomputed, Φ kept unless the damping changes).
     pub fn set(&mut self, vr: u32, value: f64) -> Result<(), Message> {
         let var = variables::find(vr).ok_or_else(|| unknown(vr))?;
         if matches!(

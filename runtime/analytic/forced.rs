@@ -75,16 +75,16 @@ impl Resonance {
         if beta_sq.is_nan() || beta_sq <= 0.0 {
             return None;
         }
+        // Far from resonance without a root: |δ+||δ−| ≥ |η − β||η + β| = |η² − β²|, and the
+        // computed distance (two faithful `hypot`s and a product) is within 3ε of it below; a
+        // gap beyond the band by 8ε of the terms' size decides as the distance would.
+        let (eta_sq, gap) = (eta * eta, eta * eta - beta_sq);
+        if math::abs(gap) >= RESONANT_BAND + 8.0 * f64::EPSILON * (eta_sq + beta_sq) {
+            return None;
+        }
         let beta = math::sqrt(beta_sq);
         let delta_plus = (nu, eta - beta);
         let delta_minus = (nu, eta + beta);
-        // Far from resonance without the two `hypot`s: |δ±| ≥ max(|ν|, |η ∓ β|) (exact), so a
-        // product of those beyond the band (with room for the roundings) decides as they would.
-        let lower =
-            math::abs(nu).max(math::abs(eta - beta)) * math::abs(nu).max(math::abs(eta + beta));
-        if lower >= RESONANT_BAND * (1.0 + 8.0 * f64::EPSILON) {
-            return None;
-        }
         let (a, b) = (
             math::hypot(delta_plus.0, delta_plus.1),
             math::hypot(nu, eta + beta),
@@ -153,5 +153,29 @@ impl Resonance {
         let m_plus = slow.min(self.reach_plus);
         let m_minus = slow.min(self.reach_minus);
         (m_plus + m_minus) * (0.5 / self.beta) * MARGIN
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The shortcut far from resonance decides as the distance |δ+||δ−| itself does, near
+        /// the band's edges included.
+        #[test]
+        fn the_band_is_decided_by_the_distance(
+            nu in 0.0f64..0.99,
+            eta in 1e-3f64..3.0,
+            edge in prop::bool::ANY,
+        ) {
+            let beta_sq = 1.0 - nu * nu;
+            let beta = math::sqrt(beta_sq);
+            // Half the cases put η where η² − β² is at the band's edge (±0.5).
+            let eta = if edge { math::sqrt((beta_sq + RESONANT_BAND).max(0.0)) + (eta - 1.5) * 1e-9 } else { eta };
+            let distance = math::hypot(nu, eta - beta) * math::hypot(nu, eta + beta);
+            prop_assert_eq!(Resonance::near(nu, beta_sq, eta).is_some(), distance < RESONANT_BAND);
+        }
     }
 }
