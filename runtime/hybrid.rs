@@ -92,6 +92,7 @@ pub struct Dop853Contact {
 }
 
 impl Dop853Contact {
+    #[inline]
     fn new(params: &Params, tol: f64, slip: f64, t0: f64, s0: State) -> Self {
         let system = ContactField {
             model: ModelParams::of(params),
@@ -128,6 +129,7 @@ impl Dop853Contact {
 
     /// As [`Dop853Contact::new`], not started: built ahead of the first contact, it evaluates
     /// nothing until the driver starts it there (see [`ReferenceSolver::unstarted`]).
+    #[inline]
     fn unstarted(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
         let system = ContactField {
             model: ModelParams::of(params),
@@ -266,12 +268,14 @@ pub struct HybridPropagator(
 impl HybridPropagator {
     /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
     /// start time.
+    #[inline(always)]
     pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
         problem.validate()?;
         Self::start(problem, tol)
     }
 
     /// As [`HybridPropagator::new`] without checking the problem (see [`Registered::resume`]).
+    #[inline(always)]
     fn start(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
         Method::Hybrid.check_tolerance(tol)?;
         let params = problem.params;
@@ -312,6 +316,7 @@ impl Registered for HybridPropagator {
         contact_scheme: false,
     };
 
+    #[inline(always)]
     fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
         HybridPropagator::new(problem, options.tolerance())
     }

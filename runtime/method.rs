@@ -322,6 +322,10 @@ pub struct Propagator(Inner);
 
 impl Propagator {
     /// Validate `problem` and `options` and start the chosen method at the problem's start time.
+    // Inlined into the caller so that the method is built in the caller's slot: a `Propagator`
+    // is as large as its largest method (the taylor method's series, ≈ 10 KB), and returning
+    // it through one more frame copied all of it.
+    #[inline(always)]
     pub fn new(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
         problem.validate()?;
         options.validate()?;

@@ -35,6 +35,7 @@ pub struct FreeFlightSolver {
 
 impl FreeFlightSolver {
     /// A solver for `params`, with a flight started at `(time, state)`.
+    #[inline]
     pub fn new(params: &Params, time: f64, state: State) -> Self {
         let constants = FreeConstants::new(params);
         FreeFlightSolver {

@@ -34,6 +34,7 @@ impl<S: Solvers> Piecewise<S> {
     /// # Errors
     /// [`PropagationError::Diverged`] for a start beyond the divergence radius, or what `build`
     /// reports.
+    #[inline(always)]
     pub fn new(
         problem: &Problem,
         budget: Option<StepBudget>,

@@ -94,6 +94,7 @@ pub struct ReferenceSolver<S: Scheme<4>, F: FieldFamily = Params> {
 impl<S: Scheme<4>> ReferenceSolver<S> {
     /// A solver of `regime`'s field (slip direction `slip`) started at `(t0, state)` with
     /// `rtol = atol = tol` (the analytic and hybrid methods' rolling segments use it too).
+    #[inline]
     pub fn new(
         params: &Params,
         regime: Regime,
@@ -109,6 +110,7 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
     /// driver starts it ([`SegmentSolver::start`]) at the segment's first switch. For the
     /// regimes a run does not start in (building a started one costs two field evaluations, the
     /// initial step's power and the switch measures, for a solver that is restarted anyway).
+    #[inline]
     pub(crate) fn unstarted(
         params: &Params,
         regime: Regime,
