@@ -52,27 +52,29 @@ impl FreeTransition {
     pub fn new(params: &Params, constants: &FreeConstants, dt: f64) -> Self {
         // The unforced free step, offsets zero; the basis and the rotation at dt once for all
         // six columns.
-        let unforced = constants.with_input((0.0, 0.0));
-        let at_dt = FreeInstant::at(&unforced, dt);
-        let mut phi = [[0.0; 4]; 4];
-        for j in 0..4 {
-            let mut unit = [0.0; 4];
-            if let Some(u) = unit.get_mut(j) {
-                *u = 1.0;
-            }
-            let column = column(&unforced, &at_dt, unit, (0.0, 0.0));
-            for (row, value) in phi.iter_mut().zip(column) {
-                if let Some(r) = row.get_mut(j) {
-                    *r = value;
+        let (phi, g, at_dt) = constants.unforced(|unforced| {
+            let at_dt = FreeInstant::at(unforced, dt);
+            let mut phi = [[0.0; 4]; 4];
+            for j in 0..4 {
+                let mut unit = [0.0; 4];
+                if let Some(u) = unit.get_mut(j) {
+                    *u = 1.0;
+                }
+                let column = column(unforced, &at_dt, unit, (0.0, 0.0));
+                for (row, value) in phi.iter_mut().zip(column) {
+                    if let Some(r) = row.get_mut(j) {
+                        *r = value;
+                    }
                 }
             }
-        }
+            (phi, forcing_columns(unforced, &at_dt), at_dt)
+        });
         let mut transition = FreeTransition {
             dt,
             phi,
-            g: forcing_columns(&unforced, &at_dt),
+            g,
             rotation: at_dt.rotation(),
-            constants: unforced,
+            constants: *constants,
             basis: BasisBound::on(constants, 0.0, dt),
             basis_at_dt: at_dt.basis(),
             offset: (params.offset_x, params.offset_y),
@@ -92,10 +94,12 @@ impl FreeTransition {
             *self = Self::new(params, constants, self.dt);
             return;
         }
-        let unforced = constants.with_input((0.0, 0.0));
-        let at_dt = FreeInstant::with_basis(&unforced, self.dt, self.basis_at_dt);
-        self.g = forcing_columns(&unforced, &at_dt);
-        self.rotation = at_dt.rotation();
+        let (g, rotation) = constants.unforced(|unforced| {
+            let at_dt = FreeInstant::with_basis(unforced, self.dt, self.basis_at_dt);
+            (forcing_columns(unforced, &at_dt), at_dt.rotation())
+        });
+        self.g = g;
+        self.rotation = rotation;
         self.basis = self.basis.with_forcing(constants, self.dt);
         self.offset = (params.offset_x, params.offset_y);
         self.set_input(constants);

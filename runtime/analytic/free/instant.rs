@@ -5,7 +5,8 @@ use super::super::basis::free_basis;
 use super::super::segment::Point;
 use super::{Form, FreeConstants};
 use crate::coefficients::{
-    self as coef, ForcedBasis, FreeBasis, FreeDampedFrequency, ModelParams, Phasor,
+    self as coef, ForcedBasis, FreeBasis, FreeDampedFrequency, FreeHomogeneous, FreeState,
+    ModelParams, Phasor,
 };
 use crate::math;
 use crate::params::State;
@@ -55,6 +56,26 @@ impl FreeInstant {
     }
 }
 
+/// The steady form (homogeneous constants `homogeneous`, start phasor `phase0`) at `at`.
+#[inline(always)]
+pub(super) fn steady(
+    c: &FreeConstants,
+    model: &ModelParams,
+    phase0: (f64, f64),
+    homogeneous: &FreeHomogeneous,
+    at: &FreeInstant,
+) -> FreeState {
+    // The forcing phasor at s by angle addition from the segment start.
+    let (c0, s0) = phase0;
+    let (cd, sd) = at.rotation;
+    let phasor = Phasor {
+        ct: c0 * cd - s0 * sd,
+        st: s0 * cd + c0 * sd,
+    };
+    let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
+    coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &at.basis)
+}
+
 /// A free segment's point at `at`: its closed form (`form`, from start phasor `phase0`)
 /// evaluated with the model `model` and moved back by the static deflection of `c`.
 #[inline(always)]
@@ -69,14 +90,7 @@ pub(super) fn evaluate(
     let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
     let (x, y, vx, vy, h, dh) = match form {
         Form::Steady(homogeneous) => {
-            // The forcing phasor at s by angle addition from the segment start.
-            let (c0, s0) = phase0;
-            let (cd, sd) = at.rotation;
-            let phasor = Phasor {
-                ct: c0 * cd - s0 * sd,
-                st: s0 * cd + c0 * sd,
-            };
-            let r = coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &basis);
+            let r = steady(c, model, phase0, homogeneous, at);
             (r.x, r.y, r.vx, r.vy, r.h, r.dh)
         }
         Form::Forced {

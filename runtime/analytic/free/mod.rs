@@ -88,6 +88,17 @@ impl FreeConstants {
         }
     }
 
+    /// `f` of these constants without input force: of `self` itself when it has none (then
+    /// [`Self::with_input`] of (0, 0) would copy the same values).
+    #[inline]
+    pub(crate) fn unforced<R>(&self, f: impl FnOnce(&FreeConstants) -> R) -> R {
+        if self.model.force_x.to_bits() == 0 && self.model.force_y.to_bits() == 0 {
+            f(self)
+        } else {
+            f(&self.with_input((0.0, 0.0)))
+        }
+    }
+
     /// The static deflection under the input force ((0, 0) without one).
     pub fn deflection(&self) -> (f64, f64) {
         self.deflection
@@ -299,6 +310,21 @@ impl FreeSegment {
         state: State,
         at: &FreeInstant,
     ) -> State {
+        let c = constants;
+        if c.resonance.is_none() && c.deflection == (0.0, 0.0) {
+            // The steady form without a shift, called directly: the arithmetic of the general
+            // path below (`parts` then `evaluate`) without building its form.
+            let model = ModelParams {
+                ex: 0.0,
+                ey: 0.0,
+                ..c.model
+            };
+            let (ct, st) = phasor;
+            let h =
+                coef::free_homogeneous(&model, &state.into(), &Phasor { ct, st }, &c.particular);
+            let r = instant::steady(c, &model, phasor, &h, at);
+            return State::new(r.x, r.y, r.vx, r.vy);
+        }
         let (model, form, _) = Self::parts(constants, (0.0, 0.0), 0.0, phasor, state, |_, _| 0.0);
         evaluate(constants, &model, phasor, &form, at).state
     }
