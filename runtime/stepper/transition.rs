@@ -50,11 +50,53 @@ pub struct FreeTransition {
 impl FreeTransition {
     /// The map over `dt` (> 0) for `params`, with their free constants.
     pub fn new(params: &Params, constants: &FreeConstants, dt: f64) -> Self {
+        let mut transition = FreeTransition {
+            dt,
+            phi: [[0.0; 4]; 4],
+            g: [[0.0; 2]; 4],
+            rotation: (1.0, 0.0),
+            constants: *constants,
+            basis: BasisBound::on(constants, 0.0, dt),
+            basis_at_dt: FreeBasis::default(),
+            offset: (params.offset_x, params.offset_y),
+            offset_distance: 0.0,
+            input: None,
+        };
+        transition.compute(params, constants);
+        transition
+    }
+
+    /// Take changed parameters, the step kept: the map [`Self::new`] gives for them, with
+    /// Φ(dt), the basis at dt and its bounds kept when unforced free flight is unchanged
+    /// ([`FreeConstants::same_unforced`]: the same damping, no resonance-stable form) — a
+    /// change of speed, forcing, stator or input force recomputes G(dt) and the rotation only.
+    /// In place either way (the map is 600 bytes).
+    pub fn set_params(&mut self, params: &Params, constants: &FreeConstants) {
+        if !self.constants.same_unforced(constants) {
+            self.basis = BasisBound::on(constants, 0.0, self.dt);
+            self.compute(params, constants);
+            return;
+        }
+        let (g, rotation) = constants.unforced(|unforced| {
+            let at_dt = FreeInstant::with_basis(unforced, self.dt, self.basis_at_dt);
+            (forcing_columns(unforced, &at_dt), at_dt.rotation())
+        });
+        self.g = g;
+        self.rotation = rotation;
+        self.basis = self.basis.with_forcing(constants, self.dt);
+        self.offset = (params.offset_x, params.offset_y);
+        self.set_input(constants);
+    }
+
+    /// Φ, G, the rotation and the basis at dt for `constants` (the basis bounds are the
+    /// caller's), then the input force's part.
+    fn compute(&mut self, params: &Params, constants: &FreeConstants) {
         // The unforced free step, offsets zero; the basis and the rotation at dt once for all
         // six columns.
-        let (phi, g, at_dt) = constants.unforced(|unforced| {
+        let dt = self.dt;
+        let phi = &mut self.phi;
+        let (g, at_dt) = constants.unforced(|unforced| {
             let at_dt = FreeInstant::at(unforced, dt);
-            let mut phi = [[0.0; 4]; 4];
             for j in 0..4 {
                 let mut unit = [0.0; 4];
                 if let Some(u) = unit.get_mut(j) {
@@ -67,40 +109,11 @@ impl FreeTransition {
                     }
                 }
             }
-            (phi, forcing_columns(unforced, &at_dt), at_dt)
-        });
-        let mut transition = FreeTransition {
-            dt,
-            phi,
-            g,
-            rotation: at_dt.rotation(),
-            constants: *constants,
-            basis: BasisBound::on(constants, 0.0, dt),
-            basis_at_dt: at_dt.basis(),
-            offset: (params.offset_x, params.offset_y),
-            offset_distance: 0.0,
-            input: None,
-        };
-        transition.set_input(constants);
-        transition
-    }
-
-    /// Take changed parameters, the step kept: the map [`Self::new`] gives for them, with
-    /// Φ(dt), the basis at dt and its bounds kept when unforced free flight is unchanged
-    /// ([`FreeConstants::same_unforced`]: the same damping, no resonance-stable form) — a
-    /// change of speed, forcing, stator or input force recomputes G(dt) and the rotation only.
-    pub fn set_params(&mut self, params: &Params, constants: &FreeConstants) {
-        if !self.constants.same_unforced(constants) {
-            *self = Self::new(params, constants, self.dt);
-            return;
-        }
-        let (g, rotation) = constants.unforced(|unforced| {
-            let at_dt = FreeInstant::with_basis(unforced, self.dt, self.basis_at_dt);
-            (forcing_columns(unforced, &at_dt), at_dt.rotation())
+            (forcing_columns(unforced, &at_dt), at_dt)
         });
         self.g = g;
-        self.rotation = rotation;
-        self.basis = self.basis.with_forcing(constants, self.dt);
+        self.rotation = at_dt.rotation();
+        self.basis_at_dt = at_dt.basis();
         self.offset = (params.offset_x, params.offset_y);
         self.set_input(constants);
     }
