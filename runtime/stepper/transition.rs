@@ -25,6 +25,7 @@ use crate::params::{Params, State};
 /// a parameter change that keeps the damping reuses Φ, the basis and its bounds
 /// ([`Self::set_params`]).
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub struct FreeTransition {
     dt: f64,
     /// Φ(dt), row-major: `phi[i][j]` is component i of the end state for a unit component j
