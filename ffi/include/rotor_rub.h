@@ -353,7 +353,8 @@ int32_t rotor_rub_stepper_step(struct RotorRubStepper *stepper,
                                struct RotorRubStepResult *result);
 
 // Replace the parameters from the current time on (e.g. a speed ramp); costs a recomputation
-// of the precomputed free-flight map. On error nothing changes.
+// of the precomputed free-flight map (its transition matrix kept unless the damping changes).
+// On error nothing changes.
 //
 // Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` or `params` is null;
 // `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_PARAMS` if
