@@ -394,24 +394,21 @@ fn main() {
     }
     let problem = Preset::Paper.problem();
     let start = Stepper::new(&problem, StepperConfig::default()).expect("stepper");
-    let mut faster = problem.params;
+    let (mut faster, mut damped) = (problem.params, problem.params);
     faster.speed_ratio = 1.6;
-    c.bench_function("set_params (speed change: keeps Φ)", |b| {
-        b.iter_batched_ref(
-            || start,
-            |s| s.set_params(black_box(&faster)).expect("valid"),
-            BatchSize::SmallInput,
-        )
-    });
-    let mut damped = problem.params;
     damped.damping_ratio = 0.2;
-    c.bench_function("set_params (damping change: recomputes Φ)", |b| {
-        b.iter_batched_ref(
-            || start,
-            |s| s.set_params(black_box(&damped)).expect("valid"),
-            BatchSize::SmallInput,
-        )
-    });
+    for (name, changed) in [
+        ("set_params (speed change: keeps Φ)", faster),
+        ("set_params (damping change: recomputes Φ)", damped),
+    ] {
+        c.bench_function(name, |b| {
+            b.iter_batched_ref(
+                || start,
+                |s| s.set_params(black_box(&changed)).expect("valid"),
+                BatchSize::SmallInput,
+            )
+        });
+    }
     c.bench_function("rk4/one step", |b| {
         b.iter(|| rk4_step(&problem, black_box(1.0), black_box(&problem.initial), 1e-3))
     });
