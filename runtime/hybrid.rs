@@ -92,43 +92,35 @@ pub struct Dop853Contact {
 }
 
 impl Dop853Contact {
+    /// The contact solver of `params` started at `(t0, s0)` in slip direction `slip`.
     #[inline]
     fn new(params: &Params, tol: f64, slip: f64, t0: f64, s0: State) -> Self {
-        let system = ContactField {
-            model: ModelParams::of(params),
-            slip,
-        };
-        // A quarter of the shorter of the forcing period and 2π, as the reference integrators.
-        let max_step = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
-        let integrator = Integrator::new(
-            &system,
-            t0,
-            PhasorRotorSystem::initial(params, t0, &s0),
-            Tolerance::uniform(tol),
-            max_step,
-        );
-        Dop853Contact {
-            params: *params,
-            system,
-            integrator,
-            max_step,
-            carried_step: None,
-            stepped: false,
-            step: Dop853Step::default(),
-            dense: None,
-            exit: None,
-            switches: Switches::new(
-                params,
-                Regime::Contact,
-                slip,
-                t0,
-                &PhasorRotorSystem::initial(params, t0, &s0),
-            ),
-        }
+        let mut solver = Self::unstarted(params, tol, t0, s0);
+        solver.begin(slip, t0, s0);
+        solver
     }
 
-    /// As [`Dop853Contact::new`], not started: built ahead of the first contact, it evaluates
-    /// nothing until the driver starts it there (see [`ReferenceSolver::unstarted`]).
+    /// Start a contact segment at `(time, state)` ([`SegmentSolver::start`]): the slip
+    /// direction, the switch functions, and the integration, with the step size the last
+    /// contact ended with.
+    #[inline]
+    fn begin(&mut self, slip: f64, time: f64, state: State) {
+        self.system.slip = slip;
+        let y = PhasorRotorSystem::initial(&self.params, time, &state);
+        self.switches = Switches::new(&self.params, Regime::Contact, slip, time, &y);
+        match self.carried_step {
+            Some(step) => self
+                .integrator
+                .restart_with_step(&self.system, time, y, step),
+            None => self.integrator.restart(&self.system, time, y),
+        }
+        self.stepped = false;
+        self.exit = None;
+    }
+
+    /// The contact solver of `params`, not started: built ahead of the first contact, it
+    /// evaluates nothing until the driver starts it there ([`SegmentSolver::start`]; see
+    /// [`ReferenceSolver::unstarted`]).
     #[inline]
     fn unstarted(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
         let system = ContactField {
@@ -182,17 +174,7 @@ impl SegmentSolver for Dop853Contact {
         time: f64,
         state: State,
     ) -> Result<(), PropagationError> {
-        self.system.slip = slip;
-        let y = PhasorRotorSystem::initial(&self.params, time, &state);
-        self.switches = Switches::new(&self.params, Regime::Contact, slip, time, &y);
-        match self.carried_step {
-            Some(step) => self
-                .integrator
-                .restart_with_step(&self.system, time, y, step),
-            None => self.integrator.restart(&self.system, time, y),
-        }
-        self.stepped = false;
-        self.exit = None;
+        self.begin(slip, time, state);
         Ok(())
     }
 

@@ -93,7 +93,7 @@ pub struct ReferenceSolver<S: Scheme<4>, F: FieldFamily = Params> {
 
 impl<S: Scheme<4>> ReferenceSolver<S> {
     /// A solver of `regime`'s field (slip direction `slip`) started at `(t0, state)` with
-    /// `rtol = atol = tol` (the analytic and hybrid methods' rolling segments use it too).
+    /// `rtol = atol = tol`.
     #[inline]
     pub fn new(
         params: &Params,
@@ -118,20 +118,7 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
         state: State,
         tol: f64,
     ) -> Self {
-        ReferenceSolver {
-            field: *params,
-            regime,
-            slip: 0.0,
-            switches: Switches::with_offset(params, regime, 0.0, 0.0),
-            integrator: Integrator::unstarted(
-                t0,
-                state.to_array(),
-                Tolerance::uniform(tol),
-                max_step(params),
-            ),
-            step: None,
-            pending: None,
-        }
+        Self::unstarted_with(*params, regime, t0, state, tol)
     }
 }
 
@@ -145,24 +132,41 @@ impl<S: Scheme<4>, F: FieldFamily> ReferenceSolver<S, F> {
         state: State,
         tol: f64,
     ) -> Self {
-        let sys = field.system(regime, slip);
+        let mut solver = Self::unstarted_with(field, regime, t0, state, tol);
+        solver.begin(regime, slip, t0, state);
+        solver
+    }
+
+    /// As [`ReferenceSolver::unstarted`] on any family of fields.
+    #[inline]
+    fn unstarted_with(field: F, regime: Regime, t0: f64, state: State, tol: f64) -> Self {
         let params = field.params();
-        let integrator = Integrator::new(
-            &sys,
-            t0,
-            state.to_array(),
-            Tolerance::uniform(tol),
-            max_step(params),
-        );
         ReferenceSolver {
+            switches: Switches::with_offset(params, regime, 0.0, 0.0),
+            integrator: Integrator::unstarted(
+                t0,
+                state.to_array(),
+                Tolerance::uniform(tol),
+                max_step(params),
+            ),
             field,
             regime,
-            slip,
-            switches: Switches::new(params, regime, slip, t0, &state.to_array()),
-            integrator,
+            slip: 0.0,
             step: None,
             pending: None,
         }
+    }
+
+    /// Take `regime`'s field (slip direction `slip`) and restart the integration at
+    /// `(time, state)` ([`SegmentSolver::start`]).
+    fn begin(&mut self, regime: Regime, slip: f64, time: f64, state: State) {
+        self.regime = regime;
+        self.slip = slip;
+        self.switches = Switches::new(self.field.params(), regime, slip, time, &state.to_array());
+        self.step = None;
+        self.pending = None;
+        let sys = self.system();
+        self.integrator.restart(&sys, time, state.to_array());
     }
 
     fn system(&self) -> F::System {
@@ -190,13 +194,7 @@ impl<S: Scheme<4>, F: FieldFamily> SegmentSolver for ReferenceSolver<S, F> {
         time: f64,
         state: State,
     ) -> Result<(), PropagationError> {
-        self.regime = regime;
-        self.slip = slip;
-        self.switches = Switches::new(self.field.params(), regime, slip, time, &state.to_array());
-        self.step = None;
-        self.pending = None;
-        let sys = self.system();
-        self.integrator.restart(&sys, time, state.to_array());
+        self.begin(regime, slip, time, state);
         Ok(())
     }
 

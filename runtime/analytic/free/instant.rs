@@ -86,8 +86,6 @@ pub(super) fn evaluate(
     form: &Form,
     at: &FreeInstant,
 ) -> Point {
-    let basis = at.basis;
-    let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
     let (x, y, vx, vy, h, dh) = match form {
         Form::Steady(homogeneous) => {
             let r = steady(c, model, phase0, homogeneous, at);
@@ -98,9 +96,11 @@ pub(super) fn evaluate(
             forcing,
             resonance,
         } => {
+            let basis = at.basis;
             let forced = at
                 .forced
                 .unwrap_or_else(|| resonance.basis(at.s, basis.ec, basis.es, at.rotation));
+            let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
             let r = coef::free_forced_eval(model, &beta, start, &basis, forcing, &forced);
             (r.x, r.y, r.vx, r.vy, r.h, r.dh)
         }
