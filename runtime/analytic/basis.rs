@@ -52,51 +52,99 @@ fn cos_sinc_derivative(mu: f64, s: f64) -> (f64, f64) {
     (-0.5 * s * sn, dsn)
 }
 
-/// The free-flight basis (EC, ES) at local time `s` ≥ 0 (`docs/MODEL.md` §4, §6 cases 5, 11, 12).
-pub fn free_basis(nu: f64, beta_sq: f64, s: f64) -> (f64, f64) {
-    let x = beta_sq * s * s;
-    if math::abs(x) < SERIES_LIMIT {
-        let d = math::exp(-nu * s);
-        let (c, sn) = series(x);
-        return (d * c, d * sn * s);
+/// ν and β² with what the free basis and its bounds derive from them alone: √|β²|, the slowest
+/// decay rate κ and the two caps of |ES|. Computed once per parameter set ([`FreeRates::new`])
+/// instead of at every evaluation — the same operations on the same numbers, so the same bits —
+/// which takes a square root (and a division for the bound) off every evaluation's critical
+/// path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FreeRates {
+    /// ν.
+    pub nu: f64,
+    /// β² = 1 − ν².
+    pub beta_sq: f64,
+    /// √|β²|.
+    root: f64,
+    /// κ: ν, or ν − √(−β²) when over-damped.
+    decay: f64,
+    /// |ES| ≤ e^{−κ lo}·min(hi, `es_cap`): 1/β, 1/(2b), or ∞ at β² = 0.
+    es_cap: f64,
+    /// 2/(κe) (used when κ > 0): |ES| ≤ `es_alt`·e^{−κ lo/2}.
+    es_alt: f64,
+}
+
+impl FreeRates {
+    /// The rates of damping ratio `nu` with β² = `beta_sq`.
+    pub fn new(nu: f64, beta_sq: f64) -> Self {
+        let root = math::sqrt(math::abs(beta_sq));
+        let (decay, es_cap) = if beta_sq > 0.0 {
+            (nu, 1.0 / root)
+        } else if beta_sq < 0.0 {
+            (nu - root, 0.5 / root)
+        } else {
+            (nu, f64::INFINITY)
+        };
+        FreeRates {
+            nu,
+            beta_sq,
+            root,
+            decay,
+            es_cap,
+            es_alt: 2.0 / (decay * core::f64::consts::E),
+        }
     }
-    if beta_sq > 0.0 {
-        let b = math::sqrt(beta_sq);
-        let d = math::exp(-nu * s);
-        let (sin, cos) = math::sin_cos(b * s);
-        (d * cos, d * sin / b)
-    } else {
-        // e^{−νs} cosh(bs) = (e^{(b−ν)s} + e^{−(b+ν)s})/2 with b < ν: no overflow.
-        let b = math::sqrt(-beta_sq);
-        let slow = math::exp((b - nu) * s);
-        let fast = math::exp(-(b + nu) * s);
-        (0.5 * (slow + fast), 0.5 * (slow - fast) / b)
+
+    /// The free-flight basis (EC, ES) at local time `s` ≥ 0 (`docs/MODEL.md` §4, §6 cases 5,
+    /// 11, 12).
+    #[inline]
+    pub fn basis(&self, s: f64) -> (f64, f64) {
+        let (nu, beta_sq) = (self.nu, self.beta_sq);
+        let x = beta_sq * s * s;
+        if math::abs(x) < SERIES_LIMIT {
+            let d = math::exp(-nu * s);
+            let (c, sn) = series(x);
+            return (d * c, d * sn * s);
+        }
+        let b = self.root;
+        if beta_sq > 0.0 {
+            let d = math::exp(-nu * s);
+            let (sin, cos) = math::sin_cos(b * s);
+            (d * cos, d * sin / b)
+        } else {
+            // e^{−νs} cosh(bs) = (e^{(b−ν)s} + e^{−(b+ν)s})/2 with b < ν: no overflow.
+            let slow = math::exp((b - nu) * s);
+            let fast = math::exp(-(b + nu) * s);
+            (0.5 * (slow + fast), 0.5 * (slow - fast) / b)
+        }
+    }
+
+    /// Upper bounds of |EC| and |ES| on s ∈ [lo, hi] (`hi` may be infinite).
+    ///
+    /// |EC| ≤ e^{−κ lo} with κ the slowest decay rate (ν, or ν − √(−β²) when over-damped), and
+    /// |ES| ≤ e^{−κ lo}·min(hi, 1/β or 1/(2b)) as well as |ES| ≤ s e^{−κs} ≤ (2/(κe)) e^{−κ lo/2}.
+    #[inline]
+    pub fn bound(&self, lo: f64, hi: f64) -> (f64, f64) {
+        let rate = self.decay;
+        // One exponential: e^{−κ lo} = (e^{−κ lo/2})², rounded up by a few ulps so that the
+        // bound stays a bound.
+        let half = math::exp(-0.5 * rate * lo);
+        let d = half * half * (1.0 + 4.0 * f64::EPSILON);
+        let mut es = d * hi.min(self.es_cap);
+        if rate > 0.0 {
+            es = es.min(self.es_alt * half);
+        }
+        (d, es)
     }
 }
 
-/// Upper bounds of |EC| and |ES| on s ∈ [lo, hi] (`hi` may be infinite).
-///
-/// |EC| ≤ e^{−κ lo} with κ the slowest decay rate (ν, or ν − √(−β²) when over-damped), and
-/// |ES| ≤ e^{−κ lo}·min(hi, 1/β or 1/(2b)) as well as |ES| ≤ s e^{−κs} ≤ (2/(κe)) e^{−κ lo/2}.
+/// The free-flight basis (EC, ES) at local time `s` ≥ 0: [`FreeRates::basis`].
+pub fn free_basis(nu: f64, beta_sq: f64, s: f64) -> (f64, f64) {
+    FreeRates::new(nu, beta_sq).basis(s)
+}
+
+/// Upper bounds of |EC| and |ES| on s ∈ [lo, hi]: [`FreeRates::bound`].
 pub fn free_basis_bound(nu: f64, beta_sq: f64, lo: f64, hi: f64) -> (f64, f64) {
-    let (rate, es_scale) = if beta_sq > 0.0 {
-        (nu, hi.min(1.0 / math::sqrt(beta_sq)))
-    } else if beta_sq < 0.0 {
-        let b = math::sqrt(-beta_sq);
-        (nu - b, hi.min(0.5 / b))
-    } else {
-        (nu, hi)
-    };
-    // One exponential: e^{−κ lo} = (e^{−κ lo/2})², rounded up by a few ulps so that the bound
-    // stays a bound.
-    let half = math::exp(-0.5 * rate * lo);
-    let d = half * half * (1.0 + 4.0 * f64::EPSILON);
-    let mut es = d * es_scale;
-    if rate > 0.0 {
-        let alt = 2.0 / (rate * core::f64::consts::E) * half;
-        es = es.min(alt);
-    }
-    (d, es)
+    FreeRates::new(nu, beta_sq).bound(lo, hi)
 }
 
 /// A minimal complex number for the complex eigenvalue pair (`docs/MODEL.md` §6 case 2).

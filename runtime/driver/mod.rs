@@ -8,8 +8,9 @@
 //! begins a segment at a switch (or the problem start), [`SegmentSolver::locate`] serves a
 //! target time from what it has computed (the state there, the switch that ends the segment, or
 //! a request for the next step), and [`SegmentSolver::step`] computes the next step and searches it
-//! for the switch. [`Solvers`] hands the driver the solver of each [`Regime`]; [`ByRegime`] pairs a
-//! free-flight solver with a contact solver. A new regime (rolling, under friction) is one more
+//! for the switch. [`Solvers`] hands the driver the solver of each [`Regime`] (and serves its
+//! targets by a static match, [`Solvers::locate`]); [`ByRegime`] pairs a free-flight solver with
+//! a contact solver. A new regime (rolling, under friction) is one more
 //! solver and one more arm in the [`Solvers`] impl; a new switch is one more
 //! [`crate::propagate::EventKind`] with its regime after: the state machine stays as it is.
 //!
@@ -95,6 +96,14 @@ pub trait SegmentSolver {
 pub trait Solvers {
     /// The solver of `regime`'s segments.
     fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver;
+
+    /// [`SegmentSolver::locate`] on the solver of `regime`: what the driver asks for every
+    /// target, so an implementation dispatches it statically (inlined) instead of through
+    /// [`Self::solver`]'s `dyn` reference.
+    #[inline]
+    fn locate(&mut self, regime: Regime, target: f64) -> Located {
+        self.solver(regime).locate(target)
+    }
 }
 
 /// A free-flight solver, a contact solver and a rolling solver (rolling occurs only under
@@ -114,6 +123,15 @@ impl<F: SegmentSolver, C: SegmentSolver, R: SegmentSolver> Solvers for ByRegime<
             Regime::Free => &mut self.free,
             Regime::Contact => &mut self.contact,
             Regime::Rolling => &mut self.rolling,
+        }
+    }
+
+    #[inline]
+    fn locate(&mut self, regime: Regime, target: f64) -> Located {
+        match regime {
+            Regime::Free => self.free.locate(target),
+            Regime::Contact => self.contact.locate(target),
+            Regime::Rolling => self.rolling.locate(target),
         }
     }
 }

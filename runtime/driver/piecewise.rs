@@ -122,8 +122,7 @@ impl<S: Solvers> Propagate for Piecewise<S> {
             .map(|b| b.base + b.per_time_unit * (target - self.time));
         let mut steps = 0.0;
         loop {
-            let solver = self.solvers.solver(self.regime);
-            match solver.locate(target) {
+            match self.solvers.locate(self.regime, target) {
                 Located::Reached(state) => {
                     self.time = target;
                     self.state = state;
@@ -137,6 +136,7 @@ impl<S: Solvers> Propagate for Piecewise<S> {
                     if let Some(e) = self.failure {
                         return Err(e);
                     }
+                    let solver = self.solvers.solver(self.regime);
                     if let Some(limit) = limit {
                         if steps >= limit {
                             return Err(PropagationError::StepSizeUnderflow {

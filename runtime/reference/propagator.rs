@@ -183,6 +183,11 @@ impl<S: Scheme<4>, F: FieldFamily> Solvers for ReferenceSolver<S, F> {
     fn solver(&mut self, _regime: Regime) -> &mut dyn SegmentSolver {
         self
     }
+
+    #[inline]
+    fn locate(&mut self, _regime: Regime, target: f64) -> Located {
+        SegmentSolver::locate(self, target)
+    }
 }
 
 impl<S: Scheme<4>, F: FieldFamily> SegmentSolver for ReferenceSolver<S, F> {

@@ -63,7 +63,10 @@ impl FreeTransition {
             basis: BasisBound::on(constants, 0.0, dt),
             basis_at_dt: FreeBasis::default(),
             offset: (params.offset_x, params.offset_y),
-            offset_distance: 0.0,
+            offset_distance: FreeSegment::offset_distance(
+                constants,
+                (params.offset_x, params.offset_y),
+            ),
             input: None,
         };
         transition.compute(params, constants);
@@ -88,8 +91,7 @@ impl FreeTransition {
         self.g = g;
         self.rotation = rotation;
         self.basis = self.basis.with_forcing(constants, self.dt);
-        self.offset = (params.offset_x, params.offset_y);
-        self.set_input(constants);
+        self.take_input(Some((params.offset_x, params.offset_y)), constants);
     }
 
     /// Φ, G, the rotation and the basis at dt for `constants` (the basis bounds are the
@@ -118,16 +120,25 @@ impl FreeTransition {
         self.g = g;
         self.rotation = at_dt.rotation();
         self.basis_at_dt = at_dt.basis();
-        self.offset = (params.offset_x, params.offset_y);
-        self.set_input(constants);
+        self.take_input(Some((params.offset_x, params.offset_y)), constants);
     }
 
     /// Take the input force of `constants` (the same parameters otherwise): b = d − Φ·d for
     /// its static deflection d, and the constants of the switch bound. Φ and G are kept.
     pub fn set_input(&mut self, constants: &FreeConstants) {
+        self.take_input(None, constants);
+    }
+
+    /// [`Self::set_input`], with the stator offset `offset` if given. |ε − d| (a `hypot`) is
+    /// computed again only when ε or d changed.
+    fn take_input(&mut self, offset: Option<(f64, f64)>, constants: &FreeConstants) {
+        let offset = offset.unwrap_or(self.offset);
         let (dx, dy) = constants.deflection();
+        if offset != self.offset || (dx, dy) != self.constants.deflection() {
+            self.offset_distance = FreeSegment::offset_distance(constants, offset);
+        }
+        self.offset = offset;
         self.constants = *constants;
-        self.offset_distance = FreeSegment::offset_distance(constants, self.offset);
         self.input = if (dx, dy) == (0.0, 0.0) {
             None
         } else {

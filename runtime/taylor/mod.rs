@@ -22,7 +22,7 @@ mod solver;
 pub use solver::TaylorContact;
 
 use crate::analytic::propagator::FreeFlightSolver;
-use crate::driver::{Piecewise, SegmentSolver, Solvers};
+use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
 use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::Problem;
 use crate::propagate::{PropagationError, Regime};
@@ -43,6 +43,14 @@ impl Solvers for TaylorSolvers {
         match regime {
             Regime::Free => &mut self.free,
             Regime::Contact | Regime::Rolling => &mut self.contact,
+        }
+    }
+
+    #[inline]
+    fn locate(&mut self, regime: Regime, target: f64) -> Located {
+        match regime {
+            Regime::Free => self.free.locate(target),
+            Regime::Contact | Regime::Rolling => self.contact.locate(target),
         }
     }
 }

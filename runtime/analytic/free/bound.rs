@@ -3,7 +3,6 @@
 //! |r − ε|, |r'| and |r''|; the singular value σ(M) of the harmonic part
 //! ([`harmonic_amplitude`]).
 
-use super::super::basis::free_basis_bound;
 use super::super::segment::Bounds;
 use super::FreeConstants;
 use crate::math;
@@ -50,7 +49,7 @@ impl BasisBound {
     /// The bounds on s ∈ [lo, hi] (`hi` may be infinite).
     pub(crate) fn on(constants: &FreeConstants, lo: f64, hi: f64) -> Self {
         let (nu, b2) = (constants.model.nu, math::abs(constants.beta_sq));
-        let (ec, es) = free_basis_bound(nu, constants.beta_sq, lo, hi);
+        let (ec, es) = constants.rates.bound(lo, hi);
         // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
         let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
         let (ddec, ddes) = (nu * dec + b2 * des, dec + nu * des);

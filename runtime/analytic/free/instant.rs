@@ -1,7 +1,6 @@
 //! A free segment's closed form at one local time: the time-dependent values every segment of
 //! a parameter set shares ([`FreeInstant`]) and the evaluation of one form there ([`evaluate`]).
 
-use super::super::basis::free_basis;
 use super::super::segment::Point;
 use super::{Form, FreeConstants};
 use crate::coefficients::{
@@ -27,7 +26,7 @@ pub(crate) struct FreeInstant {
 impl FreeInstant {
     /// The values at `s` for segments of `constants`.
     pub(crate) fn at(constants: &FreeConstants, s: f64) -> Self {
-        let (ec, es) = free_basis(constants.model.nu, constants.beta_sq, s);
+        let (ec, es) = constants.rates.basis(s);
         Self::with_basis(constants, s, FreeBasis { ec, es })
     }
 

@@ -30,6 +30,7 @@ pub(crate) use bound::{BasisBound, FreeReach, harmonic_amplitude, plain_norm};
 pub(crate) use instant::FreeInstant;
 use instant::evaluate;
 
+use super::basis::FreeRates;
 use super::forced::Resonance;
 use super::segment::{Bounds, Point, Segment};
 use crate::coefficients::{
@@ -49,6 +50,8 @@ pub struct FreeConstants {
     steady_amplitude: Option<f64>,
     /// The forced basis, within [`super::forced::RESONANT_BAND`] of resonance.
     resonance: Option<Resonance>,
+    /// ν, β² and what the basis and its bounds derive from them.
+    rates: FreeRates,
     /// The static deflection under the input force u (generated `input_static_deflection`;
     /// exactly (0, 0) without one, and then never applied: the unforced path is unchanged).
     deflection: (f64, f64),
@@ -68,6 +71,7 @@ impl FreeConstants {
             beta_sq,
             particular: p,
             steady_amplitude: amp.is_finite().then_some(amp),
+            rates: FreeRates::new(model.nu, beta_sq),
             resonance: Resonance::near(model.nu, beta_sq, model.eta),
             model,
         }

@@ -368,7 +368,8 @@ fn found<P>(k: Knot<P>, certain: bool) -> Search<P> {
 /// when the bound does not prove it (NaN included).
 #[inline]
 pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slack: f64) -> bool {
-    if !(ga <= slack && gb <= slack && m2 >= 0.0 && m2.is_finite()) {
+    // (0 ≤ m2 < ∞ rather than `is_finite`: the same test, two comparisons.)
+    if !(ga <= slack && gb <= slack && (0.0..f64::INFINITY).contains(&m2)) {
         return false;
     }
     let c1 = dga - dgb + m2 * len;
@@ -386,7 +387,15 @@ pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slac
     }
     let c0 = ga - gb + dgb * len - 0.5 * m2 * len * len;
     let meet = if c1 > 0.0 {
-        let t = (-c0 / c1).clamp(0.0, len);
+        // `clamp` without its assertion (len ≥ 0 here; NaN passes through as with `clamp`).
+        let t = -c0 / c1;
+        let t = if t < 0.0 {
+            0.0
+        } else if t > len {
+            len
+        } else {
+            t
+        };
         ga + dga * t + 0.5 * m2 * t * t
     } else if c1 == 0.0 {
         ga.max(gb)
