@@ -48,7 +48,7 @@ pub(crate) struct BasisBound {
 impl BasisBound {
     /// The bounds on s ∈ [lo, hi] (`hi` may be infinite).
     pub(crate) fn on(constants: &FreeConstants, lo: f64, hi: f64) -> Self {
-        let (nu, b2) = (constants.model.nu, math::abs(constants.beta_sq));
+        let (nu, b2) = (constants.model.nu, math::abs(constants.beta_sq()));
         let (ec, es) = constants.rates.bound(lo, hi);
         // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
         let (dec, des) = (nu * ec + b2 * es, ec + nu * es);

@@ -71,7 +71,9 @@ pub(super) fn steady(
         ct: c0 * cd - s0 * sd,
         st: s0 * cd + c0 * sd,
     };
-    let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
+    let beta = FreeDampedFrequency {
+        beta_sq: c.beta_sq(),
+    };
     coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &at.basis)
 }
 
@@ -99,7 +101,9 @@ pub(super) fn evaluate(
             let forced = at
                 .forced
                 .unwrap_or_else(|| resonance.basis(at.s, basis.ec, basis.es, at.rotation));
-            let beta = FreeDampedFrequency { beta_sq: c.beta_sq };
+            let beta = FreeDampedFrequency {
+                beta_sq: c.beta_sq(),
+            };
             let r = coef::free_forced_eval(model, &beta, start, &basis, forcing, &forced);
             (r.x, r.y, r.vx, r.vy, r.h, r.dh)
         }

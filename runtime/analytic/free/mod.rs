@@ -42,15 +42,13 @@ use crate::params::{Params, State};
 /// Per-parameter-set constants of free flight (computed once per propagation).
 #[derive(Clone, Copy, Debug)]
 pub struct FreeConstants {
-    /// β² = 1 − ν².
-    pub beta_sq: f64,
     /// Steady-state harmonic response (not finite at ν = 0, η = 1).
     pub particular: FreeParticular,
     /// σ of the steady-state response, when finite.
     steady_amplitude: Option<f64>,
     /// The forced basis, within [`super::forced::RESONANT_BAND`] of resonance.
     resonance: Option<Resonance>,
-    /// ν, β² and what the basis and its bounds derive from them.
+    /// ν, β² = 1 − ν² and what the basis and its bounds derive from them.
     rates: FreeRates,
     /// The static deflection under the input force u (generated `input_static_deflection`;
     /// exactly (0, 0) without one, and then never applied: the unforced path is unchanged).
@@ -68,7 +66,6 @@ impl FreeConstants {
         let amp = harmonic_amplitude(p.c11, p.c22, p.c33, p.c44);
         FreeConstants {
             deflection: deflection(&model),
-            beta_sq,
             particular: p,
             steady_amplitude: amp.is_finite().then_some(amp),
             rates: FreeRates::new(model.nu, beta_sq),
@@ -103,6 +100,12 @@ impl FreeConstants {
         }
     }
 
+    /// β² = 1 − ν².
+    #[inline]
+    pub fn beta_sq(&self) -> f64 {
+        self.rates.beta_sq
+    }
+
     /// The static deflection under the input force ((0, 0) without one).
     pub fn deflection(&self) -> (f64, f64) {
         self.deflection
@@ -121,7 +124,7 @@ impl FreeConstants {
         self.resonance.is_none()
             && other.resonance.is_none()
             && self.model.nu.to_bits() == other.model.nu.to_bits()
-            && self.beta_sq.to_bits() == other.beta_sq.to_bits()
+            && self.rates.beta_sq.to_bits() == other.rates.beta_sq.to_bits()
     }
 }
 
