@@ -16,6 +16,10 @@
 //                               after:    10 add    14 mul    0 div   0 sqrt   0 trans
 // free_eval                    before:    53 add    74 mul    0 div   0 sqrt   0 trans
 //                               after:    25 add    29 mul    0 div   0 sqrt   0 trans
+// free_step_transition         before:    10 add    12 mul    0 div   0 sqrt   0 trans
+//                               after:     4 add     5 mul    0 div   0 sqrt   0 trans
+// free_step_forcing            before:    40 add    68 mul    0 div   0 sqrt   0 trans
+//                               after:    30 add    51 mul    0 div   0 sqrt   0 trans
 // free_forcing                 before:     0 add     4 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     3 mul    0 div   0 sqrt   0 trans
 // free_start                   before:     2 add     2 mul    0 div   0 sqrt   0 trans
@@ -390,6 +394,14 @@ pub struct FreeForcing {
     /// sin ηs coefficient of the y forcing
     pub fys: f64,
 }
+/// The forcing phasor's rotation (cos ηs, sin ηs) over a local time s.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ForcingRotation {
+    /// cos ηs
+    pub ce: f64,
+    /// sin ηs
+    pub se: f64,
+}
 /// The forced basis at s: zero-state responses FC, FS of the free oscillator to cos ηs, sin ηs and their derivatives (`docs/MODEL.md` §11).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ForcedBasis {
@@ -633,6 +645,140 @@ pub fn free_eval(
         vy: t11,
         h: t12 * t12 + t13 * t13 - 1.0,
         dh: 2.0 * t10 * t12 + 2.0 * t11 * t13,
+    }
+}
+/// Outputs of [`free_step_transition`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FreeStepTransition {
+    /// ∂x/∂x0
+    pub p00: f64,
+    /// ∂x/∂y0
+    pub p01: f64,
+    /// ∂x/∂x0'
+    pub p02: f64,
+    /// ∂x/∂y0'
+    pub p03: f64,
+    /// ∂y/∂x0
+    pub p10: f64,
+    /// ∂y/∂y0
+    pub p11: f64,
+    /// ∂y/∂x0'
+    pub p12: f64,
+    /// ∂y/∂y0'
+    pub p13: f64,
+    /// ∂x'/∂x0
+    pub p20: f64,
+    /// ∂x'/∂y0
+    pub p21: f64,
+    /// ∂x'/∂x0'
+    pub p22: f64,
+    /// ∂x'/∂y0'
+    pub p23: f64,
+    /// ∂y'/∂x0
+    pub p30: f64,
+    /// ∂y'/∂y0
+    pub p31: f64,
+    /// ∂y'/∂x0'
+    pub p32: f64,
+    /// ∂y'/∂y0'
+    pub p33: f64,
+}
+/// Φ(s), the transition matrix of unforced free flight over a step of length s (state order x, y, x', y'; `pij` is row i, column j), from the basis EC(s), ES(s).
+///
+/// Source: docs/MODEL.md §4.
+/// Derivation: the steady-form trajectory X·EC + P·ES + xp with X, P, Y, Q from the start state, at the unit start states with the forcing phasor zero.
+#[inline]
+#[must_use]
+pub fn free_step_transition(
+    model: &ModelParams,
+    beta: &FreeDampedFrequency,
+    basis: &FreeBasis,
+) -> FreeStepTransition {
+    let nu = model.nu;
+    let beta_sq = beta.beta_sq;
+    let ec = basis.ec;
+    let es = basis.es;
+    let t0 = ec + nu * es;
+    let t1 = ec - nu * es;
+    let t2 = nu * t1 - nu * ec - es * beta_sq;
+    FreeStepTransition {
+        p00: t0,
+        p01: 0.0,
+        p02: es,
+        p03: 0.0,
+        p10: 0.0,
+        p11: t0,
+        p12: 0.0,
+        p13: es,
+        p20: t2,
+        p21: 0.0,
+        p22: t1,
+        p23: 0.0,
+        p30: 0.0,
+        p31: t2,
+        p32: 0.0,
+        p33: t1,
+    }
+}
+/// Outputs of [`free_step_forcing`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FreeStepForcing {
+    /// x from the start phasor (1, 0)
+    pub g00: f64,
+    /// x from the start phasor (0, 1)
+    pub g01: f64,
+    /// y from the start phasor (1, 0)
+    pub g10: f64,
+    /// y from the start phasor (0, 1)
+    pub g11: f64,
+    /// x' from the start phasor (1, 0)
+    pub g20: f64,
+    /// x' from the start phasor (0, 1)
+    pub g21: f64,
+    /// y' from the start phasor (1, 0)
+    pub g30: f64,
+    /// y' from the start phasor (0, 1)
+    pub g31: f64,
+}
+/// G(s), the forced response of free flight over a step of length s from rest (row i: x, y, x', y'; column 0 for the start phasor (1, 0), column 1 for (0, 1)), from the basis EC(s), ES(s) and the forcing's rotation (cos ηs, sin ηs).
+///
+/// Source: docs/MODEL.md §4.
+/// Derivation: the steady-form trajectory X·EC + P·ES + xp with X, P, Y, Q from the start state and the phasor at s by angle addition, at the zero start state and the unit start phasors.
+#[inline]
+#[must_use]
+pub fn free_step_forcing(
+    model: &ModelParams,
+    free: &FreeParticular,
+    beta: &FreeDampedFrequency,
+    basis: &FreeBasis,
+    rotation: &ForcingRotation,
+) -> FreeStepForcing {
+    let nu = model.nu;
+    let eta = model.eta;
+    let c11 = free.c11;
+    let c22 = free.c22;
+    let c33 = free.c33;
+    let c44 = free.c44;
+    let beta_sq = beta.beta_sq;
+    let ec = basis.ec;
+    let es = basis.es;
+    let ce = rotation.ce;
+    let se = rotation.se;
+    let t0 = -(c11 * nu) - eta * c22;
+    let t1 = eta * c11 - c22 * nu;
+    let t2 = -(c33 * nu) - eta * c44;
+    let t3 = eta * c33 - c44 * nu;
+    let t4 = nu * ec + es * beta_sq;
+    let t5 = ec - nu * es;
+    FreeStepForcing {
+        g00: c11 * ce + c22 * se + es * t0 - c11 * ec,
+        g01: c22 * ce + es * t1 - c11 * se - c22 * ec,
+        g10: c33 * ce + c44 * se + es * t2 - c33 * ec,
+        g11: c44 * ce + es * t3 - c33 * se - c44 * ec,
+        g20: eta * c22 * ce + c11 * t4 + t5 * t0 - eta * c11 * se,
+        g21: c22 * t4 + t5 * t1 - eta * c11 * ce - eta * c22 * se,
+        g30: eta * c44 * ce + c33 * t4 + t5 * t2 - eta * c33 * se,
+        g31: c44 * t4 + t5 * t3 - eta * c33 * ce - eta * c44 * se,
     }
 }
 /// Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = fxc cos ηs + fxs sin ηs, fy = fyc cos ηs + fys sin ηs.

@@ -70,6 +70,7 @@ impl Resonance {
     /// The forced basis for damping `nu`, β² = `beta_sq` and forcing frequency `eta`, when the
     /// forcing lies within [`RESONANT_BAND`] of resonance (`None` elsewhere: the steady-state form
     /// is accurate there).
+    #[inline]
     pub fn near(nu: f64, beta_sq: f64, eta: f64) -> Option<Self> {
         // β² > 0 (NaN excluded): the band lies well inside the under-damped range.
         if beta_sq.is_nan() || beta_sq <= 0.0 {
@@ -82,6 +83,13 @@ impl Resonance {
         if math::abs(gap) >= RESONANT_BAND + 8.0 * f64::EPSILON * (eta_sq + beta_sq) {
             return None;
         }
+        Self::within_band(nu, beta_sq, eta)
+    }
+
+    /// [`Self::near`] past its quick rejections (out of line: the common case, far from
+    /// resonance, stays in the caller's registers).
+    #[inline(never)]
+    fn within_band(nu: f64, beta_sq: f64, eta: f64) -> Option<Self> {
         let beta = math::sqrt(beta_sq);
         let delta_plus = (nu, eta - beta);
         let delta_minus = (nu, eta + beta);

@@ -4,26 +4,30 @@
 //! The free equations (`docs/MODEL.md` §4) are linear with a harmonic forcing, so over a step of
 //! length `dt` the end state is w(dt) = Φ(dt)·w(0) + G(dt)·(cos θ0, sin θ0): Φ is the 4×4
 //! transition matrix of the homogeneous system and G the zero-state response to the forcing over
-//! the step. Both are the free segment ([`FreeSegment`], in the resonance-stable form near
-//! resonance, §11) evaluated at `dt` on unit inputs: the map is linear in (w, cos θ0, sin θ0), so
-//! its columns are its values at the unit vectors. No closed form is typed here, and the switch
-//! bound is the free segment's own (`analytic::free`).
+//! the step. The map is linear in (w, cos θ0, sin θ0), so its columns are the free closed form
+//! at the unit vectors: the generator substitutes them and emits Φ and G as formulas of the
+//! basis at `dt` (`analytic::free::transition_matrix`, `forcing_matrix`; near resonance G's
+//! columns are the resonance-stable form, §11, evaluated on the unit phasors). No closed form is
+//! typed here, and the switch bound is the free segment's own (`analytic::free`).
 //!
 //! Under a constant input force u (`docs/MODEL.md` §15) free flight is free flight about the
 //! static deflection d: w(dt) − d = Φ·(w(0) − d) + G·phasor, so the map gains the constant
 //! b = d − Φ·d, recomputed (16 multiplications) when u changes; Φ and G do not depend on u.
 
 use super::search::local_curvature;
-use crate::analytic::free::{BasisBound, FreeConstants, FreeInstant, FreeSegment, plain_norm};
+use crate::analytic::free::{
+    BasisBound, FreeConstants, FreeInstant, FreeSegment, forcing_matrix, plain_norm,
+    transition_matrix,
+};
 use crate::coefficients::FreeBasis;
 use crate::params::{Params, State};
 
 /// The exact free-flight map over one step of fixed length, with the constants of the switch
 /// bound on that step. Computing it costs the basis at `dt` (one `exp`, one `sin_cos`), the
-/// rotation (one `sin_cos`, plus an `expm1` and a `sin_cos` in the resonance-stable form), six
-/// closed-form evaluations and the basis bounds, paid once per step length and parameter set;
-/// a parameter change that keeps the damping reuses Φ, the basis and its bounds
-/// ([`Self::set_params`]).
+/// rotation (one `sin_cos`, plus an `expm1` and a `sin_cos` in the resonance-stable form), the
+/// generated Φ and G (≈ 60 flops; two closed-form evaluations for G near resonance) and the
+/// basis bounds, paid once per step length and parameter set; a parameter change that keeps
+/// the damping reuses Φ, the basis and its bounds ([`Self::set_params`]).
 #[derive(Clone, Copy, Debug)]
 // In the order a free step reads it, the parameter-change-only `basis_at_dt` last (left to
 // itself, rustc puts the fields with niches first; `benches/stepper.rs` measures steps from
@@ -69,76 +73,73 @@ impl FreeTransition {
             ),
             input: None,
         };
-        transition.compute(params, constants);
+        transition.compute();
+        transition.take_input((params.offset_x, params.offset_y), constants.deflection());
         transition
     }
 
     /// Take changed parameters, the step kept: the map [`Self::new`] gives for them, with
-    /// Φ(dt), the basis at dt and its bounds kept when unforced free flight is unchanged
-    /// ([`FreeConstants::same_unforced`]: the same damping, no resonance-stable form) — a
-    /// change of speed, forcing, stator or input force recomputes G(dt) and the rotation only.
-    /// In place either way (the map is 600 bytes).
-    pub fn set_params(&mut self, params: &Params, constants: &FreeConstants) {
-        if !self.constants.same_unforced(constants) {
-            self.basis = BasisBound::on(constants, 0.0, self.dt);
-            self.compute(params, constants);
-            return;
+    /// Φ(dt), the basis at dt and its bounds kept when the damping is unchanged
+    /// ([`FreeConstants::damping_key`]) — a change of speed, forcing, stator or input force
+    /// recomputes G(dt) and the rotation only. In place either way, the free constants too
+    /// (the map is 650 bytes; built on the stack and copied, the copy's wide loads of the
+    /// constants' just-written fields cost more than computing them).
+    pub fn set_params(&mut self, params: &Params) {
+        let damping = self.constants.damping_key();
+        let deflection = self.constants.deflection();
+        self.constants = FreeConstants::new(params);
+        let offset = (params.offset_x, params.offset_y);
+        if self.constants.damping_key() != damping {
+            self.basis = BasisBound::on(&self.constants, 0.0, self.dt);
+            self.compute();
+        } else {
+            let (g, rotation) = self.constants.unforced(|unforced| {
+                let at_dt = FreeInstant::with_basis(unforced, self.dt, self.basis_at_dt);
+                (forcing_matrix(unforced, &at_dt), at_dt.rotation())
+            });
+            self.g = g;
+            self.rotation = rotation;
+            self.basis = self.basis.with_forcing(&self.constants, self.dt);
         }
-        let (g, rotation) = constants.unforced(|unforced| {
-            let at_dt = FreeInstant::with_basis(unforced, self.dt, self.basis_at_dt);
-            (forcing_columns(unforced, &at_dt), at_dt.rotation())
-        });
-        self.g = g;
-        self.rotation = rotation;
-        self.basis = self.basis.with_forcing(constants, self.dt);
-        self.take_input(Some((params.offset_x, params.offset_y)), constants);
+        self.take_input(offset, deflection);
     }
 
-    /// Φ, G, the rotation and the basis at dt for `constants` (the basis bounds are the
-    /// caller's), then the input force's part.
-    fn compute(&mut self, params: &Params, constants: &FreeConstants) {
-        // The unforced free step, offsets zero; the basis and the rotation at dt once for all
-        // six columns.
+    /// Φ, G, the rotation and the basis at dt for the constants in force (the basis bounds
+    /// are the caller's); the input force's part is the caller's ([`Self::take_input`]).
+    fn compute(&mut self) {
+        // The unforced free step; the basis and the rotation at dt once for Φ and G.
         let dt = self.dt;
-        let phi = &mut self.phi;
-        let (g, at_dt) = constants.unforced(|unforced| {
+        let (phi, g, at_dt) = self.constants.unforced(|unforced| {
             let at_dt = FreeInstant::at(unforced, dt);
-            for j in 0..4 {
-                let mut unit = [0.0; 4];
-                if let Some(u) = unit.get_mut(j) {
-                    *u = 1.0;
-                }
-                let column = column(unforced, &at_dt, unit, (0.0, 0.0));
-                for (row, value) in phi.iter_mut().zip(column) {
-                    if let Some(r) = row.get_mut(j) {
-                        *r = value;
-                    }
-                }
-            }
-            (forcing_columns(unforced, &at_dt), at_dt)
+            (
+                transition_matrix(unforced, &at_dt),
+                forcing_matrix(unforced, &at_dt),
+                at_dt,
+            )
         });
+        self.phi = phi;
         self.g = g;
         self.rotation = at_dt.rotation();
         self.basis_at_dt = at_dt.basis();
-        self.take_input(Some((params.offset_x, params.offset_y)), constants);
     }
 
     /// Take the input force of `constants` (the same parameters otherwise): b = d − Φ·d for
     /// its static deflection d, and the constants of the switch bound. Φ and G are kept.
     pub fn set_input(&mut self, constants: &FreeConstants) {
-        self.take_input(None, constants);
+        let deflection = self.constants.deflection();
+        self.constants = *constants;
+        self.take_input(self.offset, deflection);
     }
 
-    /// [`Self::set_input`], with the stator offset `offset` if given. |ε − d| (a `hypot`) is
-    /// computed again only when ε or d changed.
-    fn take_input(&mut self, offset: Option<(f64, f64)>, constants: &FreeConstants) {
-        let offset = offset.unwrap_or(self.offset);
-        let (dx, dy) = constants.deflection();
-        if offset != self.offset || (dx, dy) != self.constants.deflection() {
-            self.offset_distance = FreeSegment::offset_distance(constants, offset);
+    /// The stator offset `offset` and the input force's part for the constants in force,
+    /// whose static deflection was `previous` before: b = d − Φ·d, and |ε − d| (a `hypot`)
+    /// again only when ε or d changed.
+    fn take_input(&mut self, offset: (f64, f64), previous: (f64, f64)) {
+        let (dx, dy) = self.constants.deflection();
+        if offset != self.offset || (dx, dy) != previous {
+            self.offset_distance = FreeSegment::offset_distance(&self.constants, offset);
         }
         self.offset = offset;
-        self.constants = *constants;
         self.input = if (dx, dy) == (0.0, 0.0) {
             None
         } else {
@@ -220,29 +221,6 @@ impl FreeTransition {
     }
 }
 
-/// The unforced free step (`unforced`: no input force) over `at_dt` from start state `w` and
-/// start phasor `phasor`, offsets zero: a column of the map.
-#[inline(always)]
-fn column(
-    unforced: &FreeConstants,
-    at_dt: &FreeInstant,
-    w: [f64; 4],
-    phasor: (f64, f64),
-) -> [f64; 4] {
-    FreeSegment::state_at(unforced, phasor, State::from_array(w), at_dt).to_array()
-}
-
-/// G(dt): the columns for a zero start state and the phasors (1, 0), (0, 1).
-fn forcing_columns(unforced: &FreeConstants, at_dt: &FreeInstant) -> [[f64; 2]; 4] {
-    let gc = column(unforced, at_dt, [0.0; 4], (1.0, 0.0));
-    let gs = column(unforced, at_dt, [0.0; 4], (0.0, 1.0));
-    let mut g = [[0.0; 2]; 4];
-    for (row, (c, s)) in g.iter_mut().zip(gc.into_iter().zip(gs)) {
-        *row = [c, s];
-    }
-    g
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -322,9 +300,10 @@ mod tests {
                     change(&mut params);
                     assert!(params.validate().is_ok(), "{what}");
                     let constants = FreeConstants::new(&params);
-                    kept_phi += usize::from(before.constants.same_unforced(&constants));
+                    kept_phi +=
+                        usize::from(before.constants.damping_key() == constants.damping_key());
                     let mut kept = before;
-                    kept.set_params(&params, &constants);
+                    kept.set_params(&params);
                     let fresh = FreeTransition::new(&params, &constants, dt);
                     assert_same_map(&kept, &fresh, what);
                 }

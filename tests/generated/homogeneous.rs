@@ -105,6 +105,83 @@ proptest! {
     ) {
         check_free_formulas(&case, State::new(state[0], state[1], state[2], state[3]))?;
     }
+
+    /// The stepper's free map from the generated step formulas: Φ(s)·w0 + G(s)·(cos θ0,
+    /// sin θ0) with `free_step_transition`, `free_step_forcing` (basis from `free_basis`,
+    /// rotation (cos ηs, sin ηs)) matches exp(M s) of the forced free system (rel. 1e-11, as
+    /// the closed form it is simplified from); Φ(0) = I exactly, G(0) = 0 to rounding.
+    #[test]
+    fn free_step_formulas_match_matrix_exponential(
+        case in any_case(),
+        state in proptest::array::uniform4(-2.0..2.0f64),
+    ) {
+        check_free_step(&case, State::new(state[0], state[1], state[2], state[3]))?;
+    }
+}
+
+/// See [`free_step_formulas_match_matrix_exponential`].
+pub fn check_free_step(case: &Case, start: State) -> Result<(), TestCaseError> {
+    let model = case.model();
+    let p = coef::free_particular(&model);
+    let beta = coef::free_damped_frequency_sq(&model);
+    let th0 = case.theta(0.0);
+    let (c0, s0) = (th0.cos(), th0.sin());
+    let map = |s: f64| {
+        let (ec, es) = free_basis(case.nu, beta.beta_sq, s);
+        let basis = coef::FreeBasis { ec, es };
+        let rotation = coef::ForcingRotation {
+            ce: (case.eta * s).cos(),
+            se: (case.eta * s).sin(),
+        };
+        let phi = coef::free_step_transition(&model, &beta, &basis);
+        let g = coef::free_step_forcing(&model, &p, &beta, &basis, &rotation);
+        let phi = [
+            [phi.p00, phi.p01, phi.p02, phi.p03],
+            [phi.p10, phi.p11, phi.p12, phi.p13],
+            [phi.p20, phi.p21, phi.p22, phi.p23],
+            [phi.p30, phi.p31, phi.p32, phi.p33],
+        ];
+        let g = [
+            [g.g00, g.g01],
+            [g.g10, g.g11],
+            [g.g20, g.g21],
+            [g.g30, g.g31],
+        ];
+        (phi, g)
+    };
+    let (phi0, g0) = map(0.0);
+    for (i, (row, grow)) in phi0.iter().zip(&g0).enumerate() {
+        for (j, &v) in row.iter().enumerate() {
+            prop_assert_eq!(v, if i == j { 1.0 } else { 0.0 }, "Φ(0)[{}][{}]", i, j);
+        }
+        // G(0) is zero up to the rounding of the particular solution's cancellation.
+        let scale = (1.0 + case.eta) * (p.c11.abs() + p.c22.abs() + p.c33.abs() + p.c44.abs());
+        prop_assert!(
+            grow[0].abs().max(grow[1].abs()) <= 8.0 * f64::EPSILON * scale,
+            "G(0) row {i}: {grow:?}"
+        );
+    }
+    let sys = free_system(case.nu, case.eta, case.forcing());
+    let w0 = augmented(&start, th0);
+    let a = start.to_array();
+    for &s in &SAMPLE_TIMES {
+        let (phi, g) = map(s);
+        let mut end = [0.0; 4];
+        for (e, (row, grow)) in end.iter_mut().zip(phi.iter().zip(&g)) {
+            *e = row.iter().zip(&a).map(|(m, w)| m * w).sum::<f64>() + grow[0] * c0 + grow[1] * s0;
+        }
+        let end = State::new(end[0], end[1], end[2], end[3]);
+        let want = propagate(&sys, &w0, s);
+        let d = State::new(
+            end.x - want.x,
+            end.y - want.y,
+            end.vx - want.vx,
+            end.vy - want.vy,
+        );
+        let err = norm4(&d) / (1.0 + norm4(&want));
+        prop_assert!(err <= 1e-11, "s = {s}: {end:?} vs exact {want:?} ({err:e})");
+    }
+    Ok(())
 }
 
 /// See [`free_homogeneous_and_eval_match_matrix_exponential`].

@@ -12,7 +12,10 @@
 //! sign change's refinement searches [a, x] instead of refining again (first switches move by
 //! ≤ 3 ulps); the harmonic amplitude σ1 from two sums of squares instead of a nested root (a
 //! bound: the analytic method's first switches move by ≤ 7e-15 relative, through its step
-//! control). So the record stays "friction changes nothing at μ = 0", not "nothing changed".
+//! control); the stepper's Φ(dt) and (away from resonance) G(dt) from the generated step
+//! formulas `free_step_transition`, `free_step_forcing` instead of six closed-form evaluations
+//! on unit inputs (the stepper's lines only; every propagating method unchanged). So the
+//! record stays "friction changes nothing at μ = 0", not "nothing changed".
 
 use std::fmt::Write as _;
 

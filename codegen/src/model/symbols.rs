@@ -306,6 +306,12 @@ pub const GROUPS: &[Group] = &[
         ],
     },
     Group {
+        ty: "ForcingRotation",
+        arg: "rotation",
+        doc: "The forcing phasor's rotation (cos ηs, sin ηs) over a local time s.",
+        fields: &[("ce", "ce", "cos ηs"), ("se", "se", "sin ηs")],
+    },
+    Group {
         ty: "ForcedBasis",
         arg: "forced",
         doc: "The forced basis at s: zero-state responses FC, FS of the free oscillator to cos ηs, sin ηs and their derivatives (`docs/MODEL.md` §11).",
@@ -358,14 +364,6 @@ pub const INTERNAL: &[(&str, &str)] = &[
         "b, the unknown squared frequency of the damped-frequency ansatz",
     ),
     ("s_ratio", "s, the unknown mode ratio y/x"),
-    (
-        "ce",
-        "cos ηs, the forcing rotation over a free segment (coefficients taken)",
-    ),
-    (
-        "se",
-        "sin ηs, the forcing rotation over a free segment (coefficients taken)",
-    ),
     (
         "qsx",
         "x of the unknown constant response to the input force",

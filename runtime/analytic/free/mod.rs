@@ -24,11 +24,13 @@
 
 mod bound;
 mod instant;
+mod step;
 
 use bound::Amplitudes;
 pub(crate) use bound::{BasisBound, FreeReach, harmonic_amplitude, plain_norm};
 pub(crate) use instant::FreeInstant;
 use instant::evaluate;
+pub(crate) use step::{forcing_matrix, transition_matrix};
 
 use super::basis::FreeRates;
 use super::forced::Resonance;
@@ -59,6 +61,7 @@ pub struct FreeConstants {
 
 impl FreeConstants {
     /// Derived constants for `params`.
+    #[inline(always)]
     pub fn new(params: &Params) -> Self {
         let model = ModelParams::of(params);
         let beta_sq = coef::free_damped_frequency_sq(&model).beta_sq;
@@ -91,13 +94,17 @@ impl FreeConstants {
 
     /// `f` of these constants without input force: of `self` itself when it has none (then
     /// [`Self::with_input`] of (0, 0) would copy the same values).
-    #[inline]
+    /// One call of `f`, so that it is inlined (the stepper's Φ and G stay in registers).
+    #[inline(always)]
     pub(crate) fn unforced<R>(&self, f: impl FnOnce(&FreeConstants) -> R) -> R {
-        if self.model.force_x.to_bits() == 0 && self.model.force_y.to_bits() == 0 {
-            f(self)
+        let stripped;
+        let unforced = if self.model.force_x.to_bits() == 0 && self.model.force_y.to_bits() == 0 {
+            self
         } else {
-            f(&self.with_input((0.0, 0.0)))
-        }
+            stripped = self.with_input((0.0, 0.0));
+            &stripped
+        };
+        f(unforced)
     }
 
     /// β² = 1 − ν².
@@ -116,15 +123,12 @@ impl FreeConstants {
         self.resonance.is_some()
     }
 
-    /// Whether unforced free flight is the same closed form under `other`: the same ν and β²
-    /// (bit for bit) and the steady-state form in both. The response to a start state without
-    /// forcing is then the same numbers (the forcing terms are exact zeros), so what depends on
-    /// it alone — the stepper's Φ(dt), the basis at dt and its bounds — can be kept.
-    pub(crate) fn same_unforced(&self, other: &FreeConstants) -> bool {
-        self.resonance.is_none()
-            && other.resonance.is_none()
-            && self.model.nu.to_bits() == other.model.nu.to_bits()
-            && self.rates.beta_sq.to_bits() == other.rates.beta_sq.to_bits()
+    /// ν and β² = 1 − ν², bit for bit: what unforced free flight depends on. Two parameter
+    /// sets with the same key have the same response to a start state without forcing (the
+    /// generated `free_step_transition`), so what depends on it alone — the stepper's Φ(dt),
+    /// the basis at dt and its bounds — can be kept.
+    pub(crate) fn damping_key(&self) -> (u64, u64) {
+        (self.model.nu.to_bits(), self.rates.beta_sq.to_bits())
     }
 }
 
@@ -308,30 +312,14 @@ impl FreeSegment {
 
     /// The state at `at` of the free segment through `state` with start phasor `phasor` and no
     /// stator offset, without building the segment (no copy of the constants, no bound
-    /// amplitudes): the stepper's transition takes its columns so. The same arithmetic as
-    /// [`Self::with_phasor`] followed by [`Segment::point`].
-    #[inline(always)]
+    /// amplitudes): the stepper's forcing columns in the resonance-stable form. The same
+    /// arithmetic as [`Self::with_phasor`] followed by [`Segment::point`].
     pub(crate) fn state_at(
         constants: &FreeConstants,
         phasor: (f64, f64),
         state: State,
         at: &FreeInstant,
     ) -> State {
-        let c = constants;
-        if c.resonance.is_none() && c.deflection == (0.0, 0.0) {
-            // The steady form without a shift, called directly: the arithmetic of the general
-            // path below (`parts` then `evaluate`) without building its form.
-            let model = ModelParams {
-                ex: 0.0,
-                ey: 0.0,
-                ..c.model
-            };
-            let (ct, st) = phasor;
-            let h =
-                coef::free_homogeneous(&model, &state.into(), &Phasor { ct, st }, &c.particular);
-            let r = instant::steady(c, &model, phasor, &h, at);
-            return State::new(r.x, r.y, r.vx, r.vy);
-        }
         let (model, form, _) = Self::parts(constants, (0.0, 0.0), 0.0, phasor, state, |_, _| 0.0);
         evaluate(constants, &model, phasor, &form, at).state
     }
