@@ -18,7 +18,8 @@
 //! Criterion then measures single steps from fixed states (free, free with entry, contact,
 //! contact with exit), two parameter changes (`set_params`: a new speed, which keeps Φ and
 //! recomputes the forcing's columns G — the bench named "set_params (recomputes Φ)" before Φ was
-//! kept —, and a new damping, which recomputes Φ) and one RK4 step.
+//! kept —, and a new damping, which recomputes Φ; each on cache-resident copies and on cold
+//! ones) and one RK4 step.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -397,17 +398,25 @@ fn main() {
     let (mut faster, mut damped) = (problem.params, problem.params);
     faster.speed_ratio = 1.6;
     damped.damping_ratio = 0.2;
-    for (name, changed) in [
-        ("set_params (speed change: keeps Φ)", faster),
-        ("set_params (damping change: recomputes Φ)", damped),
+    // Each change on copies of one stepper, in batches of 64 (≈ 64 KB, cache-resident: the
+    // change's own cost) and in criterion's `SmallInput` batches ("cold": up to ≈ 10⁵ copies,
+    // so each change also pays the write-allocation of the stepper's cache lines from memory).
+    for (change, changed) in [
+        ("speed change: keeps Φ", faster),
+        ("damping change: recomputes Φ", damped),
     ] {
-        c.bench_function(name, |b| {
-            b.iter_batched_ref(
-                || start,
-                |s| s.set_params(black_box(&changed)).expect("valid"),
-                BatchSize::SmallInput,
-            )
-        });
+        for (copies, batch) in [
+            ("", BatchSize::NumIterations(64)),
+            ("cold copies, ", BatchSize::SmallInput),
+        ] {
+            c.bench_function(&format!("set_params ({copies}{change})"), |b| {
+                b.iter_batched_ref(
+                    || start,
+                    |s| s.set_params(black_box(&changed)).expect("valid"),
+                    batch,
+                )
+            });
+        }
     }
     c.bench_function("rk4/one step", |b| {
         b.iter(|| rk4_step(&problem, black_box(1.0), black_box(&problem.initial), 1e-3))
