@@ -62,9 +62,10 @@
 //! # Changing parameters or the step length
 //! A `step` with a new `dt` recomputes Φ, G and the bound constants ([`FreeTransition::new`]:
 //! the free basis at dt once (one `exp`, one `sin_cos`), the generated step formulas
-//! `free_step_transition` and `free_step_forcing`). [`Stepper::set_params`] (a speed ramp, a stiffness change) keeps Φ, the basis at
-//! dt and its bounds unless the damping changed ([`FreeTransition::set_params`]): a new speed
-//! costs the validation, the free and contact constants, G and one `sin_cos`.
+//! `free_step_transition` and `free_step_forcing`). [`Stepper::set_params`] (a speed ramp, a
+//! stiffness change) keeps Φ, the basis at dt and its bounds unless the damping changed
+//! ([`FreeTransition::set_params`]): a new speed costs the validation, the free and contact
+//! constants, G and one `sin_cos`.
 
 mod config;
 mod exact;
@@ -249,9 +250,9 @@ impl Stepper {
 
     /// Replace the parameters from the current time on (e.g. one point of a speed ramp). Costs
     /// a recomputation of the free constants and of G for the current step length, and of Φ
-    /// when the damping changed ([`FreeTransition::set_params`]). The
-    /// regime is re-decided from the current state (a changed offset can move the boundary);
-    /// no event is reported for that. On error nothing changes.
+    /// when the damping changed ([`FreeTransition::set_params`]). The regime is re-decided from
+    /// the current state (a changed offset can move the boundary); no event is reported for
+    /// that. On error nothing changes.
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
         self.params = *params;

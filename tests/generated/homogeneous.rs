@@ -172,13 +172,7 @@ pub fn check_free_step(case: &Case, start: State) -> Result<(), TestCaseError> {
         }
         let end = State::new(end[0], end[1], end[2], end[3]);
         let want = propagate(&sys, &w0, s);
-        let d = State::new(
-            end.x - want.x,
-            end.y - want.y,
-            end.vx - want.vx,
-            end.vy - want.vy,
-        );
-        let err = norm4(&d) / (1.0 + norm4(&want));
+        let err = relative_error(&end, &want);
         prop_assert!(err <= 1e-11, "s = {s}: {end:?} vs exact {want:?} ({err:e})");
     }
     Ok(())

@@ -352,6 +352,17 @@ fn norm4(s: &State) -> f64 {
     (s.x * s.x + s.y * s.y + s.vx * s.vx + s.vy * s.vy).sqrt()
 }
 
+/// |got − exact| / (1 + |exact|) over the four state components.
+pub fn relative_error(got: &State, exact: &State) -> f64 {
+    let d = State::new(
+        got.x - exact.x,
+        got.y - exact.y,
+        got.vx - exact.vx,
+        got.vy - exact.vy,
+    );
+    norm4(&d) / (1.0 + norm4(exact))
+}
+
 /// Check `Linearization::new(case).segment(state, a, horizon)` at [`SAMPLE_TIMES`]·horizon (the
 /// stencil step is ≤ 0.02·horizon so it stays inside [0, horizon]): initial state, ODE residual by finite differences of the
 /// segment's own velocity, velocity against the position's derivative, and the exact solution
@@ -418,13 +429,7 @@ pub fn check_contact_segment(case: &Case, state: State, a: [f64; 8], horizon: f6
         let vscale = q.vx.hypot(q.vy) + rate * q.x.hypot(q.y);
         out.velocity = out.velocity.max((vx - q.vx).hypot(vy - q.vy) / vscale);
         let exact = propagate(&sys, &w0, s);
-        let diff = State::new(
-            q.x - exact.x,
-            q.y - exact.y,
-            q.vx - exact.vx,
-            q.vy - exact.vy,
-        );
-        out.expm = out.expm.max(norm4(&diff) / (1.0 + norm4(&exact)));
+        out.expm = out.expm.max(relative_error(&q, &exact));
     }
     out
 }

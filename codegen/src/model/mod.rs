@@ -41,6 +41,7 @@
 mod contact;
 mod field;
 mod free;
+mod free_step;
 mod friction;
 mod linearization;
 mod polynomial;
