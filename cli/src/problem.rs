@@ -184,6 +184,12 @@ impl ProblemArgs {
 
     /// As [`ProblemArgs::build`], with `extra` values applied last (e.g. a swept parameter).
     pub fn build_with(&self, extra: &[(Parameter, f64)]) -> Result<Problem> {
+        self.build_naming(extra, "--set")
+    }
+
+    /// As [`ProblemArgs::build_with`], a validation error naming the overrides `overrides`
+    /// ("--set" on the command line; the Python binding's keyword arguments).
+    pub fn build_naming(&self, extra: &[(Parameter, f64)], overrides: &str) -> Result<Problem> {
         let config = self.config.as_deref().map(read_config).transpose()?;
         let preset = self
             .preset
@@ -207,7 +213,7 @@ impl ProblemArgs {
         problem.validate().map_err(|e| {
             let source = e.parameter().and_then(|p| sources.get(p as usize));
             let from = match source {
-                Some(Source::Set) => " (from --set)".to_string(),
+                Some(Source::Set) => format!(" (from {overrides})"),
                 Some(Source::Config) => format!(
                     " (from --config {})",
                     self.config.as_deref().unwrap_or(Path::new("")).display()

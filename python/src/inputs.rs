@@ -46,8 +46,11 @@ pub fn problem(
         config,
         set: overrides(params)?,
     };
-    args.build().map_err(cli)
+    args.build_naming(&[], KEYWORDS).map_err(cli)
 }
+
+/// How a validation message names the parameter keywords (the CLI's "--set").
+pub const KEYWORDS: &str = "keyword arguments";
 
 /// Method options: `method` by name (`default` when None), tolerance, contact scheme and step,
 /// validated against the method's ranges.

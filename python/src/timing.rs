@@ -49,7 +49,7 @@ pub fn rust_simulate_seconds(
                     config: None,
                     set: set.clone(),
                 }
-                .build()?;
+                .build_naming(&[], crate::inputs::KEYWORDS)?;
                 let options = rotor_rub_cli::options::SchemeArgs {
                     tol: None,
                     contact_scheme: None,
