@@ -80,7 +80,7 @@ impl FreeTransition {
 
     /// Take changed parameters, the step kept: the map [`Self::new`] gives for them, with
     /// Φ(dt), the basis at dt and its bounds kept when the damping is unchanged
-    /// ([`FreeConstants::damping_key`]) — a change of speed, forcing, stator or input force
+    /// (`FreeConstants::damping_key`) — a change of speed, forcing, stator or input force
     /// recomputes G(dt) and the rotation only. In place either way, the free constants too
     /// (the map is 650 bytes; built on the stack and copied, the copy's wide loads of the
     /// constants' just-written fields cost more than computing them).
