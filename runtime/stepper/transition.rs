@@ -25,7 +25,7 @@ use crate::params::{Params, State};
 /// The exact free-flight map over one step of fixed length, with the constants of the switch
 /// bound on that step. Computing it costs the basis at `dt` (one `exp`, one `sin_cos`), the
 /// rotation (one `sin_cos`, plus an `expm1` and a `sin_cos` in the resonance-stable form), the
-/// generated Φ and G (≈ 60 flops; two closed-form evaluations for G near resonance) and the
+/// generated Φ and G (90 flops; two closed-form evaluations for G near resonance) and the
 /// basis bounds, paid once per step length and parameter set; a parameter change that keeps
 /// the damping reuses Φ, the basis and its bounds ([`Self::set_params`]).
 #[derive(Clone, Copy, Debug)]

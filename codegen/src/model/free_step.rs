@@ -50,7 +50,7 @@ pub(super) fn derive(m: &mut Model) {
             .collect();
         from_start.map(|e| m.subst(e, &pairs))
     };
-    let phi: Vec<[crate::expr::ExprId; 4]> = (0..4).map(|j| column(m, j)).collect();
+    let phi: [[crate::expr::ExprId; 4]; 4] = core::array::from_fn(|j| column(m, j));
     let forcing = [column(m, 4), column(m, 5)];
     const PHI: [[&str; 4]; 4] = [
         ["p00", "p01", "p02", "p03"],
@@ -64,12 +64,7 @@ pub(super) fn derive(m: &mut Model) {
         ["∂x'/∂x0", "∂x'/∂y0", "∂x'/∂x0'", "∂x'/∂y0'"],
         ["∂y'/∂x0", "∂y'/∂y0", "∂y'/∂x0'", "∂y'/∂y0'"],
     ];
-    let mut outputs = Vec::new();
-    for i in 0..4 {
-        for (j, column) in phi.iter().enumerate() {
-            outputs.push((PHI[i][j], PHI_DOC[i][j], column[i]));
-        }
-    }
+    let outputs = row_major(&PHI, &PHI_DOC, &phi);
     m.add_formula(
         "free_step_transition",
         "Φ(s), the transition matrix of unforced free flight over a step of length s (state order x, y, x', y'; `pij` is row i, column j), from the basis EC(s), ES(s).",
@@ -102,12 +97,7 @@ pub(super) fn derive(m: &mut Model) {
             "y' from the start phasor (0, 1)",
         ],
     ];
-    let mut outputs = Vec::new();
-    for i in 0..4 {
-        for (j, column) in forcing.iter().enumerate() {
-            outputs.push((G[i][j], G_DOC[i][j], column[i]));
-        }
-    }
+    let outputs = row_major(&G, &G_DOC, &forcing);
     m.add_formula(
         "free_step_forcing",
         "G(s), the forced response of free flight over a step of length s from rest (row i: x, y, x', y'; column 0 for the start phasor (1, 0), column 1 for (0, 1)), from the basis EC(s), ES(s) and the forcing's rotation (cos ηs, sin ηs).",
@@ -116,4 +106,20 @@ pub(super) fn derive(m: &mut Model) {
         "FreeStepForcing",
         outputs,
     );
+}
+
+/// The outputs of a 4-row matrix given by its `columns`, row by row, named and documented by
+/// `names` and `docs` (row-major).
+fn row_major<const C: usize>(
+    names: &[[&'static str; C]; 4],
+    docs: &[[&'static str; C]; 4],
+    columns: &[[crate::expr::ExprId; 4]; C],
+) -> Vec<(&'static str, &'static str, crate::expr::ExprId)> {
+    let mut outputs = Vec::with_capacity(4 * C);
+    for (i, (names, docs)) in names.iter().zip(docs).enumerate() {
+        for ((name, doc), column) in names.iter().zip(docs).zip(columns) {
+            outputs.push((*name, *doc, column[i]));
+        }
+    }
+    outputs
 }

@@ -4,8 +4,7 @@
 use super::super::segment::Point;
 use super::{Form, FreeConstants};
 use crate::coefficients::{
-    self as coef, ForcedBasis, FreeBasis, FreeDampedFrequency, FreeHomogeneous, FreeState,
-    ModelParams, Phasor,
+    self as coef, ForcedBasis, FreeBasis, FreeDampedFrequency, ModelParams, Phasor,
 };
 use crate::math;
 use crate::params::State;
@@ -55,28 +54,6 @@ impl FreeInstant {
     }
 }
 
-/// The steady form (homogeneous constants `homogeneous`, start phasor `phase0`) at `at`.
-#[inline(always)]
-pub(super) fn steady(
-    c: &FreeConstants,
-    model: &ModelParams,
-    phase0: (f64, f64),
-    homogeneous: &FreeHomogeneous,
-    at: &FreeInstant,
-) -> FreeState {
-    // The forcing phasor at s by angle addition from the segment start.
-    let (c0, s0) = phase0;
-    let (cd, sd) = at.rotation;
-    let phasor = Phasor {
-        ct: c0 * cd - s0 * sd,
-        st: s0 * cd + c0 * sd,
-    };
-    let beta = FreeDampedFrequency {
-        beta_sq: c.beta_sq(),
-    };
-    coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &at.basis)
-}
-
 /// A free segment's point at `at`: its closed form (`form`, from start phasor `phase0`)
 /// evaluated with the model `model` and moved back by the static deflection of `c`.
 #[inline(always)]
@@ -87,9 +64,19 @@ pub(super) fn evaluate(
     form: &Form,
     at: &FreeInstant,
 ) -> Point {
+    let beta = FreeDampedFrequency {
+        beta_sq: c.beta_sq(),
+    };
     let (x, y, vx, vy, h, dh) = match form {
         Form::Steady(homogeneous) => {
-            let r = steady(c, model, phase0, homogeneous, at);
+            // The forcing phasor at s by angle addition from the segment start.
+            let (c0, s0) = phase0;
+            let (cd, sd) = at.rotation;
+            let phasor = Phasor {
+                ct: c0 * cd - s0 * sd,
+                st: s0 * cd + c0 * sd,
+            };
+            let r = coef::free_eval(model, &phasor, &c.particular, &beta, homogeneous, &at.basis);
             (r.x, r.y, r.vx, r.vy, r.h, r.dh)
         }
         Form::Forced {
@@ -101,9 +88,6 @@ pub(super) fn evaluate(
             let forced = at
                 .forced
                 .unwrap_or_else(|| resonance.basis(at.s, basis.ec, basis.es, at.rotation));
-            let beta = FreeDampedFrequency {
-                beta_sq: c.beta_sq(),
-            };
             let r = coef::free_forced_eval(model, &beta, start, &basis, forcing, &forced);
             (r.x, r.y, r.vx, r.vy, r.h, r.dh)
         }
