@@ -6,7 +6,6 @@
 use super::friction::Slip;
 use super::{FreeTransition, OnCap, Stepper, StepperConfig, StepperError, SwitchStart};
 use crate::analytic::free::FreeConstants;
-use crate::analytic::linear::ContactConstants;
 use crate::math;
 use crate::method::ContactScheme;
 use crate::params::{Parameter, Params, Problem, State};
@@ -27,7 +26,6 @@ impl Stepper {
         self.params.force_x = fx;
         self.params.force_y = fy;
         let free = self.transition.constants().with_input((fx, fy));
-        self.contact.set_input(fx, fy);
         self.transition.set_input(&free);
         Ok(())
     }
@@ -103,7 +101,6 @@ impl Stepper {
         Ok(Stepper {
             params: s.params,
             config: s.config,
-            contact: ContactConstants::new(&s.params),
             transition: FreeTransition::new(&s.params, &free, s.dt),
             time: s.time,
             anchor_time: s.anchor_time,

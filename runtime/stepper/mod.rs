@@ -86,7 +86,6 @@ pub use search::{
 pub use transition::FreeTransition;
 
 use crate::analytic::free::FreeConstants;
-use crate::analytic::linear::ContactConstants;
 use crate::analytic::segment::point_of;
 use crate::driver::within_bounds;
 use crate::field;
@@ -108,8 +107,6 @@ pub const PHASOR_RESYNC: u64 = 256;
 pub struct Stepper {
     params: Params,
     config: StepperConfig,
-    /// What every contact linearization of `params` shares.
-    contact: ContactConstants,
     transition: FreeTransition,
     time: f64,
     /// Time at which the current step length (or parameter set) took effect.
@@ -143,7 +140,6 @@ impl Stepper {
         Ok(Stepper {
             params,
             config,
-            contact: ContactConstants::new(&params),
             transition: FreeTransition::new(&params, &free, config.dt),
             time: t0,
             anchor_time: t0,
@@ -256,7 +252,6 @@ impl Stepper {
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
         self.params = *params;
-        self.contact.set_params(params);
         self.transition.set_params(params);
         self.anchor_time = self.time;
         self.anchor_steps = 0;

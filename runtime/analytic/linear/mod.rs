@@ -47,25 +47,6 @@ impl ContactConstants {
             velocity_gain: velocity_gain(&model, &LinearizedContact::default()),
         }
     }
-
-    /// Take changed parameters (what [`ContactConstants::new`] gives for them): the velocity
-    /// gain depends on the damping alone (above), so it is kept while ν is unchanged — a speed
-    /// ramp's parameter changes skip its singular value.
-    pub fn set_params(&mut self, params: &Params) {
-        let model = ModelParams::of(params);
-        if model.nu.to_bits() != self.model.nu.to_bits() {
-            self.velocity_gain = velocity_gain(&model, &LinearizedContact::default());
-        }
-        self.model = model;
-        self.phase = params.phase;
-    }
-
-    /// The constants after the input force of the parameters became (`fx`, `fy`) (what
-    /// [`ContactConstants::new`] of the changed parameters gives: the gain does not depend on it).
-    pub fn set_input(&mut self, fx: f64, fy: f64) {
-        self.model.force_x = fx;
-        self.model.force_y = fy;
-    }
 }
 
 /// Everything fixed by the linearization point: Kl, Fd, modes, particular constants, phase.
@@ -432,39 +413,6 @@ impl Linearization {
             cd,
             sc,
             sd,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::Preset;
-    use crate::params::Parameter;
-
-    /// Changing any one model parameter of any preset by `set_params` gives the constants
-    /// `new` computes for the changed parameters (the kept velocity gain included).
-    #[test]
-    fn changed_constants_are_the_constants_of_the_changed_parameters() {
-        for preset in Preset::ALL {
-            let mut problem = preset.problem();
-            let before = ContactConstants::new(&problem.params);
-            for parameter in Parameter::ALL.into_iter().filter(|p| p.is_model()) {
-                let value = parameter.get(&problem);
-                let changed = if value == 0.0 { 0.1 } else { 0.5 * value };
-                parameter.set(&mut problem, changed);
-                let mut kept = before;
-                kept.set_params(&problem.params);
-                let fresh = ContactConstants::new(&problem.params);
-                assert!(
-                    kept.model == fresh.model
-                        && kept.phase.to_bits() == fresh.phase.to_bits()
-                        && kept.velocity_gain.to_bits() == fresh.velocity_gain.to_bits(),
-                    "{}",
-                    parameter.name()
-                );
-                parameter.set(&mut problem, value);
-            }
         }
     }
 }
