@@ -81,7 +81,7 @@ pub use inputs::Snapshot;
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
 pub use search::{
     MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, locate_with,
-    no_crossing,
+    no_crossing, no_crossing_likely,
 };
 pub use transition::FreeTransition;
 
@@ -310,7 +310,7 @@ impl Stepper {
         }
         let a = point_of(self.state, ex, ey);
         let m2 = tr.curvature_bound(&self.state, self.phasor, math::sqrt((a.h + 1.0).max(0.0)));
-        no_crossing(a.h.min(0.0), a.dh, b.h, b.dh, m2, tr.dt(), TOUCH).then_some(end)
+        no_crossing_likely(a.h.min(0.0), a.dh, b.h, b.dh, m2, tr.dt(), TOUCH).then_some(end)
     }
 }
 

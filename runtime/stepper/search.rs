@@ -5,7 +5,9 @@
 use crate::analytic::segment::{Point, Segment};
 use crate::analytic::switch::{self, Boundary, Budget, Direction, Search};
 
-pub use crate::analytic::switch::{TOUCH, curvature, local_curvature, no_crossing};
+pub use crate::analytic::switch::{
+    TOUCH, curvature, local_curvature, no_crossing, no_crossing_likely,
+};
 
 /// Most bound tests (each with at most one segment evaluation) in one search.
 pub const MAX_SEARCH_EVALUATIONS: u32 = Budget::CAPPED.tests;

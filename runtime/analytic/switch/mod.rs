@@ -37,15 +37,19 @@
 //! and, failing that, by the budget.
 
 mod boundary;
+mod certificate;
 mod hermite;
+mod refine;
 mod slip;
 
 pub use boundary::{
     Boundary, Direction, curvature, first_crossing, first_crossing_to, local_curvature,
 };
+pub use certificate::{no_crossing, no_crossing_likely};
 pub use slip::{MAX_TOUCHES, SlipPoint, SlipVelocity, first_slip_switch};
 
 use crate::math;
+use refine::refine;
 
 /// An event function along a closed-form piece, in local time s: g ≤ 0 in the current regime,
 /// the switch is where g crosses 0 upward.
@@ -359,105 +363,4 @@ fn found<P>(k: Knot<P>, certain: bool) -> Search<P> {
         point: k.p,
         certain,
     }
-}
-
-/// Whether g provably stays ≤ `slack` on [0, len], from its values and slopes at both ends and
-/// a bound `m2` ≥ |g''| on the interval: g ≤ min(Ua, Ub) (module docs), and with t* where
-/// Ua = Ub (Ua − Ub = c0 + c1 t, c1 ≥ 0 for a valid bound) the maximum of that minimum is
-/// max(ga, gb, Ua(t*)) when t* ∈ [0, len], else that of the lower parabola at the ends. False
-/// when the bound does not prove it (NaN included).
-#[inline]
-pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slack: f64) -> bool {
-    // (0 ≤ m2 < ∞ rather than `is_finite`: the same test, two comparisons.)
-    if !(ga <= slack && gb <= slack && (0.0..f64::INFINITY).contains(&m2)) {
-        return false;
-    }
-    let c1 = dga - dgb + m2 * len;
-    if c1 > 0.0 {
-        // The common case without the division below: Ua is convex, so on [0, len]
-        // Ua(t) ≤ max(ga, Ua(len)); with room for the rounding of the general evaluation (≤ 6 ulps
-        // of the terms' size; 16 taken) a bound under `slack` means that evaluation answers true
-        // as well. Same decision, so the same steps.
-        let quad = 0.5 * m2 * len * len;
-        let end = ga + dga * len + quad;
-        let size = math::abs(ga) + math::abs(dga * len) + quad;
-        if ga.max(end) + 16.0 * f64::EPSILON * size <= slack {
-            return true;
-        }
-    }
-    let c0 = ga - gb + dgb * len - 0.5 * m2 * len * len;
-    let meet = if c1 > 0.0 {
-        // `clamp` without its assertion (len ≥ 0 here; NaN passes through as with `clamp`).
-        let t = -c0 / c1;
-        let t = if t < 0.0 {
-            0.0
-        } else if t > len {
-            len
-        } else {
-            t
-        };
-        ga + dga * t + 0.5 * m2 * t * t
-    } else if c1 == 0.0 {
-        ga.max(gb)
-    } else {
-        return false;
-    };
-    meet <= slack
-}
-
-/// Safeguarded Newton on g over a bracket g(a) ≤ 0 < g(b): Newton from the end with the smaller
-/// residual, else the secant, else bisection, and a bisection whenever two iterations in a row
-/// failed to halve the bracket. Returns the point with the smallest |g| seen in (a, b] and
-/// whether it converged to rounding within the budget's `refine` steps. With
-/// `hermite_start` the first step goes to the root of the bracket's Hermite interpolant.
-fn refine<F: EventFunction>(
-    f: &F,
-    lo: Knot<F::Point>,
-    hi: Knot<F::Point>,
-    budget: &Budget,
-) -> (Knot<F::Point>, bool) {
-    let (mut a, mut b) = (lo, hi);
-    let mut best = b;
-    let mut slow = 0;
-    let mut start = if budget.hermite_start {
-        let w = b.s - a.s;
-        hermite::root(a.g, a.dg * w, b.g, b.dg * w).map(|tau| a.s + tau * w)
-    } else {
-        None
-    };
-    for _ in 0..budget.refine {
-        let width = b.s - a.s;
-        if width <= 4.0 * f64::EPSILON * (1.0 + math::abs(b.s)) || math::abs(best.g) <= CONVERGED {
-            return (best, true);
-        }
-        let (g0, d0, s0) = if -a.g < b.g {
-            (a.g, a.dg, a.s)
-        } else {
-            (b.g, b.dg, b.s)
-        };
-        let inside = |t: f64| t > a.s && t < b.s;
-        let mut t = match start.take() {
-            Some(t) => t,
-            None if d0 != 0.0 => s0 - g0 / d0,
-            None => f64::NAN,
-        };
-        if !inside(t) {
-            t = a.s - a.g * width / (b.g - a.g);
-        }
-        if !inside(t) || slow >= 2 {
-            t = a.s + 0.5 * width;
-        }
-        let k = Knot::at(f, t, f.point(t));
-        if math::abs(k.g) <= math::abs(best.g) {
-            best = k;
-        }
-        if k.g > 0.0 {
-            b = k;
-        } else {
-            a = k;
-        }
-        slow = if b.s - a.s > 0.5 * width { slow + 1 } else { 0 };
-    }
-    let converged = math::abs(best.g) <= CONVERGED;
-    (best, converged)
 }
