@@ -124,7 +124,9 @@ impl Stepper {
         report: &mut StepReport,
     ) -> Result<(f64, Point), State> {
         let p = &self.params;
-        let seg = FreeSegment::new(p, self.transition.constants(), t, state);
+        let tr = &self.transition;
+        let seg =
+            FreeSegment::with_offset_distance(p, tr.constants(), tr.offset_distance(), t, state);
         let start = point_of(state, p.offset_x, p.offset_y);
         let end = seg.point(rem);
         // h holds frequencies up to 2·max(η, 1): chunks as in `FreeFlight`.

@@ -162,6 +162,12 @@ impl FreeTransition {
         self.offset
     }
 
+    /// |ε − d| of the parameters in force (`FreeSegment::offset_distance`).
+    #[inline]
+    pub fn offset_distance(&self) -> f64 {
+        self.offset_distance
+    }
+
     /// The free constants of the parameters in force, input force included (the stepper's
     /// only copy of them).
     pub fn constants(&self) -> &FreeConstants {

@@ -169,25 +169,43 @@ pub struct FreeSegment {
 impl FreeSegment {
     /// The free segment through `state` at absolute time `t0`.
     pub fn new(params: &Params, constants: &FreeConstants, t0: f64, state: State) -> Self {
+        let offset = (params.offset_x, params.offset_y);
+        let off = Self::offset_distance(constants, offset);
+        Self::with_offset_distance(params, constants, off, t0, state)
+    }
+
+    /// [`Self::new`] given `off` = [`Self::offset_distance`] of `constants` and the parameters'
+    /// offset, which is constant per parameter set (the stepper keeps it: one `hypot` fewer
+    /// per segment).
+    pub(crate) fn with_offset_distance(
+        params: &Params,
+        constants: &FreeConstants,
+        off: f64,
+        t0: f64,
+        state: State,
+    ) -> Self {
         let (st, ct) = math::sin_cos(math::wrap_angle(params.speed_ratio * t0 + params.phase));
-        Self::with_phasor(
+        Self::build(
             constants,
             (params.offset_x, params.offset_y),
+            off,
             (ct, st),
             state,
         )
     }
 
     /// The free segment through `state` with forcing phasor `phasor` = (cos θ0, sin θ0) at its
-    /// start and stator offset `offset`. Under an input force the closed form is written about the static deflection d: free
-    /// flight of q − d, with the offset ε − d (`docs/MODEL.md` §15).
-    pub(crate) fn with_phasor(
+    /// start, stator offset `offset` and `off` = [`Self::offset_distance`]. Under an input
+    /// force the closed form is written about the static deflection d: free flight of q − d,
+    /// with the offset ε − d (`docs/MODEL.md` §15).
+    #[inline]
+    fn build(
         constants: &FreeConstants,
         offset: (f64, f64),
+        off: f64,
         phasor: (f64, f64),
         state: State,
     ) -> Self {
-        let off = Self::offset_distance(constants, offset);
         let (model, form, reach) = Self::parts(constants, offset, off, phasor, state, math::hypot);
         FreeSegment {
             constants: *constants,
@@ -198,7 +216,7 @@ impl FreeSegment {
         }
     }
 
-    /// Only the bound amplitudes of [`Self::with_phasor`]'s segment, without building the
+    /// Only the bound amplitudes of [`Self::build`]'s segment, without building the
     /// segment: the stepper's per-step curvature bound needs nothing else, and building the
     /// segment copies the free constants. `off` is [`Self::offset_distance`] of `constants` and
     /// `offset` (constant per step length and parameter set, so the caller keeps it). The
@@ -228,7 +246,7 @@ impl FreeSegment {
     }
 
     /// The model with the segment's offset, the closed form's constants and the bound amplitudes
-    /// of the free segment through `state` (see [`Self::with_phasor`]), with `norm` the
+    /// of the free segment through `state` (see [`Self::build`]), with `norm` the
     /// Euclidean norm the amplitudes are taken with.
     #[inline(always)]
     fn parts(
@@ -313,7 +331,7 @@ impl FreeSegment {
     /// The state at `at` of the free segment through `state` with start phasor `phasor` and no
     /// stator offset, without building the segment (no copy of the constants, no bound
     /// amplitudes): the stepper's forcing columns in the resonance-stable form. The same
-    /// arithmetic as [`Self::with_phasor`] followed by [`Segment::point`].
+    /// arithmetic as [`Self::build`] followed by [`Segment::point`].
     pub(crate) fn state_at(
         constants: &FreeConstants,
         phasor: (f64, f64),
