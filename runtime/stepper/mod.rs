@@ -11,7 +11,7 @@
 //! * **Switch test on a free step**: h = z² − 1 and h' at both ends plus a rigorous bound
 //!   M ≥ |h''| over the step (`FreeSegment::bounds`' bound with the step's basis bounds
 //!   precomputed, radius and speed tightened around the start state, [`curvature`]); if the
-//!   two-parabola bound ([`no_crossing`]) proves h ≤ [`TOUCH`] on the step,
+//!   two-parabola bound ([`no_crossing_likely`]) proves h ≤ [`TOUCH`] on the step,
 //!   the step is free. This is rigorous: no contact deeper than the rounding of h (z − 1 above
 //!   ~1e-15) is missed, grazing ones included. The residual risk is rounding in M itself
 //!   (relative 1e-15 of M·dt²/8, far below TOUCH for dt ≤ 1). Otherwise the step falls back to

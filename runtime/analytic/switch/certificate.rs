@@ -1,5 +1,5 @@
 //! The certificate that an interval holds no crossing: g ≤ min(Ua, Ub) with the two parabolas
-//! of the module above (`docs/MODEL.md` §12), its maximum at an end or where they meet.
+//! of the kernel's module docs (`docs/MODEL.md` §12), its maximum at an end or where they meet.
 
 use crate::math;
 
@@ -36,12 +36,12 @@ pub fn no_crossing(ga: f64, dga: f64, gb: f64, dgb: f64, m2: f64, len: f64, slac
 }
 
 /// [`no_crossing`] with a quick accept first, for callers whose test nearly always succeeds
-/// (the stepper's free step): Ua is convex, so on [0, len]
-/// Ua(t) ≤ max(ga, Ua(len)); with room for the rounding of the general evaluation (≤ 6 ulps of
-/// the terms' size; 16 taken) a bound under `slack` means that evaluation answers true as
-/// well. The same decision, so the same steps, without the division. Where the outcome is
-/// close to a coin toss (the interval search's splits) the extra branch costs more in
-/// mispredictions than the division it saves (`BENCHMARKS.md`, the ninth speed fix).
+/// (the stepper's free step). Ua is convex, so on [0, len] Ua(t) ≤ max(ga, Ua(len)); with room
+/// for the rounding of the general evaluation (≤ 6 ulps of the terms' size; 16 taken) a bound
+/// under `slack` means that evaluation answers true as well. The same decision, so the same
+/// steps, without the division. Where the outcome is close to a coin toss (the interval
+/// search's splits) the extra branch costs more in mispredictions than the division it saves
+/// (`BENCHMARKS.md`, the ninth speed fix).
 #[inline]
 pub fn no_crossing_likely(
     ga: f64,
