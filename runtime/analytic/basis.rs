@@ -142,11 +142,6 @@ pub fn free_basis(nu: f64, beta_sq: f64, s: f64) -> (f64, f64) {
     FreeRates::new(nu, beta_sq).basis(s)
 }
 
-/// Upper bounds of |EC| and |ES| on s ∈ [lo, hi]: [`FreeRates::bound`].
-pub fn free_basis_bound(nu: f64, beta_sq: f64, lo: f64, hi: f64) -> (f64, f64) {
-    FreeRates::new(nu, beta_sq).bound(lo, hi)
-}
-
 /// A minimal complex number for the complex eigenvalue pair (`docs/MODEL.md` §6 case 2).
 #[derive(Clone, Copy, Debug)]
 struct Complex {
