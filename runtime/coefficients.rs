@@ -2,9 +2,9 @@
 //!
 //! Every closed form of the model lives here: Taylor terms, linearized stiffness, particular and
 //! homogeneous constants, mode data, and segment evaluation. Nothing in it is typed by hand; the
-//! checked-in copy `codegen/snapshot/coefficients.rs` shows each change in review. The paper's
-//! symbols (ν = `nu`, η = `eta`, F = `f`, ε̂ = `ex`/`ey`, K̂ = `kxx`…) are used inside; see the
-//! symbol table in `ARCHITECTURE.md`.
+//! checked-in copy `codegen/snapshot/coefficients.rs` shows each change in review. The model's
+//! parameters are the parameter table's entries by name (`speed_ratio`, `k_xy`, …; their paper
+//! symbols are tabled in `docs/MODEL.md` §0).
 //!
 //! Generated functions take and return small structs ([`ModelParams`], [`Position`],
 //! [`LinearizedContact`], …), each field declared once in `codegen/src/model/symbols.rs`.
@@ -21,24 +21,11 @@
 include!(concat!(env!("OUT_DIR"), "/coefficients.rs"));
 
 impl ModelParams {
-    /// The paper's symbols of `params` (ν, η, F, K̂, ε̂, μ, ρ_R, u).
+    /// The model's parameters of `params`: the generated [`model_params`] (each table entry the
+    /// formulas read, copied by name, and the derived F and η_m ρ̂).
     #[inline]
     pub fn of(params: &crate::params::Params) -> Self {
-        ModelParams {
-            nu: params.damping_ratio,
-            eta: params.speed_ratio,
-            f: params.forcing_amplitude(),
-            kxx: params.k_xx,
-            kxy: params.k_xy,
-            kyx: params.k_yx,
-            kyy: params.k_yy,
-            ex: params.offset_x,
-            ey: params.offset_y,
-            mu: params.friction_coefficient,
-            rho_r: params.radius_ratio,
-            force_x: params.force_x,
-            force_y: params.force_y,
-        }
+        model_params(params)
     }
 }
 

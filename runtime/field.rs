@@ -164,14 +164,12 @@ pub fn speed_change_force(
     sin_theta: f64,
 ) -> (f64, f64) {
     let f = coef::speed_change_force(
+        &ModelParams::of(params),
         &Phasor {
             ct: cos_theta,
             st: sin_theta,
         },
-        &SpeedChange {
-            unbalance: params.mass_ratio * params.eccentricity_ratio,
-            speed_rate,
-        },
+        &SpeedChange { speed_rate },
     );
     (f.fx, f.fy)
 }

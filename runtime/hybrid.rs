@@ -35,7 +35,7 @@ impl OdeSystem<6> for ContactField {
         let [x, yy, vx, vy, c, s] = *y;
         let state = State::new(x, yy, vx, vy);
         let (ax, ay) = field::contact_acceleration(&self.model, self.slip, c, s, &state);
-        let eta = self.model.eta;
+        let eta = self.model.speed_ratio;
         [vx, vy, ax, ay, -eta * s, eta * c]
     }
 }
@@ -59,7 +59,7 @@ impl OdeSystem<6> for Frictionless<'_> {
         let [x, yy, vx, vy, c, s] = *y;
         let state = State::new(x, yy, vx, vy);
         let (ax, ay) = field::frictionless_contact_acceleration(&self.0.model, c, s, &state);
-        let eta = self.0.model.eta;
+        let eta = self.0.model.speed_ratio;
         [vx, vy, ax, ay, -eta * s, eta * c]
     }
 }

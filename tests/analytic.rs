@@ -141,7 +141,7 @@ fn grazing_contact_is_found_with_exact_entry() {
     let mut problem = Preset::Paper.problem();
     let p = &mut problem.params;
     let (eta, nu) = (p.speed_ratio, p.damping_ratio);
-    let f = p.forcing_amplitude();
+    let f = p.mass_ratio * p.eccentricity_ratio * p.speed_ratio * p.speed_ratio;
     let d = (1.0 - eta * eta).powi(2) + (2.0 * nu * eta).powi(2);
     let (c11, c22) = (f * (1.0 - eta * eta) / d, 2.0 * nu * eta * f / d);
     let radius = c11.hypot(c22);
@@ -518,7 +518,10 @@ fn tangential_start_on_boundary_takes_the_regime_of_its_curvature() {
     let mut problem = Preset::Paper.problem();
     (problem.params.offset_x, problem.params.offset_y) = (-0.16036198459594503, 0.0);
     let q = problem.params;
-    let (f, nu) = (q.forcing_amplitude(), q.damping_ratio);
+    let (f, nu) = (
+        (q.mass_ratio * q.eccentricity_ratio * q.speed_ratio * q.speed_ratio),
+        q.damping_ratio,
+    );
     let mut disagreed = 0;
     for i in 0..256 {
         let (s, c) = (f64::from(i) * std::f64::consts::TAU / 256.0 + 0.01).sin_cos();

@@ -119,7 +119,7 @@ fn exact_resonance_grows_secularly_and_matches_the_reference() {
     let segment = FreeSegment::new(&params, &FreeConstants::new(&params), 0.0, problem.initial);
     let got = segment.point(SPAN).state;
     // x = (F/2)·s·sin s from rest at θ0 = 0.
-    let f = params.forcing_amplitude();
+    let f = params.mass_ratio * params.eccentricity_ratio * params.speed_ratio * params.speed_ratio;
     assert!(
         (got.x - 0.5 * f * SPAN * SPAN.sin()).abs() < 1e-13,
         "{got:?}"

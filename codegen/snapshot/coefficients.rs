@@ -2,6 +2,8 @@
 // Refresh the checked-in snapshot with: UPDATE_SNAPSHOT=1 cargo test -p rotor-rub-codegen --test snapshot
 //
 // Operation counts per function, as expression trees (before CSE) and as emitted (after):
+// model_params                 before:     0 add     4 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
 // taylor_terms                 before:   142 add    66 mul   14 div  14 sqrt   0 trans
 //                               after:    12 add    21 mul    2 div   1 sqrt   0 trans
 // linearized_stiffness         before:     8 add    12 mul    0 div   0 sqrt   0 trans
@@ -100,35 +102,37 @@
 //                              order n per n:    17 add    20 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
-/// The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).
+/// The model's parameters: the parameter table's entries the formulas read and the quantities derived from them (`docs/MODEL.md` §0, §1).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ModelParams {
-    /// ν, damping ratio
-    pub nu: f64,
-    /// η = Ω/ω_n, speed ratio
-    pub eta: f64,
-    /// F = η_m ρ̂ η², unbalance forcing amplitude
-    pub f: f64,
-    /// K̂xx, stator stiffness
-    pub kxx: f64,
-    /// K̂xy, stator stiffness
-    pub kxy: f64,
-    /// K̂yx, stator stiffness
-    pub kyx: f64,
-    /// K̂yy, stator stiffness
-    pub kyy: f64,
-    /// ε̂x, stator centre offset
-    pub ex: f64,
-    /// ε̂y, stator centre offset
-    pub ey: f64,
-    /// μ, Coulomb friction coefficient at contact
-    pub mu: f64,
-    /// ρ_R = R/δ, rotor radius over radial clearance
-    pub rho_r: f64,
-    /// u_x, external input force (per unit mass), x: constant over a step
+    /// running speed over the rotor's natural frequency, Ω/ω_n
+    pub speed_ratio: f64,
+    /// viscous damping ratio of the rotor (ζ in the paper's Table 1; > 1 is over-damped)
+    pub damping_ratio: f64,
+    /// stator stiffness over rotor stiffness: x force per x displacement
+    pub k_xx: f64,
+    /// stator stiffness over rotor stiffness: x force per y displacement (cross-coupling)
+    pub k_xy: f64,
+    /// stator stiffness over rotor stiffness: y force per x displacement (cross-coupling)
+    pub k_yx: f64,
+    /// stator stiffness over rotor stiffness: y force per y displacement
+    pub k_yy: f64,
+    /// stator centre offset from the rotor's rest position, x, clearances
+    pub offset_x: f64,
+    /// stator centre offset from the rotor's rest position, y, clearances
+    pub offset_y: f64,
+    /// Coulomb friction coefficient at contact (0: frictionless, the paper's model)
+    pub friction_coefficient: f64,
+    /// rotor radius over radial clearance, R/δ (the rotor spins counter-clockwise at η)
+    pub radius_ratio: f64,
+    /// external force on the rotor per unit mass, x, clearances·ω_n² (a bearing, a controller, a static load; the FMU's input fx)
     pub force_x: f64,
-    /// u_y, external input force (per unit mass), y: constant over a step
+    /// external force on the rotor per unit mass, y, clearances·ω_n² (the FMU's input fy)
     pub force_y: f64,
+    /// η_m ρ̂, the unbalance's radius: mass ratio times eccentricity ratio
+    pub unbalance: f64,
+    /// F = η_m ρ̂ η², the unbalance forcing amplitude at a constant speed
+    pub unbalance_force: f64,
 }
 /// A rotor position (x, y): the point a formula is evaluated or linearized at.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -420,13 +424,49 @@ pub struct Slip {
     /// σ = ±1, the sign of the slip velocity w
     pub sigma: f64,
 }
-/// A running speed that changes in time (`docs/MODEL.md` §14): the unbalance η_m ρ̂ and the speed's rate η' = dη/dτ.
+/// A running speed that changes in time (`docs/MODEL.md` §14): the speed's rate η' = dη/dτ.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SpeedChange {
-    /// η_m ρ̂, the unbalance's radius (mass ratio times eccentricity ratio)
-    pub unbalance: f64,
     /// η' = dη/dτ, the rate of the speed ratio
     pub speed_rate: f64,
+}
+/// The model's parameters from the parameter table: each entry the formulas read, copied by name, and the quantities derived from them (F = η_m ρ̂ η², η_m ρ̂).
+///
+/// Source: docs/MODEL.md §0, §1.
+/// Derivation: the table's fields; the derived quantities as the model states them (`Model::derived_parameters`).
+#[inline]
+#[must_use]
+pub fn model_params(params: &crate::params::Params) -> ModelParams {
+    let speed_ratio = params.speed_ratio;
+    let damping_ratio = params.damping_ratio;
+    let mass_ratio = params.mass_ratio;
+    let eccentricity_ratio = params.eccentricity_ratio;
+    let k_xx = params.k_xx;
+    let k_xy = params.k_xy;
+    let k_yx = params.k_yx;
+    let k_yy = params.k_yy;
+    let offset_x = params.offset_x;
+    let offset_y = params.offset_y;
+    let friction_coefficient = params.friction_coefficient;
+    let radius_ratio = params.radius_ratio;
+    let force_x = params.force_x;
+    let force_y = params.force_y;
+    ModelParams {
+        speed_ratio: speed_ratio,
+        damping_ratio: damping_ratio,
+        k_xx: k_xx,
+        k_xy: k_xy,
+        k_yx: k_yx,
+        k_yy: k_yy,
+        offset_x: offset_x,
+        offset_y: offset_y,
+        friction_coefficient: friction_coefficient,
+        radius_ratio: radius_ratio,
+        force_x: force_x,
+        force_y: force_y,
+        unbalance: mass_ratio * eccentricity_ratio,
+        unbalance_force: mass_ratio * eccentricity_ratio * speed_ratio * speed_ratio,
+    }
 }
 /// Taylor terms A1, B1, B2, A2, D1, D2 of the contact function g about (x0, y0): g ≈ J r + D with J = [[A1, B1], [B2, A2]].
 ///
@@ -435,13 +475,13 @@ pub struct SpeedChange {
 #[inline]
 #[must_use]
 pub fn taylor_terms(model: &ModelParams, at: &Position) -> TaylorTerms {
-    let ex = model.ex;
-    let ey = model.ey;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let x = at.x;
     let y = at.y;
-    let t0 = x - ex;
+    let t0 = x - offset_x;
     let t1 = t0 * t0;
-    let t2 = y - ey;
+    let t2 = y - offset_y;
     let t3 = t2 * t2;
     let t4 = t1 + t3;
     let t5 = 1.0 / m::sqrt(t4);
@@ -470,10 +510,10 @@ pub fn linearized_stiffness(
     model: &ModelParams,
     taylor: &TaylorTerms,
 ) -> LinearizedContact {
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
     let a1 = taylor.a1;
     let b1 = taylor.b1;
     let b2 = taylor.b2;
@@ -481,12 +521,12 @@ pub fn linearized_stiffness(
     let d1 = taylor.d1;
     let d2 = taylor.d2;
     LinearizedContact {
-        fa1: 1.0 + kxx * a1 + kxy * b2,
-        fb1: kxx * b1 + kxy * a2,
-        fb2: kyx * a1 + kyy * b2,
-        fa2: 1.0 + kyx * b1 + kyy * a2,
-        fd1: kxx * d1 + kxy * d2,
-        fd2: kyx * d1 + kyy * d2,
+        fa1: 1.0 + k_xx * a1 + k_xy * b2,
+        fb1: k_xx * b1 + k_xy * a2,
+        fb2: k_yx * a1 + k_yy * b2,
+        fa2: 1.0 + k_yx * b1 + k_yy * a2,
+        fd1: k_xx * d1 + k_xy * d2,
+        fd2: k_yx * d1 + k_yy * d2,
     }
 }
 /// Steady-state harmonic response of free flight: xp = c11 cos θ + c22 sin θ, yp = c33 cos θ + c44 sin θ.
@@ -496,17 +536,17 @@ pub fn linearized_stiffness(
 #[inline]
 #[must_use]
 pub fn free_particular(model: &ModelParams) -> FreeParticular {
-    let nu = model.nu;
-    let eta = model.eta;
-    let f = model.f;
-    let t0 = eta * eta;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let unbalance_force = model.unbalance_force;
+    let t0 = speed_ratio * speed_ratio;
     let t1 = 1.0 - t0;
-    let t2 = 1.0 / (t1 * t1 + 4.0 * t0 * nu * nu);
-    let t3 = f * t1 * t2;
+    let t2 = 1.0 / (t1 * t1 + 4.0 * t0 * damping_ratio * damping_ratio);
+    let t3 = unbalance_force * t1 * t2;
     FreeParticular {
         c11: t3,
-        c22: 2.0 * eta * f * nu * t2,
-        c33: -2.0 * eta * f * nu * t2,
+        c22: 2.0 * speed_ratio * unbalance_force * damping_ratio * t2,
+        c33: -2.0 * speed_ratio * unbalance_force * damping_ratio * t2,
         c44: t3,
     }
 }
@@ -526,10 +566,10 @@ pub struct DampedFrequency {
 #[inline]
 #[must_use]
 pub fn damped_frequency_sq(model: &ModelParams, mode: &Eigenvalue) -> DampedFrequency {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let omega_sq = mode.omega_sq;
     DampedFrequency {
-        gamma_sq: omega_sq - nu * nu,
+        gamma_sq: omega_sq - damping_ratio * damping_ratio,
     }
 }
 /// Squared damped frequency β² = 1 − ν² of free flight (negative for ν > 1, zero at critical damping).
@@ -539,9 +579,9 @@ pub fn damped_frequency_sq(model: &ModelParams, mode: &Eigenvalue) -> DampedFreq
 #[inline]
 #[must_use]
 pub fn free_damped_frequency_sq(model: &ModelParams) -> FreeDampedFrequency {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     FreeDampedFrequency {
-        beta_sq: 1.0 - nu * nu,
+        beta_sq: 1.0 - damping_ratio * damping_ratio,
     }
 }
 /// Constants X, P, Y, Q of the free homogeneous solution x_h = X·EC(s) + P·ES(s) from the state (x0, y0, vx0, vy0) and forcing phase (cos θ0, sin θ0) at the segment start (P = c2·β of the paper; no division by β).
@@ -556,8 +596,8 @@ pub fn free_homogeneous(
     phasor: &Phasor,
     free: &FreeParticular,
 ) -> FreeHomogeneous {
-    let nu = model.nu;
-    let eta = model.eta;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
     let x0 = start.x0;
     let y0 = start.y0;
     let vx0 = start.vx0;
@@ -572,9 +612,9 @@ pub fn free_homogeneous(
     let t1 = ct * c33 + st * c44 - y0;
     FreeHomogeneous {
         xh: -t0,
-        px: eta * st * c11 + vx0 - nu * t0 - eta * ct * c22,
+        px: speed_ratio * st * c11 + vx0 - damping_ratio * t0 - speed_ratio * ct * c22,
         yh: -t1,
-        py: eta * st * c33 + vy0 - nu * t1 - eta * ct * c44,
+        py: speed_ratio * st * c33 + vy0 - damping_ratio * t1 - speed_ratio * ct * c44,
     }
 }
 /// Outputs of [`free_eval`].
@@ -607,10 +647,10 @@ pub fn free_eval(
     homogeneous: &FreeHomogeneous,
     basis: &FreeBasis,
 ) -> FreeState {
-    let nu = model.nu;
-    let eta = model.eta;
-    let ex = model.ex;
-    let ey = model.ey;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let ct = phasor.ct;
     let st = phasor.st;
     let c11 = free.c11;
@@ -632,12 +672,12 @@ pub fn free_eval(
     let t5 = st * c44;
     let t6 = ec * yh;
     let t7 = es * py;
-    let t8 = nu * ec + es * beta_sq;
-    let t9 = ec - nu * es;
-    let t10 = eta * ct * c22 + t9 * px - eta * st * c11 - t8 * xh;
-    let t11 = eta * ct * c44 + t9 * py - eta * st * c33 - t8 * yh;
-    let t12 = t0 + t1 + t2 + t3 - ex;
-    let t13 = t4 + t5 + t6 + t7 - ey;
+    let t8 = damping_ratio * ec + es * beta_sq;
+    let t9 = ec - damping_ratio * es;
+    let t10 = speed_ratio * ct * c22 + t9 * px - speed_ratio * st * c11 - t8 * xh;
+    let t11 = speed_ratio * ct * c44 + t9 * py - speed_ratio * st * c33 - t8 * yh;
+    let t12 = t0 + t1 + t2 + t3 - offset_x;
+    let t13 = t4 + t5 + t6 + t7 - offset_y;
     FreeState {
         x: t0 + t1 + t2 + t3,
         y: t4 + t5 + t6 + t7,
@@ -694,13 +734,13 @@ pub fn free_step_transition(
     beta: &FreeDampedFrequency,
     basis: &FreeBasis,
 ) -> FreeStepTransition {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let beta_sq = beta.beta_sq;
     let ec = basis.ec;
     let es = basis.es;
-    let t0 = ec + nu * es;
-    let t1 = ec - nu * es;
-    let t2 = nu * t1 - nu * ec - es * beta_sq;
+    let t0 = ec + damping_ratio * es;
+    let t1 = ec - damping_ratio * es;
+    let t2 = damping_ratio * t1 - damping_ratio * ec - es * beta_sq;
     FreeStepTransition {
         p00: t0,
         p01: 0.0,
@@ -753,8 +793,8 @@ pub fn free_step_forcing(
     basis: &FreeBasis,
     rotation: &ForcingRotation,
 ) -> FreeStepForcing {
-    let nu = model.nu;
-    let eta = model.eta;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
     let c11 = free.c11;
     let c22 = free.c22;
     let c33 = free.c33;
@@ -764,21 +804,21 @@ pub fn free_step_forcing(
     let es = basis.es;
     let ce = rotation.ce;
     let se = rotation.se;
-    let t0 = -(c11 * nu) - eta * c22;
-    let t1 = eta * c11 - c22 * nu;
-    let t2 = -(c33 * nu) - eta * c44;
-    let t3 = eta * c33 - c44 * nu;
-    let t4 = nu * ec + es * beta_sq;
-    let t5 = ec - nu * es;
+    let t0 = -(c11 * damping_ratio) - speed_ratio * c22;
+    let t1 = speed_ratio * c11 - c22 * damping_ratio;
+    let t2 = -(c33 * damping_ratio) - speed_ratio * c44;
+    let t3 = speed_ratio * c33 - c44 * damping_ratio;
+    let t4 = damping_ratio * ec + es * beta_sq;
+    let t5 = ec - damping_ratio * es;
     FreeStepForcing {
         g00: c11 * ce + c22 * se + es * t0 - c11 * ec,
         g01: c22 * ce + es * t1 - c11 * se - c22 * ec,
         g10: c33 * ce + c44 * se + es * t2 - c33 * ec,
         g11: c44 * ce + es * t3 - c33 * se - c44 * ec,
-        g20: eta * c22 * ce + c11 * t4 + t5 * t0 - eta * c11 * se,
-        g21: c22 * t4 + t5 * t1 - eta * c11 * ce - eta * c22 * se,
-        g30: eta * c44 * ce + c33 * t4 + t5 * t2 - eta * c33 * se,
-        g31: c44 * t4 + t5 * t3 - eta * c33 * ce - eta * c44 * se,
+        g20: speed_ratio * c22 * ce + c11 * t4 + t5 * t0 - speed_ratio * c11 * se,
+        g21: c22 * t4 + t5 * t1 - speed_ratio * c11 * ce - speed_ratio * c22 * se,
+        g30: speed_ratio * c44 * ce + c33 * t4 + t5 * t2 - speed_ratio * c33 * se,
+        g31: c44 * t4 + t5 * t3 - speed_ratio * c33 * ce - speed_ratio * c44 * se,
     }
 }
 /// Coefficients of cos ηs and sin ηs in the forcing over a free segment that starts at forcing phase (cos θ0, sin θ0): fx = fxc cos ηs + fxs sin ηs, fy = fyc cos ηs + fys sin ηs.
@@ -788,14 +828,14 @@ pub fn free_step_forcing(
 #[inline]
 #[must_use]
 pub fn free_forcing(model: &ModelParams, phasor: &Phasor) -> FreeForcing {
-    let f = model.f;
+    let unbalance_force = model.unbalance_force;
     let ct = phasor.ct;
     let st = phasor.st;
-    let t0 = ct * f;
+    let t0 = ct * unbalance_force;
     FreeForcing {
         fxc: t0,
-        fxs: -st * f,
-        fyc: st * f,
+        fxs: -st * unbalance_force,
+        fyc: st * unbalance_force,
         fys: t0,
     }
 }
@@ -806,16 +846,16 @@ pub fn free_forcing(model: &ModelParams, phasor: &Phasor) -> FreeForcing {
 #[inline]
 #[must_use]
 pub fn free_start(model: &ModelParams, start: &StartState) -> FreeHomogeneous {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let x0 = start.x0;
     let y0 = start.y0;
     let vx0 = start.vx0;
     let vy0 = start.vy0;
     FreeHomogeneous {
         xh: x0,
-        px: vx0 + nu * x0,
+        px: vx0 + damping_ratio * x0,
         yh: y0,
-        py: vy0 + nu * y0,
+        py: vy0 + damping_ratio * y0,
     }
 }
 /// Outputs of [`free_forced_eval`].
@@ -848,9 +888,9 @@ pub fn free_forced_eval(
     forcing: &FreeForcing,
     forced: &ForcedBasis,
 ) -> ForcedFreeState {
-    let nu = model.nu;
-    let ex = model.ex;
-    let ey = model.ey;
+    let damping_ratio = model.damping_ratio;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let beta_sq = beta.beta_sq;
     let xh = homogeneous.xh;
     let px = homogeneous.px;
@@ -874,12 +914,12 @@ pub fn free_forced_eval(
     let t5 = es * py;
     let t6 = fc * fyc;
     let t7 = fs * fys;
-    let t8 = nu * ec + es * beta_sq;
-    let t9 = ec - nu * es;
+    let t8 = damping_ratio * ec + es * beta_sq;
+    let t9 = ec - damping_ratio * es;
     let t10 = t9 * px + dfc * fxc + dfs * fxs - t8 * xh;
     let t11 = t9 * py + dfc * fyc + dfs * fys - t8 * yh;
-    let t12 = t0 + t1 + t2 + t3 - ex;
-    let t13 = t4 + t5 + t6 + t7 - ey;
+    let t12 = t0 + t1 + t2 + t3 - offset_x;
+    let t13 = t4 + t5 + t6 + t7 - offset_y;
     ForcedFreeState {
         x: t0 + t1 + t2 + t3,
         y: t4 + t5 + t6 + t7,
@@ -910,36 +950,45 @@ pub fn contact_particular(
     model: &ModelParams,
     kl: &LinearizedContact,
 ) -> ContactParticular {
-    let nu = model.nu;
-    let eta = model.eta;
-    let f = model.f;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let unbalance_force = model.unbalance_force;
     let fa1 = kl.fa1;
     let fb1 = kl.fb1;
     let fb2 = kl.fb2;
     let fa2 = kl.fa2;
     let fd1 = kl.fd1;
     let fd2 = kl.fd2;
-    let t0 = eta * eta;
+    let t0 = speed_ratio * speed_ratio;
     let t1 = -t0;
     let t2 = t1 + fa1;
-    let t3 = nu * nu;
+    let t3 = damping_ratio * damping_ratio;
     let t4 = t1 + fa2;
     let t5 = 4.0 * t0 * t3 + t4 * t4;
     let t6 = t2 * t5 - fb1 * fb2 * t4;
-    let t7 = -(2.0 * eta * nu * t5) - 2.0 * eta * nu * fb1 * fb2;
+    let t7 = -(2.0 * speed_ratio * damping_ratio * t5)
+        - 2.0 * speed_ratio * damping_ratio * fb1 * fb2;
     let t8 = 4.0 * t0 * t3 * fb2 + fb1 * fb2 * fb2 - fb2 * t2 * t4;
-    let t9 = 1.0 / (t2 * t6 + fb1 * t8 - 2.0 * eta * nu * t7);
-    let t10 = 4.0 * f * t0 * t3 + f * fb1 * fb2;
+    let t9 = 1.0 / (t2 * t6 + fb1 * t8 - 2.0 * speed_ratio * damping_ratio * t7);
+    let t10 = 4.0 * unbalance_force * t0 * t3 + unbalance_force * fb1 * fb2;
     let t11 = t2 * t2;
     let t12 = 1.0 / (fa1 * fa2 - fb1 * fb2);
     ContactParticular {
         c11: t9
-            * (f * t6 + 2.0 * eta * f * nu * fb1 * t4 + 2.0 * eta * f * nu * fb1 * t2),
-        c22: t9 * (fb1 * t10 - f * fb1 * t2 * t4 - f * t7),
-        c33: t9 * (f * t8 - 2.0 * eta * f * nu * t11 - 2.0 * eta * nu * t10),
+            * (unbalance_force * t6
+                + 2.0 * speed_ratio * unbalance_force * damping_ratio * fb1 * t4
+                + 2.0 * speed_ratio * unbalance_force * damping_ratio * fb1 * t2),
+        c22: t9 * (fb1 * t10 - unbalance_force * fb1 * t2 * t4 - unbalance_force * t7),
+        c33: t9
+            * (unbalance_force * t8
+                - 2.0 * speed_ratio * unbalance_force * damping_ratio * t11
+                - 2.0 * speed_ratio * damping_ratio * t10),
         c44: t9
-            * (f * t4 * t11 + 4.0 * f * t0 * t3 * t4 - f * fb1 * fb2 * t2
-                - f * (2.0 * eta * nu * fb2 * t4 + 2.0 * eta * nu * fb2 * t2)),
+            * (unbalance_force * t4 * t11 + 4.0 * unbalance_force * t0 * t3 * t4
+                - unbalance_force * fb1 * fb2 * t2
+                - unbalance_force
+                    * (2.0 * speed_ratio * damping_ratio * fb2 * t4
+                        + 2.0 * speed_ratio * damping_ratio * fb2 * t2)),
         c55: t12 * (fb1 * fd2 - fa2 * fd1),
         c66: t12 * (fb2 * fd1 - fa1 * fd2),
     }
@@ -967,7 +1016,7 @@ pub fn contact_particular_eval(
     phasor: &Phasor,
     particular: &ContactParticular,
 ) -> ParticularState {
-    let eta = model.eta;
+    let speed_ratio = model.speed_ratio;
     let ct = phasor.ct;
     let st = phasor.st;
     let c11 = particular.c11;
@@ -979,8 +1028,8 @@ pub fn contact_particular_eval(
     ParticularState {
         x: ct * c11 + st * c22 + c55,
         y: ct * c33 + st * c44 + c66,
-        vx: eta * ct * c22 - eta * st * c11,
-        vy: eta * ct * c44 - eta * st * c33,
+        vx: speed_ratio * ct * c22 - speed_ratio * st * c11,
+        vy: speed_ratio * ct * c44 - speed_ratio * st * c33,
     }
 }
 /// Eigenvalues of Kl: ω²₁,₂ = mean ∓ √Δ (complex when Δ < 0), det Kl = ω²₁ ω²₂, and the mean of γ² = ω² − ν².
@@ -990,7 +1039,7 @@ pub fn contact_particular_eval(
 #[inline]
 #[must_use]
 pub fn contact_modes(model: &ModelParams, kl: &LinearizedContact) -> ContactModes {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let fa1 = kl.fa1;
     let fb1 = kl.fb1;
     let fb2 = kl.fb2;
@@ -1002,7 +1051,7 @@ pub fn contact_modes(model: &ModelParams, kl: &LinearizedContact) -> ContactMode
         omega_sq_mean: -0.5 * (-(fa1) - fa2),
         disc: -(t0 + (t1 - 0.5 * fa2) * (t2 - 0.5 * fa1)),
         det: fa1 * fa2 + t0,
-        gamma_sq_mean: t1 + t2 - nu * nu,
+        gamma_sq_mean: t1 + t2 - damping_ratio * damping_ratio,
     }
 }
 /// Outputs of [`mode_shape`].
@@ -1089,7 +1138,7 @@ pub fn paper_modal_constants(
     paper: &PaperModes,
     initial: &HomogeneousInitial,
 ) -> PaperModalConstants {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let s1 = paper.s1;
     let s2 = paper.s2;
     let gamma1 = paper.gamma1;
@@ -1102,8 +1151,8 @@ pub fn paper_modal_constants(
     let t1 = s2 * xh0 - yh0;
     let t2 = 1.0 / (gamma1 * gamma2 * s2 - gamma1 * gamma2 * s1);
     let t3 = yh0 - s1 * xh0;
-    let t4 = vxh0 + nu * t0 * t1 + nu * t0 * t3;
-    let t5 = vyh0 + nu * s1 * t0 * t1 + nu * s2 * t0 * t3;
+    let t4 = vxh0 + damping_ratio * t0 * t1 + damping_ratio * t0 * t3;
+    let t5 = vyh0 + damping_ratio * s1 * t0 * t1 + damping_ratio * s2 * t0 * t3;
     PaperModalConstants {
         c1: t0 * t1,
         c2: t2 * (gamma2 * s2 * t4 - gamma2 * t5),
@@ -1121,7 +1170,7 @@ pub fn contact_homogeneous_start(
     model: &ModelParams,
     initial: &HomogeneousInitial,
 ) -> HomogeneousStart {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let xh0 = initial.xh0;
     let yh0 = initial.yh0;
     let vxh0 = initial.vxh0;
@@ -1129,8 +1178,8 @@ pub fn contact_homogeneous_start(
     HomogeneousStart {
         q0x: xh0,
         q0y: yh0,
-        w0x: vxh0 + nu * xh0,
-        w0y: vyh0 + nu * yh0,
+        w0x: vxh0 + damping_ratio * xh0,
+        w0y: vyh0 + damping_ratio * yh0,
     }
 }
 /// Outputs of [`contact_homogeneous_eval`].
@@ -1158,7 +1207,7 @@ pub fn contact_homogeneous_eval(
     homogeneous: &HomogeneousStart,
     basis: &ContactBasis,
 ) -> HomogeneousState {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let fa1 = kl.fa1;
     let fb1 = kl.fb1;
     let fb2 = kl.fb2;
@@ -1182,14 +1231,16 @@ pub fn contact_homogeneous_eval(
     let t6 = fb2 * q0x + q0y * t5;
     let t7 = fb2 * w0x + w0y * t5;
     let t8 = cc * q0y + cd * t6 + sc * w0y + sd * t7;
-    let t9 = omega_sq_mean - nu * nu;
+    let t9 = omega_sq_mean - damping_ratio * damping_ratio;
     let t10 = sd * (t1 * t5 - fb1 * fb2) - sc * t9;
     let t11 = sc + sd * t9 + sd * (fa1 + fa2 - 2.0 * omega_sq_mean);
     HomogeneousState {
         x: decay * t4,
         y: decay * t8,
-        vx: decay * (q0x * t10 + cc * w0x + cd * t3 - t11 * t2) - nu * decay * t4,
-        vy: decay * (q0y * t10 + cc * w0y + cd * t7 - t11 * t6) - nu * decay * t8,
+        vx: decay * (q0x * t10 + cc * w0x + cd * t3 - t11 * t2)
+            - damping_ratio * decay * t4,
+        vy: decay * (q0y * t10 + cc * w0y + cd * t7 - t11 * t6)
+            - damping_ratio * decay * t8,
     }
 }
 /// The constant response Kl⁻¹u of the linearized contact equations to a constant input force u, added to the particular constants c55, c66.
@@ -1222,7 +1273,7 @@ pub fn polynomial_particular(
     kl: &LinearizedContact,
     forcing: &CubicForcing,
 ) -> PolynomialParticular {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let fa1 = kl.fa1;
     let fb1 = kl.fb1;
     let fb2 = kl.fb2;
@@ -1237,17 +1288,17 @@ pub fn polynomial_particular(
     let a3y = forcing.a3y;
     let t0 = 1.0 / (fa1 * fa2 - fb1 * fb2);
     let t1 = fa2 * a3x - fb1 * a3y;
-    let t2 = a2x - 6.0 * nu * t0 * t1;
+    let t2 = a2x - 6.0 * damping_ratio * t0 * t1;
     let t3 = fa1 * a3y - fb2 * a3x;
-    let t4 = a2y - 6.0 * nu * t0 * t3;
+    let t4 = a2y - 6.0 * damping_ratio * t0 * t3;
     let t5 = fa2 * t2 - fb1 * t4;
-    let t6 = a1x - 4.0 * nu * t0 * t5 - 6.0 * t0 * t1;
+    let t6 = a1x - 4.0 * damping_ratio * t0 * t5 - 6.0 * t0 * t1;
     let t7 = fa1 * t4 - fb2 * t2;
-    let t8 = a1y - 4.0 * nu * t0 * t7 - 6.0 * t0 * t3;
+    let t8 = a1y - 4.0 * damping_ratio * t0 * t7 - 6.0 * t0 * t3;
     let t9 = fa2 * t6 - fb1 * t8;
-    let t10 = a0x - 2.0 * nu * t0 * t9 - 2.0 * t0 * t5;
+    let t10 = a0x - 2.0 * damping_ratio * t0 * t9 - 2.0 * t0 * t5;
     let t11 = fa1 * t8 - fb2 * t6;
-    let t12 = a0y - 2.0 * nu * t0 * t11 - 2.0 * t0 * t7;
+    let t12 = a0y - 2.0 * damping_ratio * t0 * t11 - 2.0 * t0 * t7;
     PolynomialParticular {
         b0x: t0 * (fa2 * t10 - fb1 * t12),
         b0y: t0 * (fa1 * t12 - fb2 * t10),
@@ -1306,20 +1357,20 @@ pub fn polynomial_eval(
 #[inline]
 #[must_use]
 pub fn contact_force(model: &ModelParams, at: &Position) -> Force {
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let x = at.x;
     let y = at.y;
-    let t0 = x - ex;
-    let t1 = y - ey;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
     let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     Force {
-        fx: t0 * t2 * kxx + t1 * t2 * kxy,
-        fy: t0 * t2 * kyx + t1 * t2 * kyy,
+        fx: t0 * t2 * k_xx + t1 * t2 * k_xy,
+        fy: t0 * t2 * k_yx + t1 * t2 * k_yy,
     }
 }
 /// Acceleration of free flight: q'' = F(cos θ, sin θ) − 2ν q' − q (in contact, minus `contact_force`).
@@ -1334,8 +1385,8 @@ pub fn free_acceleration(
     rate: &Velocity,
     phasor: &Phasor,
 ) -> Acceleration {
-    let nu = model.nu;
-    let f = model.f;
+    let damping_ratio = model.damping_ratio;
+    let unbalance_force = model.unbalance_force;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
@@ -1343,8 +1394,8 @@ pub fn free_acceleration(
     let ct = phasor.ct;
     let st = phasor.st;
     Acceleration {
-        ax: ct * f - 2.0 * nu * vx - x,
-        ay: st * f - 2.0 * nu * vy - y,
+        ax: ct * unbalance_force - 2.0 * damping_ratio * vx - x,
+        ay: st * unbalance_force - 2.0 * damping_ratio * vy - y,
     }
 }
 /// The acceleration the input force u adds to every regime's field: q'' += u.
@@ -1372,12 +1423,12 @@ pub fn contact_remainder(
     at: &Position,
     kl: &LinearizedContact,
 ) -> Force {
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let x = at.x;
     let y = at.y;
     let fa1 = kl.fa1;
@@ -1386,12 +1437,12 @@ pub fn contact_remainder(
     let fa2 = kl.fa2;
     let fd1 = kl.fd1;
     let fd2 = kl.fd2;
-    let t0 = x - ex;
-    let t1 = y - ey;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
     let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     Force {
-        fx: fd1 + x * fa1 + y * fb1 - x - t0 * t2 * kxx - t1 * t2 * kxy,
-        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t2 * kyx - t1 * t2 * kyy,
+        fx: fd1 + x * fa1 + y * fb1 - x - t0 * t2 * k_xx - t1 * t2 * k_xy,
+        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t2 * k_yx - t1 * t2 * k_yy,
     }
 }
 /// Acceleration of the linearized contact equations under an extra force only: q'' = a − 2ν q' − Kl q (Fd and the unbalance are carried by the particular solution).
@@ -1407,7 +1458,7 @@ pub fn linear_acceleration(
     load: &Force,
     kl: &LinearizedContact,
 ) -> Acceleration {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
@@ -1419,8 +1470,8 @@ pub fn linear_acceleration(
     let fb2 = kl.fb2;
     let fa2 = kl.fa2;
     Acceleration {
-        ax: fx - 2.0 * nu * vx - x * fa1 - y * fb1,
-        ay: fy - 2.0 * nu * vy - x * fb2 - y * fa2,
+        ax: fx - 2.0 * damping_ratio * vx - x * fa1 - y * fb1,
+        ay: fy - 2.0 * damping_ratio * vy - x * fb2 - y * fa2,
     }
 }
 /// Outputs of [`shifted_stiffness`].
@@ -1445,12 +1496,12 @@ pub fn shifted_stiffness(
     model: &ModelParams,
     kl: &LinearizedContact,
 ) -> ShiftedStiffness {
-    let nu = model.nu;
+    let damping_ratio = model.damping_ratio;
     let fa1 = kl.fa1;
     let fb1 = kl.fb1;
     let fb2 = kl.fb2;
     let fa2 = kl.fa2;
-    let t0 = -nu * nu;
+    let t0 = -damping_ratio * damping_ratio;
     ShiftedStiffness {
         a11: t0 + fa1,
         a12: fb1,
@@ -1465,28 +1516,28 @@ pub fn shifted_stiffness(
 #[inline]
 #[must_use]
 pub fn slipping_contact_force(model: &ModelParams, at: &Position, slip: &Slip) -> Force {
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
-    let mu = model.mu;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
     let x = at.x;
     let y = at.y;
     let sigma = slip.sigma;
-    let t0 = x - ex;
-    let t1 = y - ey;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
     let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     let t3 = 1.0 - t2;
-    let t4 = t0 * t3 * kxx;
-    let t5 = t1 * t3 * kxy;
-    let t6 = t0 * t3 * kyx;
-    let t7 = t1 * t3 * kyy;
+    let t4 = t0 * t3 * k_xx;
+    let t5 = t1 * t3 * k_xy;
+    let t6 = t0 * t3 * k_yx;
+    let t7 = t1 * t3 * k_yy;
     let t8 = t0 * t2 * (t4 + t5) + t1 * t2 * (t6 + t7);
     Force {
-        fx: t4 + t5 - t1 * t2 * sigma * t8 * mu,
-        fy: t6 + t7 + t0 * t2 * sigma * t8 * mu,
+        fx: t4 + t5 - t1 * t2 * sigma * t8 * friction_coefficient,
+        fy: t6 + t7 + t0 * t2 * sigma * t8 * friction_coefficient,
     }
 }
 /// Linearized stiffness of slipping contact in direction σ: Kl = I + ∂(K_s g + μσN t)/∂q and Fd so that q + K_s g + μσN t ≈ Kl q + Fd about (x0, y0).
@@ -1500,62 +1551,67 @@ pub fn slipping_linearized_stiffness(
     at: &Position,
     slip: &Slip,
 ) -> LinearizedContact {
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
-    let mu = model.mu;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
     let x = at.x;
     let y = at.y;
     let sigma = slip.sigma;
-    let t0 = x - ex;
+    let t0 = x - offset_x;
     let t1 = t0 * t0;
-    let t2 = y - ey;
+    let t2 = y - offset_y;
     let t3 = t2 * t2;
     let t4 = t1 + t3;
     let t5 = 1.0 / m::sqrt(t4);
     let t6 = 1.0 - t5;
-    let t7 = t6 * kxx;
+    let t7 = t6 * k_xx;
     let t8 = 1.0 / t4;
-    let t9 = t1 * t5 * t8 * kxx;
-    let t10 = t0 * t2 * t5 * t8 * kxy;
-    let t11 = t0 * t6 * kxx;
-    let t12 = t2 * t6 * kxy;
+    let t9 = t1 * t5 * t8 * k_xx;
+    let t10 = t0 * t2 * t5 * t8 * k_xy;
+    let t11 = t0 * t6 * k_xx;
+    let t12 = t2 * t6 * k_xy;
     let t13 = t11 + t12;
-    let t14 = t0 * t6 * kyx;
-    let t15 = t2 * t6 * kyy;
+    let t14 = t0 * t6 * k_yx;
+    let t15 = t2 * t6 * k_yy;
     let t16 = t14 + t15;
     let t17 = t0 * t5 * t13 + t2 * t5 * t16;
-    let t18 = t6 * kyx;
-    let t19 = t1 * t5 * t8 * kyx;
-    let t20 = t0 * t2 * t5 * t8 * kyy;
+    let t18 = t6 * k_yx;
+    let t19 = t1 * t5 * t8 * k_yx;
+    let t20 = t0 * t2 * t5 * t8 * k_yy;
     let t21 = t5 * t13 + t0 * t5 * (t7 + t9 + t10) + t2 * t5 * (t18 + t19 + t20)
         - t1 * t5 * t8 * t13 - t0 * t2 * t5 * t8 * t16;
-    let t22 = 1.0 + t7 + t9 + t10 + t0 * t2 * t5 * t8 * sigma * t17 * mu
-        - t2 * t5 * sigma * mu * t21;
-    let t23 = t0 * t2 * t5 * t8 * kxx;
-    let t24 = t6 * kxy;
-    let t25 = t3 * t5 * t8 * kxy;
-    let t26 = t0 * t2 * t5 * t8 * kyx;
-    let t27 = t6 * kyy;
-    let t28 = t3 * t5 * t8 * kyy;
+    let t22 = 1.0 + t7 + t9 + t10
+        + t0 * t2 * t5 * t8 * sigma * t17 * friction_coefficient
+        - t2 * t5 * sigma * friction_coefficient * t21;
+    let t23 = t0 * t2 * t5 * t8 * k_xx;
+    let t24 = t6 * k_xy;
+    let t25 = t3 * t5 * t8 * k_xy;
+    let t26 = t0 * t2 * t5 * t8 * k_yx;
+    let t27 = t6 * k_yy;
+    let t28 = t3 * t5 * t8 * k_yy;
     let t29 = t0 * t5 * (t23 + t24 + t25) + t5 * t16 + t2 * t5 * (t26 + t27 + t28)
         - t0 * t2 * t5 * t8 * t13 - t3 * t5 * t8 * t16;
-    let t30 = t23 + t24 + t25 + t3 * t5 * t8 * sigma * t17 * mu - t5 * sigma * t17 * mu
-        - t2 * t5 * sigma * mu * t29;
-    let t31 = t18 + t19 + t20 + t5 * sigma * t17 * mu + t0 * t5 * sigma * mu * t21
-        - t1 * t5 * t8 * sigma * t17 * mu;
-    let t32 = 1.0 + t26 + t27 + t28 + t0 * t5 * sigma * mu * t29
-        - t0 * t2 * t5 * t8 * sigma * t17 * mu;
+    let t30 = t23 + t24 + t25 + t3 * t5 * t8 * sigma * t17 * friction_coefficient
+        - t5 * sigma * t17 * friction_coefficient
+        - t2 * t5 * sigma * friction_coefficient * t29;
+    let t31 = t18 + t19 + t20 + t5 * sigma * t17 * friction_coefficient
+        + t0 * t5 * sigma * friction_coefficient * t21
+        - t1 * t5 * t8 * sigma * t17 * friction_coefficient;
+    let t32 = 1.0 + t26 + t27 + t28 + t0 * t5 * sigma * friction_coefficient * t29
+        - t0 * t2 * t5 * t8 * sigma * t17 * friction_coefficient;
     LinearizedContact {
         fa1: t22,
         fb1: t30,
         fb2: t31,
         fa2: t32,
-        fd1: x + t11 + t12 - t2 * t5 * sigma * t17 * mu - x * t22 - y * t30,
-        fd2: y + t14 + t15 + t0 * t5 * sigma * t17 * mu - x * t31 - y * t32,
+        fd1: x + t11 + t12 - t2 * t5 * sigma * t17 * friction_coefficient - x * t22
+            - y * t30,
+        fd2: y + t14 + t15 + t0 * t5 * sigma * t17 * friction_coefficient - x * t31
+            - y * t32,
     }
 }
 /// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) − μσN t of the linearized slipping contact field, as a force on the acceleration.
@@ -1570,13 +1626,13 @@ pub fn slipping_remainder(
     kl: &LinearizedContact,
     slip: &Slip,
 ) -> Force {
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
-    let mu = model.mu;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
     let x = at.x;
     let y = at.y;
     let fa1 = kl.fa1;
@@ -1586,17 +1642,17 @@ pub fn slipping_remainder(
     let fd1 = kl.fd1;
     let fd2 = kl.fd2;
     let sigma = slip.sigma;
-    let t0 = x - ex;
-    let t1 = y - ey;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
     let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     let t3 = 1.0 - t2;
-    let t4 = t0 * t2 * (t0 * t3 * kxx + t1 * t3 * kxy)
-        + t1 * t2 * (t0 * t3 * kyx + t1 * t3 * kyy);
+    let t4 = t0 * t2 * (t0 * t3 * k_xx + t1 * t3 * k_xy)
+        + t1 * t2 * (t0 * t3 * k_yx + t1 * t3 * k_yy);
     Force {
-        fx: fd1 + x * fa1 + y * fb1 + t1 * t2 * sigma * t4 * mu - x - t0 * t3 * kxx
-            - t1 * t3 * kxy,
-        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t3 * kyx - t1 * t3 * kyy
-            - t0 * t2 * sigma * t4 * mu,
+        fx: fd1 + x * fa1 + y * fb1 + t1 * t2 * sigma * t4 * friction_coefficient - x
+            - t0 * t3 * k_xx - t1 * t3 * k_xy,
+        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t3 * k_yx - t1 * t3 * k_yy
+            - t0 * t2 * sigma * t4 * friction_coefficient,
     }
 }
 /// Outputs of [`friction_state`].
@@ -1621,38 +1677,40 @@ pub fn friction_state(
     rate: &Velocity,
     phasor: &Phasor,
 ) -> FrictionState {
-    let nu = model.nu;
-    let eta = model.eta;
-    let f = model.f;
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
-    let rho_r = model.rho_r;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let radius_ratio = model.radius_ratio;
     let force_x = model.force_x;
     let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
     let vy = rate.vy;
     let ct = phasor.ct;
     let st = phasor.st;
-    let t0 = x - ex;
-    let t1 = y - ey;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
     let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     let t3 = 1.0 - t2;
     let t4 = -t1 * t2 * vx;
     let t5 = t0 * t2 * vy;
     FrictionState {
-        normal: t0 * t2 * (t0 * t3 * kxx + t1 * t3 * kxy)
-            + t1 * t2 * (t0 * t3 * kyx + t1 * t3 * kyy),
-        slip_velocity: t4 + t5 + eta * rho_r,
+        normal: t0 * t2 * (t0 * t3 * k_xx + t1 * t3 * k_xy)
+            + t1 * t2 * (t0 * t3 * k_yx + t1 * t3 * k_yy),
+        slip_velocity: t4 + t5 + speed_ratio * radius_ratio,
         lambda: t0 * t2
-            * (st * f + force_y - 2.0 * nu * vy - y - t0 * t3 * kyx - t1 * t3 * kyy)
+            * (st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
+                - t0 * t3 * k_yx - t1 * t3 * k_yy)
             - t1 * t2
-                * (ct * f + force_x - 2.0 * nu * vx - x - t0 * t3 * kxx - t1 * t3 * kxy)
+                * (ct * unbalance_force + force_x - 2.0 * damping_ratio * vx - x
+                    - t0 * t3 * k_xx - t1 * t3 * k_xy)
             - t2 * (t4 + t5) * (t0 * t2 * vx + t1 * t2 * vy),
     }
 }
@@ -1668,36 +1726,36 @@ pub fn rolling_acceleration(
     rate: &Velocity,
     phasor: &Phasor,
 ) -> Acceleration {
-    let nu = model.nu;
-    let f = model.f;
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let force_x = model.force_x;
     let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
     let vy = rate.vy;
     let ct = phasor.ct;
     let st = phasor.st;
-    let t0 = ct * f;
-    let t1 = -2.0 * nu * vx;
+    let t0 = ct * unbalance_force;
+    let t1 = -2.0 * damping_ratio * vx;
     let t2 = -x;
-    let t3 = x - ex;
-    let t4 = y - ey;
+    let t3 = x - offset_x;
+    let t4 = y - offset_y;
     let t5 = 1.0 / m::sqrt(t3 * t3 + t4 * t4);
     let t6 = 1.0 - t5;
-    let t7 = -t3 * t6 * kxx;
-    let t8 = -t4 * t6 * kxy;
-    let t9 = st * f;
-    let t10 = -2.0 * nu * vy;
+    let t7 = -t3 * t6 * k_xx;
+    let t8 = -t4 * t6 * k_xy;
+    let t9 = st * unbalance_force;
+    let t10 = -2.0 * damping_ratio * vy;
     let t11 = -y;
-    let t12 = -t3 * t6 * kyx;
-    let t13 = -t4 * t6 * kyy;
+    let t12 = -t3 * t6 * k_yx;
+    let t13 = -t4 * t6 * k_yy;
     let t14 = t3 * t5 * (t9 + force_y + t10 + t11 + t12 + t13)
         - t4 * t5 * (t0 + force_x + t1 + t2 + t7 + t8)
         - t5 * (t3 * t5 * vy - t4 * t5 * vx) * (t3 * t5 * vx + t4 * t5 * vy);
@@ -1726,43 +1784,43 @@ pub fn rolling_rates(
     rate: &Velocity,
     phasor: &Phasor,
 ) -> FrictionRates {
-    let nu = model.nu;
-    let eta = model.eta;
-    let f = model.f;
-    let kxx = model.kxx;
-    let kxy = model.kxy;
-    let kyx = model.kyx;
-    let kyy = model.kyy;
-    let ex = model.ex;
-    let ey = model.ey;
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
     let force_x = model.force_x;
     let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
     let x = at.x;
     let y = at.y;
     let vx = rate.vx;
     let vy = rate.vy;
     let ct = phasor.ct;
     let st = phasor.st;
-    let t0 = x - ex;
-    let t1 = y - ey;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
     let t2 = t0 * t0 + t1 * t1;
     let t3 = 1.0 / m::sqrt(t2);
     let t4 = 1.0 - t3;
-    let t5 = t0 * t4 * kxx + t1 * t4 * kxy;
+    let t5 = t0 * t4 * k_xx + t1 * t4 * k_xy;
     let t6 = 1.0 / t2;
     let t7 = 2.0 * t0 * vx + 2.0 * t1 * vy;
-    let t8 = t0 * t4 * kyx + t1 * t4 * kyy;
-    let t9 = ct * f;
-    let t10 = -2.0 * nu * vx;
+    let t8 = t0 * t4 * k_yx + t1 * t4 * k_yy;
+    let t9 = ct * unbalance_force;
+    let t10 = -2.0 * damping_ratio * vx;
     let t11 = -x;
-    let t12 = -t0 * t4 * kxx;
-    let t13 = -t1 * t4 * kxy;
+    let t12 = -t0 * t4 * k_xx;
+    let t13 = -t1 * t4 * k_xy;
     let t14 = t9 + force_x + t10 + t11 + t12 + t13;
-    let t15 = st * f;
-    let t16 = -2.0 * nu * vy;
+    let t15 = st * unbalance_force;
+    let t16 = -2.0 * damping_ratio * vy;
     let t17 = -y;
-    let t18 = -t0 * t4 * kyx;
-    let t19 = -t1 * t4 * kyy;
+    let t18 = -t0 * t4 * k_yx;
+    let t19 = -t1 * t4 * k_yy;
     let t20 = t15 + force_y + t16 + t17 + t18 + t19;
     let t21 = t0 * t3 * vy - t1 * t3 * vx;
     let t22 = t0 * t3 * vx + t1 * t3 * vy;
@@ -1772,22 +1830,22 @@ pub fn rolling_rates(
     FrictionRates {
         normal_rate: t3 * t5 * vx
             + t0 * t3
-                * (t4 * kxx * vx + 0.5 * t0 * t3 * t6 * kxx * t7 + t4 * kxy * vy
-                    + 0.5 * t1 * t3 * t6 * kxy * t7) + t3 * t8 * vy
+                * (t4 * k_xx * vx + 0.5 * t0 * t3 * t6 * k_xx * t7 + t4 * k_xy * vy
+                    + 0.5 * t1 * t3 * t6 * k_xy * t7) + t3 * t8 * vy
             + t1 * t3
-                * (t4 * kyx * vx + 0.5 * t0 * t3 * t6 * kyx * t7 + t4 * kyy * vy
-                    + 0.5 * t1 * t3 * t6 * kyy * t7) - 0.5 * t0 * t3 * t6 * t5 * t7
+                * (t4 * k_yx * vx + 0.5 * t0 * t3 * t6 * k_yx * t7 + t4 * k_yy * vy
+                    + 0.5 * t1 * t3 * t6 * k_yy * t7) - 0.5 * t0 * t3 * t6 * t5 * t7
             - 0.5 * t1 * t3 * t6 * t8 * t7,
         lambda_rate: 0.5 * t1 * t3 * t6 * t14 * t7 + t3 * vx * t20
             + t0 * t3
-                * (eta * ct * f - 2.0 * nu * t25 - vy - t4 * kyx * vx
-                    - 0.5 * t0 * t3 * t6 * kyx * t7 - t4 * kyy * vy
-                    - 0.5 * t1 * t3 * t6 * kyy * t7) + 0.5 * t3 * t6 * t21 * t22 * t7
+                * (speed_ratio * ct * unbalance_force - 2.0 * damping_ratio * t25 - vy
+                    - t4 * k_yx * vx - 0.5 * t0 * t3 * t6 * k_yx * t7 - t4 * k_yy * vy
+                    - 0.5 * t1 * t3 * t6 * k_yy * t7) + 0.5 * t3 * t6 * t21 * t22 * t7
             - t3 * vy * t14
             - t1 * t3
-                * (-(eta * st * f) - 2.0 * nu * t24 - vx - t4 * kxx * vx
-                    - 0.5 * t0 * t3 * t6 * kxx * t7 - t4 * kxy * vy
-                    - 0.5 * t1 * t3 * t6 * kxy * t7) - 0.5 * t0 * t3 * t6 * t20 * t7
+                * (-(speed_ratio * st * unbalance_force) - 2.0 * damping_ratio * t24 - vx
+                    - t4 * k_xx * vx - 0.5 * t0 * t3 * t6 * k_xx * t7 - t4 * k_xy * vy
+                    - 0.5 * t1 * t3 * t6 * k_xy * t7) - 0.5 * t0 * t3 * t6 * t20 * t7
             - t3 * t22
                 * (0.5 * t1 * t3 * t6 * vx * t7 + t0 * t3 * t25 - t1 * t3 * t24
                     - 0.5 * t0 * t3 * t6 * vy * t7)
@@ -1802,10 +1860,14 @@ pub fn rolling_rates(
 /// Derivation: η' times the partial derivative by η' of the model's `unbalance_at_varying_speed` (linear in η').
 #[inline]
 #[must_use]
-pub fn speed_change_force(phasor: &Phasor, speed: &SpeedChange) -> Force {
+pub fn speed_change_force(
+    model: &ModelParams,
+    phasor: &Phasor,
+    speed: &SpeedChange,
+) -> Force {
+    let unbalance = model.unbalance;
     let ct = phasor.ct;
     let st = phasor.st;
-    let unbalance = speed.unbalance;
     let speed_rate = speed.speed_rate;
     Force {
         fx: st * speed_rate * unbalance,
@@ -1827,11 +1889,11 @@ pub struct HeldForcing {
 #[inline]
 #[must_use]
 pub fn held_speed_forcing(model: &ModelParams, speed: &SpeedChange) -> HeldForcing {
-    let eta = model.eta;
-    let unbalance = speed.unbalance;
+    let speed_ratio = model.speed_ratio;
+    let unbalance = model.unbalance;
     let speed_rate = speed.speed_rate;
     HeldForcing {
-        in_phase: eta * eta * unbalance,
+        in_phase: speed_ratio * speed_ratio * unbalance,
         quadrature: speed_rate * unbalance,
     }
 }
@@ -1848,12 +1910,12 @@ pub fn varying_speed_unbalance(
     phasor: &Phasor,
     speed: &SpeedChange,
 ) -> Force {
-    let eta = model.eta;
+    let speed_ratio = model.speed_ratio;
+    let unbalance = model.unbalance;
     let ct = phasor.ct;
     let st = phasor.st;
-    let unbalance = speed.unbalance;
     let speed_rate = speed.speed_rate;
-    let t0 = eta * eta;
+    let t0 = speed_ratio * speed_ratio;
     Force {
         fx: -(-(st * speed_rate * unbalance) - ct * t0 * unbalance),
         fy: -(ct * speed_rate * unbalance - st * t0 * unbalance),
@@ -1912,30 +1974,30 @@ pub mod contact_taylor {
     #[inline]
     #[must_use]
     pub fn constants(model: &ModelParams) -> Constants {
-        let nu = model.nu;
-        let eta = model.eta;
-        let f = model.f;
-        let kxx = model.kxx;
-        let kxy = model.kxy;
-        let kyx = model.kyx;
-        let kyy = model.kyy;
-        let ex = model.ex;
-        let ey = model.ey;
+        let speed_ratio = model.speed_ratio;
+        let damping_ratio = model.damping_ratio;
+        let k_xx = model.k_xx;
+        let k_xy = model.k_xy;
+        let k_yx = model.k_yx;
+        let k_yy = model.k_yy;
+        let offset_x = model.offset_x;
+        let offset_y = model.offset_y;
         let force_x = model.force_x;
         let force_y = model.force_y;
+        let unbalance_force = model.unbalance_force;
         Constants {
             k0: force_x,
-            k1: f,
-            k2: -2.0 * nu,
-            k3: -kxx,
-            k4: -ex,
-            k5: -ey,
-            k6: -kxy,
+            k1: unbalance_force,
+            k2: -2.0 * damping_ratio,
+            k3: -k_xx,
+            k4: -offset_x,
+            k5: -offset_y,
+            k6: -k_xy,
             k7: force_y,
-            k8: -kyx,
-            k9: -kyy,
-            k10: -eta,
-            k11: eta,
+            k8: -k_yx,
+            k9: -k_yy,
+            k10: -speed_ratio,
+            k11: speed_ratio,
         }
     }
     /// Every operation at the expansion point (order 0; the states' order 0 set by the
@@ -2089,40 +2151,40 @@ pub mod slipping_taylor {
     #[inline]
     #[must_use]
     pub fn constants(model: &ModelParams, slip: &Slip) -> Constants {
-        let nu = model.nu;
-        let eta = model.eta;
-        let f = model.f;
-        let kxx = model.kxx;
-        let kxy = model.kxy;
-        let kyx = model.kyx;
-        let kyy = model.kyy;
-        let ex = model.ex;
-        let ey = model.ey;
-        let mu = model.mu;
-        let rho_r = model.rho_r;
+        let speed_ratio = model.speed_ratio;
+        let damping_ratio = model.damping_ratio;
+        let k_xx = model.k_xx;
+        let k_xy = model.k_xy;
+        let k_yx = model.k_yx;
+        let k_yy = model.k_yy;
+        let offset_x = model.offset_x;
+        let offset_y = model.offset_y;
+        let friction_coefficient = model.friction_coefficient;
+        let radius_ratio = model.radius_ratio;
         let force_x = model.force_x;
         let force_y = model.force_y;
+        let unbalance_force = model.unbalance_force;
         let sigma = slip.sigma;
         Constants {
             k0: force_x,
-            k1: f,
-            k2: -2.0 * nu,
-            k3: -kxx,
-            k4: -ex,
-            k5: -ey,
-            k6: -kxy,
-            k7: sigma * mu,
-            k8: kxx,
-            k9: kxy,
-            k10: kyx,
-            k11: kyy,
+            k1: unbalance_force,
+            k2: -2.0 * damping_ratio,
+            k3: -k_xx,
+            k4: -offset_x,
+            k5: -offset_y,
+            k6: -k_xy,
+            k7: sigma * friction_coefficient,
+            k8: k_xx,
+            k9: k_xy,
+            k10: k_yx,
+            k11: k_yy,
             k12: force_y,
-            k13: -kyx,
-            k14: -kyy,
-            k15: -sigma * mu,
-            k16: -eta,
-            k17: eta,
-            k18: eta * rho_r,
+            k13: -k_yx,
+            k14: -k_yy,
+            k15: -sigma * friction_coefficient,
+            k16: -speed_ratio,
+            k17: speed_ratio,
+            k18: speed_ratio * radius_ratio,
         }
     }
     /// Every operation at the expansion point (order 0; the states' order 0 set by the
@@ -2312,36 +2374,36 @@ pub mod rolling_taylor {
     #[inline]
     #[must_use]
     pub fn constants(model: &ModelParams) -> Constants {
-        let nu = model.nu;
-        let eta = model.eta;
-        let f = model.f;
-        let kxx = model.kxx;
-        let kxy = model.kxy;
-        let kyx = model.kyx;
-        let kyy = model.kyy;
-        let ex = model.ex;
-        let ey = model.ey;
-        let mu = model.mu;
+        let speed_ratio = model.speed_ratio;
+        let damping_ratio = model.damping_ratio;
+        let k_xx = model.k_xx;
+        let k_xy = model.k_xy;
+        let k_yx = model.k_yx;
+        let k_yy = model.k_yy;
+        let offset_x = model.offset_x;
+        let offset_y = model.offset_y;
+        let friction_coefficient = model.friction_coefficient;
         let force_x = model.force_x;
         let force_y = model.force_y;
+        let unbalance_force = model.unbalance_force;
         Constants {
             k0: force_x,
-            k1: f,
-            k2: -2.0 * nu,
-            k3: -kxx,
-            k4: -ex,
-            k5: -ey,
-            k6: -kxy,
+            k1: unbalance_force,
+            k2: -2.0 * damping_ratio,
+            k3: -k_xx,
+            k4: -offset_x,
+            k5: -offset_y,
+            k6: -k_xy,
             k7: force_y,
-            k8: -kyx,
-            k9: -kyy,
-            k10: -eta,
-            k11: eta,
-            k12: mu,
-            k13: kxx,
-            k14: kxy,
-            k15: kyx,
-            k16: kyy,
+            k8: -k_yx,
+            k9: -k_yy,
+            k10: -speed_ratio,
+            k11: speed_ratio,
+            k12: friction_coefficient,
+            k13: k_xx,
+            k14: k_xy,
+            k15: k_yx,
+            k16: k_yy,
         }
     }
     /// Every operation at the expansion point (order 0; the states' order 0 set by the

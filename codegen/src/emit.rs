@@ -14,36 +14,8 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use crate::expr::{ExprId, Graph, Node, Symbol};
-use crate::model::symbols::Group;
+use crate::ir::{Formula, Group};
 use crate::optimize::{OpCounts, Plan, plan};
-
-/// One output of a formula.
-pub struct Output {
-    /// Field name in the output struct.
-    pub name: String,
-    /// One-line meaning.
-    pub doc: String,
-    /// Its expression.
-    pub expr: ExprId,
-}
-
-/// A generated function: inputs, outputs and where it comes from.
-pub struct Formula {
-    /// Function name.
-    pub name: String,
-    /// What it computes (the doc comment's first line).
-    pub summary: String,
-    /// Where the formula is stated (`docs/MODEL.md` section).
-    pub source: String,
-    /// How the generator derived it.
-    pub derivation: String,
-    /// Used only by the generator's verification tests: emitted `#[doc(hidden)]`.
-    pub test_only: bool,
-    /// Output struct name (a declared [`Group`] when other formulas take it as input).
-    pub output_type: String,
-    /// Outputs, in struct order.
-    pub outputs: Vec<Output>,
-}
 
 /// Emitted tokens of one formula, with its operation counts.
 pub struct Emitted {
@@ -268,7 +240,8 @@ fn doc_attrs(lines: &[String]) -> TokenStream {
 }
 
 /// The input symbols `outputs` depend on.
-fn free_symbols(g: &Graph, outputs: &[ExprId]) -> BTreeSet<Symbol> {
+/// The input symbols the expressions `outputs` depend on.
+pub fn free_symbols(g: &Graph, outputs: &[ExprId]) -> BTreeSet<Symbol> {
     let mut stack = outputs.to_vec();
     let mut seen = std::collections::HashSet::new();
     let mut out = BTreeSet::new();
@@ -286,6 +259,9 @@ fn free_symbols(g: &Graph, outputs: &[ExprId]) -> BTreeSet<Symbol> {
 
 /// The struct of a declared group (emitted once per file).
 pub fn emit_group(group: &Group) -> TokenStream {
+    if group.external.is_some() {
+        return TokenStream::new();
+    }
     let ty = ident(group.ty);
     let doc = doc_attrs(&[group.doc.to_owned()]);
     let mut decls = TokenStream::new();
@@ -298,6 +274,19 @@ pub fn emit_group(group: &Group) -> TokenStream {
         #doc
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
         pub struct #ty { #decls }
+    }
+}
+
+/// The type of a group in signatures: its declared struct, or the runtime's own path.
+fn type_path(group: &Group) -> TokenStream {
+    match group.external {
+        Some(path) => path
+            .parse()
+            .expect("an external group's path is a Rust path"),
+        None => {
+            let t = ident(group.ty);
+            quote!(#t)
+        }
     }
 }
 
@@ -388,7 +377,7 @@ pub fn emit_formula(g: &Graph, f: &Formula, groups: &'static [Group]) -> Emitted
         .iter()
         .map(|&gi| {
             let a = ident(groups[gi].arg);
-            let t = ident(groups[gi].ty);
+            let t = type_path(&groups[gi]);
             quote!(#a: &#t)
         })
         .collect();

@@ -16,10 +16,12 @@ pub mod derive;
 pub mod emit;
 pub mod expr;
 pub mod format;
+pub mod ir;
 pub mod model;
 pub mod optimize;
 pub mod taylor;
 
+use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -37,11 +39,34 @@ pub struct Generated {
 /// Derive every formula and emit the runtime's coefficient module.
 pub fn generate() -> Generated {
     let mut model = model::derive_all();
+    // `ModelParams` carries the table entries and derived quantities the formulas read.
+    let mut used = HashSet::new();
+    let roots = model
+        .formulas
+        .iter()
+        .flat_map(|f| f.outputs.iter().map(|o| o.expr))
+        .chain(model.taylor.iter().flat_map(|s| {
+            let states = s.states.iter().map(|&(_, rate)| rate);
+            states
+                .chain(s.observed.iter().map(|o| o.2))
+                .collect::<Vec<_>>()
+        }))
+        .collect::<Vec<_>>();
+    for s in emit::free_symbols(&model.graph, &roots) {
+        used.insert(model.graph.symbol_name(s).to_owned());
+    }
+    let groups = model::symbols::emission_groups(&used);
+    let model_fields = groups
+        .iter()
+        .find(|g| g.ty == model::symbols::MODEL_PARAMS)
+        .map_or(&[][..], |g| g.fields);
+    let constructor = model.model_params_formula(model_fields);
+    model.formulas.insert(0, constructor);
     let mut body = TokenStream::new();
     let mut counts = Vec::new();
     let mut used: Vec<&'static str> = Vec::new();
     for f in &model.formulas {
-        let e = emit::emit_formula(&model.graph, f, model::symbols::GROUPS);
+        let e = emit::emit_formula(&model.graph, f, groups);
         body.extend(e.tokens);
         used.extend(e.groups.iter().map(|g| g.ty));
         counts.push((f.name.clone(), e.before, e.after));
@@ -51,7 +76,7 @@ pub fn generate() -> Generated {
     let systems = std::mem::take(&mut model.taylor);
     for system in &systems {
         let program = taylor::decompose(&mut model.graph, system);
-        let e = taylor::emit::emit_system(&model.graph, system, &program, model::symbols::GROUPS);
+        let e = taylor::emit::emit_system(&model.graph, system, &program, groups);
         body.extend(e.tokens);
         used.extend(e.constants.groups.iter().map(|g| g.ty));
         series_max = series_max.max(e.series);
@@ -69,7 +94,7 @@ pub fn generate() -> Generated {
     });
     // The declared structs, once each, in table order.
     let mut structs = TokenStream::new();
-    for g in model::symbols::GROUPS {
+    for g in groups {
         if used.contains(&g.ty) {
             structs.extend(emit::emit_group(g));
         }

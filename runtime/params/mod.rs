@@ -79,11 +79,6 @@ impl Problem {
 }
 
 impl Params {
-    /// F = η_m ρ̂ η², the amplitude of the unbalance force (`docs/MODEL.md §1`).
-    pub fn forcing_amplitude(&self) -> f64 {
-        self.mass_ratio * self.eccentricity_ratio * self.speed_ratio * self.speed_ratio
-    }
-
     /// The forcing period 2π/η.
     pub fn forcing_period(&self) -> f64 {
         core::f64::consts::TAU / self.speed_ratio

@@ -74,7 +74,6 @@ impl HeldSpeed {
         let forcing = coef::held_speed_forcing(
             &ModelParams::of(&at_speed),
             &SpeedChange {
-                unbalance: base.mass_ratio * base.eccentricity_ratio,
                 speed_rate: self.rate,
             },
         );

@@ -70,7 +70,10 @@ impl Situation {
 
     /// G: every force but friction.
     fn g_force(&self, q: Vector2<f64>, v: Vector2<f64>) -> Vector2<f64> {
-        let f = self.params().forcing_amplitude();
+        let f = self.params().mass_ratio
+            * self.params().eccentricity_ratio
+            * self.params().speed_ratio
+            * self.params().speed_ratio;
         Vector2::new(self.theta.cos(), self.theta.sin()) * f
             - v * (2.0 * self.case.nu)
             - q

@@ -76,8 +76,8 @@ fn taylor_terms_at_the_contact_boundary() {
         let (c, s) = (th.cos(), th.sin());
         let (x0, y0) = (ex + c, ey + s);
         let model = coef::ModelParams {
-            ex,
-            ey,
+            offset_x: ex,
+            offset_y: ey,
             ..coef::ModelParams::default()
         };
         let t = coef::taylor_terms(&model, &coef::Position { x: x0, y: y0 });

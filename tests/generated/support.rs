@@ -66,7 +66,10 @@ impl Case {
 
     /// F exactly as the runtime computes it.
     pub fn forcing(&self) -> f64 {
-        self.params().forcing_amplitude()
+        self.params().mass_ratio
+            * self.params().eccentricity_ratio
+            * self.params().speed_ratio
+            * self.params().speed_ratio
     }
 
     pub fn ks(&self) -> Matrix2<f64> {
@@ -496,9 +499,9 @@ pub fn check_free_segment(case: &Case, state: State) -> SegmentCheck {
 /// The generated code's parameter struct with ν, η, F (the formulas using only these).
 pub fn model(nu: f64, eta: f64, f: f64) -> ModelParams {
     ModelParams {
-        nu,
-        eta,
-        f,
+        damping_ratio: nu,
+        speed_ratio: eta,
+        unbalance_force: f,
         ..ModelParams::default()
     }
 }

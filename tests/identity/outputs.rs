@@ -67,7 +67,10 @@ pub enum Variant {
 pub fn variants() -> Vec<(String, Variant)> {
     let mut out = Vec::new();
     for &method in Method::ALL {
-        out.push((method.name().to_owned(), Variant::Method(Options::with_method(method))));
+        out.push((
+            method.name().to_owned(),
+            Variant::Method(Options::with_method(method)),
+        ));
     }
     let exprb2 = Options {
         contact_scheme: ContactScheme::Exprb2,

@@ -121,7 +121,10 @@ fn rk45_free_flight_matches_closed_form() {
 fn closed_form_satisfies_the_equations() {
     let p = problem();
     let (t0, s0) = (p.start_time, p.initial);
-    let f = p.params.forcing_amplitude();
+    let f = p.params.mass_ratio
+        * p.params.eccentricity_ratio
+        * p.params.speed_ratio
+        * p.params.speed_ratio;
     let nu = p.params.damping_ratio;
     let at = |t: f64| exact(&p.params, t0, &s0, t);
     let s = at(t0);

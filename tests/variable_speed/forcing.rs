@@ -119,7 +119,10 @@ fn a_held_step_is_one_harmonic_with_the_held_rate() {
         let equivalent = held.params(&params);
         for tau in [0.0, 1.0, 4.2] {
             // The held forcing as the constant-speed model sees it: F (cos θ', sin θ').
-            let f = equivalent.forcing_amplitude();
+            let f = equivalent.mass_ratio
+                * equivalent.eccentricity_ratio
+                * equivalent.speed_ratio
+                * equivalent.speed_ratio;
             let phase = equivalent.speed_ratio * tau + equivalent.phase;
             let (gx, gy) = (f * phase.cos(), f * phase.sin());
             // The varying-speed unbalance with η, η' frozen, by hand.
@@ -140,10 +143,7 @@ fn a_held_step_is_one_harmonic_with_the_held_rate() {
                     ct: theta.cos(),
                     st: theta.sin(),
                 },
-                &SpeedChange {
-                    unbalance,
-                    speed_rate: rate,
-                },
+                &SpeedChange { speed_rate: rate },
             );
             assert!((g.fx - hx).abs() < 1e-12 && (g.fy - hy).abs() < 1e-12);
         }

@@ -102,7 +102,7 @@ fn contact_particular_eval(m: &mut Model) {
 fn contact_modes(m: &mut Model) {
     let (kl, _) = m.linearized_inputs();
     let lam = m.var("lam");
-    let nu = m.var("nu");
+    let nu = m.var("damping_ratio");
     let g = &mut m.graph;
     let shifted = |g: &mut crate::expr::Graph, s: ExprId| {
         let d0 = g.sub(kl[0][0], s);
@@ -197,7 +197,7 @@ fn mode_shapes(m: &mut Model) {
 /// c1 … c4 of eqs. (8)–(9) with γ2 in the s2 terms (erratum 5), from the homogeneous initial state.
 fn paper_modal_constants(m: &mut Model) {
     let tau = m.var("tau");
-    let [nu, g1, g2, s1, s2] = ["nu", "gamma1", "gamma2", "s1", "s2"].map(|n| m.var(n));
+    let [nu, g1, g2, s1, s2] = ["damping_ratio", "gamma1", "gamma2", "s1", "s2"].map(|n| m.var(n));
     let c = ["c1", "c2", "c3", "c4"].map(|n| m.var(n));
     let g = &mut m.graph;
     let t_sym = g.symbol("tau");
@@ -254,8 +254,16 @@ fn paper_modal_constants(m: &mut Model) {
 /// Returns (q_h, rates).
 fn matrix_function_trajectory(m: &mut Model) -> ([ExprId; 2], Rates) {
     let (kl, _) = m.linearized_inputs();
-    let [sigma, nu, decay, cc, cd, sc, sd] =
-        ["omega_sq_mean", "nu", "decay", "cc", "cd", "sc", "sd"].map(|n| m.var(n));
+    let [sigma, nu, decay, cc, cd, sc, sd] = [
+        "omega_sq_mean",
+        "damping_ratio",
+        "decay",
+        "cc",
+        "cd",
+        "sc",
+        "sd",
+    ]
+    .map(|n| m.var(n));
     let [q0x, q0y, w0x, w0y] = ["q0x", "q0y", "w0x", "w0y"].map(|n| m.var(n));
     let g = &mut m.graph;
     let b = [

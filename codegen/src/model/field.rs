@@ -116,7 +116,7 @@ fn linear_acceleration(m: &mut Model) {
 fn shifted_stiffness(m: &mut Model) {
     let [px, py, vpx, vpy, apx, apy, decay] =
         ["x", "y", "vx", "vy", "ax", "ay", "decay"].map(|n| m.var(n));
-    let nu = m.var("nu");
+    let nu = m.var("damping_ratio");
     let (kl, _) = m.linearized_inputs();
     let mut rates = Rates::new();
     let g = &mut m.graph;

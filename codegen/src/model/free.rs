@@ -83,7 +83,7 @@ pub(super) fn harmonic(
 /// ω² − ν² − b at τ = 0, so b = ω² − ν² (free flight: ω² = 1).
 fn damped_frequency(m: &mut Model) {
     let tau = m.var("tau");
-    let nu = m.var("nu");
+    let nu = m.var("damping_ratio");
     let bsq = m.var("bsq");
     let omega_sq = m.var("omega_sq");
     let g = &mut m.graph;
@@ -135,7 +135,7 @@ pub(super) fn damped_basis(
     bsq: &str,
 ) -> [crate::expr::ExprId; 2] {
     let (c, s) = (m.var(ec), m.var(es));
-    let nu = m.var("nu");
+    let nu = m.var("damping_ratio");
     let b = m.var(bsq);
     let g = &mut m.graph;
     let rc = {
@@ -331,7 +331,7 @@ fn state_and_event(
     q: [crate::expr::ExprId; 2],
     rates: &Rates,
 ) -> Vec<(&'static str, &'static str, crate::expr::ExprId)> {
-    let (ex, ey) = (m.var("ex"), m.var("ey"));
+    let (ex, ey) = (m.var("offset_x"), m.var("offset_y"));
     let g = &mut m.graph;
     let vx = derivative(g, q[0], rates);
     let vy = derivative(g, q[1], rates);

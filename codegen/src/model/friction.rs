@@ -127,7 +127,7 @@ fn friction_state(m: &mut Model) {
     let (q, v, acc) = frictionless_contact_acceleration(m);
     let normal = m.normal_force(q);
     let (lambda, vt, _) = rolling_force(m, q, v, acc);
-    let (rho, eta) = (m.var("rho_r"), m.var("eta"));
+    let (rho, eta) = (m.var("radius_ratio"), m.var("speed_ratio"));
     let g = &mut m.graph;
     let spin = g.mul(rho, eta);
     let w = g.add(vt, spin);

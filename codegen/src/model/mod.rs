@@ -44,6 +44,7 @@ mod free;
 mod free_step;
 mod friction;
 mod linearization;
+pub mod parameters;
 mod polynomial;
 mod speed;
 pub mod symbols;
@@ -53,8 +54,8 @@ mod tools;
 use std::collections::HashMap;
 
 use crate::derive::derivative;
-use crate::emit::Formula;
 use crate::expr::{ExprId, Graph, Symbol};
+use crate::ir::Formula;
 
 /// The model's graph and the formulas derived from it, in emission order.
 pub struct Model {
@@ -63,7 +64,7 @@ pub struct Model {
     /// The derived formulas.
     pub formulas: Vec<Formula>,
     /// The systems whose Taylor recurrences are generated (`taylor.rs`).
-    pub taylor: Vec<crate::taylor::System>,
+    pub taylor: Vec<crate::ir::System>,
 }
 
 /// Build the model and derive every formula.
@@ -111,10 +112,83 @@ impl Model {
         self.graph.input_of(s)
     }
 
+    /// The parameter table's entry `name` as the caller holds it (the runtime's `Params` field):
+    /// what the derived parameters are stated in.
+    fn table(&mut self, name: &str) -> ExprId {
+        self.var(&format!("{}{name}", symbols::TABLE_PREFIX))
+    }
+
+    /// The quantities the model derives from the table's parameters ([`symbols::DERIVED`]), each
+    /// with its definition, in the order they depend on each other: the unbalance's radius
+    /// η_m ρ̂ (from the table's mass and eccentricity ratios, which the formulas do not read
+    /// themselves) and the forcing amplitude at a constant speed F = η_m ρ̂ η². The generated
+    /// `model_params` computes them once per parameter set ([`Model::model_params_formula`]);
+    /// the formulas read them as fields of `ModelParams`.
+    pub(crate) fn derived_parameters(&mut self) -> Vec<(&'static str, ExprId)> {
+        let (mass, eccentricity) = (self.table("mass_ratio"), self.table("eccentricity_ratio"));
+        let unbalance_radius = self.graph.mul(mass, eccentricity);
+        let (unbalance, eta) = (self.var("unbalance"), self.var("speed_ratio"));
+        let force = self.graph.product(&[unbalance, eta, eta]);
+        vec![("unbalance", unbalance_radius), ("unbalance_force", force)]
+    }
+
+    /// The derived quantity `name`'s definition ([`Model::derived_parameters`]).
+    pub(crate) fn derived(&mut self, name: &str) -> ExprId {
+        let derived = self.derived_parameters();
+        derived
+            .into_iter()
+            .find_map(|(n, e)| (n == name).then_some(e))
+            .unwrap_or_else(|| panic!("`{name}` is not a derived parameter of the model"))
+    }
+
+    /// The generated `model_params`: `ModelParams` from the runtime's `Params`, each field of the
+    /// table copied by name and each derived quantity computed ([`Model::derived_parameters`],
+    /// its symbols replaced by the table's fields). `fields` are `ModelParams`' fields (the
+    /// emission's: only those the formulas read).
+    pub(crate) fn model_params_formula(&mut self, fields: &[(&str, &str, &str)]) -> Formula {
+        // Each derived quantity in the table's terms: earlier ones substituted into later ones,
+        // then every table entry by its `params.` field.
+        let mut derived: Vec<(&str, ExprId)> = Vec::new();
+        for (name, definition) in self.derived_parameters() {
+            let mut pairs: Vec<(String, ExprId)> =
+                derived.iter().map(|&(n, e)| (n.to_owned(), e)).collect();
+            for entry in parameters::MODEL {
+                let field = self.table(entry.name);
+                pairs.push((entry.name.to_owned(), field));
+            }
+            let pairs: Vec<(&str, ExprId)> = pairs.iter().map(|(n, e)| (n.as_str(), *e)).collect();
+            let expr = self.subst(definition, &pairs);
+            derived.push((name, expr));
+        }
+        let outputs = fields
+            .iter()
+            .map(|&(name, _, doc)| {
+                let expr = match derived.iter().find(|d| d.0 == name) {
+                    Some(&(_, e)) => e,
+                    None => self.table(name),
+                };
+                crate::ir::Output {
+                    name: name.to_owned(),
+                    doc: doc.to_owned(),
+                    expr,
+                }
+            })
+            .collect();
+        Formula {
+            name: "model_params".to_owned(),
+            summary: "The model's parameters from the parameter table: each entry the formulas read, copied by name, and the quantities derived from them (F = η_m ρ̂ η², η_m ρ̂).".to_owned(),
+            source: "docs/MODEL.md §0, §1".to_owned(),
+            derivation: "the table's fields; the derived quantities as the model states them (`Model::derived_parameters`).".to_owned(),
+            test_only: false,
+            output_type: symbols::MODEL_PARAMS.to_owned(),
+            outputs,
+        }
+    }
+
     /// The forcing phasor's symbols (cos θ, sin θ) and their rates, θ = ητ + φ0:
     /// d(cos θ)/dτ = −η sin θ, d(sin θ)/dτ = η cos θ.
     pub(crate) fn forcing_phasor(&mut self, rates: &mut Rates) -> Vec2 {
-        let eta = self.var("eta");
+        let eta = self.var("speed_ratio");
         let ct = self.var("ct");
         let st = self.var("st");
         let g = &mut self.graph;
@@ -131,7 +205,7 @@ impl Model {
 
     /// Viscous damping 2ν q' (per unit mass).
     pub(crate) fn damping(&mut self, v: Vec2) -> Vec2 {
-        let nu = self.var("nu");
+        let nu = self.var("damping_ratio");
         let g = &mut self.graph;
         v.map(|vi| {
             let t = g.mul(nu, vi);
@@ -147,7 +221,7 @@ impl Model {
     /// The contact function g(q) = (1 − 1/z)(u, v), (u, v) = q − ε̂, z = |(u, v)|: the stator's
     /// deflection, the rotor's penetration beyond the clearance along the radius.
     pub(crate) fn contact_function(&mut self, q: Vec2) -> Vec2 {
-        let (ex, ey) = (self.var("ex"), self.var("ey"));
+        let (ex, ey) = (self.var("offset_x"), self.var("offset_y"));
         let g = &mut self.graph;
         let u = g.sub(q[0], ex);
         let v = g.sub(q[1], ey);
@@ -181,7 +255,7 @@ impl Model {
     /// The outward normal n = (u, v)/z and the counter-clockwise tangent t = (−v, u)/z of the
     /// contact at q, with z (`docs/MODEL.md` §10).
     pub(crate) fn contact_frame(&mut self, q: Vec2) -> (Vec2, Vec2, ExprId) {
-        let (ex, ey) = (self.var("ex"), self.var("ey"));
+        let (ex, ey) = (self.var("offset_x"), self.var("offset_y"));
         let g = &mut self.graph;
         let u = g.sub(q[0], ex);
         let v = g.sub(q[1], ey);
@@ -209,7 +283,7 @@ impl Model {
     pub(crate) fn friction(&mut self, q: Vec2, sigma: ExprId) -> Vec2 {
         let normal = self.normal_force(q);
         let (_, t, _) = self.contact_frame(q);
-        let mu = self.var("mu");
+        let mu = self.var("friction_coefficient");
         let g = &mut self.graph;
         let magnitude = g.product(&[mu, sigma, normal]);
         t.map(|ti| g.mul(magnitude, ti))
@@ -286,7 +360,7 @@ impl Model {
     /// [`Model::unbalance_at_varying_speed`], with F = η_m ρ̂ η² (`speed.rs` checks the two agree
     /// when the build runs).
     pub(crate) fn unbalance(&mut self, phasor: Vec2) -> Vec2 {
-        let f = self.var("f");
+        let f = self.var("unbalance_force");
         [self.graph.mul(f, phasor[0]), self.graph.mul(f, phasor[1])]
     }
 
@@ -303,9 +377,9 @@ impl Model {
     pub(crate) fn unbalance_at_varying_speed(&mut self) -> (Vec2, Rates) {
         let mut rates = Rates::new();
         let phasor = self.forcing_phasor(&mut rates);
-        let (eta, rate) = (self.sym("eta"), self.var("eta_rate"));
+        let (eta, rate) = (self.sym("speed_ratio"), self.var("eta_rate"));
         rates.insert(eta, rate);
-        let unbalance = self.var("unb");
+        let unbalance = self.var("unbalance");
         let g = &mut self.graph;
         let forcing = phasor.map(|c| {
             let position = g.mul(unbalance, c);
@@ -319,7 +393,7 @@ impl Model {
     /// The external input force u = (u_x, u_y) (per unit mass): what a magnetic bearing or a
     /// controller applies, or a static load. Constant over a step (`docs/MODEL.md` §15).
     pub(crate) fn input_force(&mut self) -> Vec2 {
-        [self.var("ux"), self.var("uy")]
+        [self.var("force_x"), self.var("force_y")]
     }
 
     /// Every force on the right-hand side of the equations of motion that acts in all regimes:
@@ -333,8 +407,8 @@ impl Model {
     /// The stator stiffness matrix K_s.
     pub(crate) fn stator_stiffness(&mut self) -> [[ExprId; 2]; 2] {
         [
-            [self.var("kxx"), self.var("kxy")],
-            [self.var("kyx"), self.var("kyy")],
+            [self.var("k_xx"), self.var("k_xy")],
+            [self.var("k_yx"), self.var("k_yy")],
         ]
     }
 

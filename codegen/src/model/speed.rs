@@ -35,10 +35,9 @@ fn check_constant_speed_case(m: &mut Model, forcing: Vec2) {
     let at_rest = forcing.map(|f| m.subst(f, &[("eta_rate", zero)]));
     let phasor = [m.var("ct"), m.var("st")];
     let constant = m.unbalance(phasor);
-    let (unbalance, eta) = (m.var("unb"), m.var("eta"));
-    let amplitude = m.graph.product(&[unbalance, eta, eta]);
+    let amplitude = m.derived("unbalance_force");
     for i in 0..2 {
-        let expected = m.subst(constant[i], &[("f", amplitude)]);
+        let expected = m.subst(constant[i], &[("unbalance_force", amplitude)]);
         assert_same(
             m,
             at_rest[i],

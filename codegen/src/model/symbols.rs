@@ -2,81 +2,74 @@
 //! generated functions it belongs to (`None` for symbols that only live inside a derivation: an
 //! unknown being solved for, a time variable that is substituted away).
 //!
+//! The model's parameters are the parameter table's entries (`parameters.rs`): each is a symbol
+//! of the table's name in `ModelParams`, next to the quantities the model derives from them
+//! ([`DERIVED`]); `ModelParams` is built from the runtime's `Params` by the generated
+//! `model_params` (whose inputs are the table's fields, symbols `params.<name>`). The other
+//! structs are declared in [`GROUPS`].
+//!
 //! The generated code takes and returns these structs instead of positional `f64`s. A formula
 //! whose expression uses a symbol declared nowhere, or a symbol of no input struct, fails the
 //! build with a message naming the symbol and the formula (see [`Symbols::lookup`] and
 //! `emit::emit_formula`).
 
-/// An input struct of the generated functions: its type, the argument name functions give it,
-/// its doc line and its fields as (symbol, field, meaning).
-pub struct Group {
-    /// Struct name in the generated code.
-    pub ty: &'static str,
-    /// Argument name of the struct in generated signatures.
-    pub arg: &'static str,
-    /// Doc line of the struct.
-    pub doc: &'static str,
-    /// (symbol, field name, meaning), in struct order.
-    pub fields: &'static [(&'static str, &'static str, &'static str)],
-}
+use std::collections::HashSet;
+use std::sync::OnceLock;
+
+use super::parameters;
+use crate::ir::Group;
+
+/// The struct of the model's parameters: the table's entries the formulas read, and the
+/// quantities derived from them.
+pub const MODEL_PARAMS: &str = "ModelParams";
+
+/// The quantities the model derives from the table's parameters, with their meaning: fields of
+/// `ModelParams` next to the table's own, defined once in the model statement
+/// (`Model::derived_parameters`) and computed by the generated `model_params`.
+pub const DERIVED: &[(&str, &str)] = &[
+    (
+        "unbalance",
+        "η_m ρ̂, the unbalance's radius: mass ratio times eccentricity ratio",
+    ),
+    (
+        "unbalance_force",
+        "F = η_m ρ̂ η², the unbalance forcing amplitude at a constant speed",
+    ),
+];
+
+/// The prefix of the symbols that stand for the runtime's `Params` fields (inputs of
+/// `model_params` only): `params.speed_ratio` is the table entry `speed_ratio` as the caller holds it.
+pub const TABLE_PREFIX: &str = "params.";
 
 /// The declared input structs, in the order generated functions take them.
 pub const GROUPS: &[Group] = &[
-    Group {
-        ty: "ModelParams",
-        arg: "model",
-        doc: "The model's parameters in the paper's symbols (`docs/MODEL.md` §1, §9).",
-        fields: &[
-            ("nu", "nu", "ν, damping ratio"),
-            ("eta", "eta", "η = Ω/ω_n, speed ratio"),
-            ("f", "f", "F = η_m ρ̂ η², unbalance forcing amplitude"),
-            ("kxx", "kxx", "K̂xx, stator stiffness"),
-            ("kxy", "kxy", "K̂xy, stator stiffness"),
-            ("kyx", "kyx", "K̂yx, stator stiffness"),
-            ("kyy", "kyy", "K̂yy, stator stiffness"),
-            ("ex", "ex", "ε̂x, stator centre offset"),
-            ("ey", "ey", "ε̂y, stator centre offset"),
-            ("mu", "mu", "μ, Coulomb friction coefficient at contact"),
-            (
-                "rho_r",
-                "rho_r",
-                "ρ_R = R/δ, rotor radius over radial clearance",
-            ),
-            (
-                "ux",
-                "force_x",
-                "u_x, external input force (per unit mass), x: constant over a step",
-            ),
-            (
-                "uy",
-                "force_y",
-                "u_y, external input force (per unit mass), y: constant over a step",
-            ),
-        ],
-    },
     Group {
         ty: "Position",
         arg: "at",
         doc: "A rotor position (x, y): the point a formula is evaluated or linearized at.",
         fields: &[("lx", "x", "x"), ("ly", "y", "y")],
+        external: None,
     },
     Group {
         ty: "Velocity",
         arg: "rate",
         doc: "A rotor velocity (x', y').",
         fields: &[("vx", "vx", "x'"), ("vy", "vy", "y'")],
+        external: None,
     },
     Group {
         ty: "Force",
         arg: "load",
         doc: "An extra force (per unit mass) on the rotor.",
         fields: &[("fx", "fx", "x component"), ("fy", "fy", "y component")],
+        external: None,
     },
     Group {
         ty: "Acceleration",
         arg: "acceleration",
         doc: "A rotor acceleration (x'', y'').",
         fields: &[("ax", "ax", "x''"), ("ay", "ay", "y''")],
+        external: None,
     },
     Group {
         ty: "StartState",
@@ -88,18 +81,21 @@ pub const GROUPS: &[Group] = &[
             ("vx0", "vx0", "x'(τ0)"),
             ("vy0", "vy0", "y'(τ0)"),
         ],
+        external: None,
     },
     Group {
         ty: "Phasor",
         arg: "phasor",
         doc: "The forcing direction (cos θ, sin θ), θ = ητ + φ0.",
         fields: &[("ct", "ct", "cos θ"), ("st", "st", "sin θ")],
+        external: None,
     },
     Group {
         ty: "LocalTime",
         arg: "time",
         doc: "Local time s = τ − τ0 in a segment.",
         fields: &[("s", "s", "s = τ − τ0")],
+        external: None,
     },
     Group {
         ty: "TaylorTerms",
@@ -113,6 +109,7 @@ pub const GROUPS: &[Group] = &[
             ("d1", "d1", "D1 = gx(r0) − A1 x0 − B1 y0"),
             ("d2", "d2", "D2 = gy(r0) − B2 x0 − A2 y0"),
         ],
+        external: None,
     },
     Group {
         ty: "LinearizedContact",
@@ -142,6 +139,7 @@ pub const GROUPS: &[Group] = &[
             ("fd1", "fd1", "Fd1 = (K_s D)_x, the x equation's constant"),
             ("fd2", "fd2", "Fd2 = (K_s D)_y, the y equation's constant"),
         ],
+        external: None,
     },
     Group {
         ty: "ContactModes",
@@ -161,12 +159,14 @@ pub const GROUPS: &[Group] = &[
                 "(γ²₁ + γ²₂)/2 = mean − ν²",
             ),
         ],
+        external: None,
     },
     Group {
         ty: "Eigenvalue",
         arg: "mode",
         doc: "One eigenvalue ω² of Kl (undamped squared frequency of a mode).",
         fields: &[("omega_sq", "omega_sq", "ω²")],
+        external: None,
     },
     Group {
         ty: "PaperModes",
@@ -178,6 +178,7 @@ pub const GROUPS: &[Group] = &[
             ("gamma1", "gamma1", "γ1, damped frequency of mode 1"),
             ("gamma2", "gamma2", "γ2, damped frequency of mode 2"),
         ],
+        external: None,
     },
     Group {
         ty: "ContactParticular",
@@ -191,6 +192,7 @@ pub const GROUPS: &[Group] = &[
             ("cp55", "c55", "c55, constant of x: −(Kl⁻¹ Fd)_x"),
             ("cp66", "c66", "c66, constant of y: −(Kl⁻¹ Fd)_y"),
         ],
+        external: None,
     },
     Group {
         ty: "HomogeneousInitial",
@@ -202,6 +204,7 @@ pub const GROUPS: &[Group] = &[
             ("vxh0", "vxh0", "x_h'(0)"),
             ("vyh0", "vyh0", "y_h'(0)"),
         ],
+        external: None,
     },
     Group {
         ty: "HomogeneousStart",
@@ -213,6 +216,7 @@ pub const GROUPS: &[Group] = &[
             ("w0x", "w0x", "w0 = q_h'(0) + ν q0, x"),
             ("w0y", "w0y", "w0, y"),
         ],
+        external: None,
     },
     Group {
         ty: "ContactBasis",
@@ -229,6 +233,7 @@ pub const GROUPS: &[Group] = &[
             ("sc", "sc", "even part of sin(√μ s)/√μ"),
             ("sd", "sd", "odd part of sin(√μ s)/√μ"),
         ],
+        external: None,
     },
     Group {
         ty: "CubicForcing",
@@ -244,6 +249,7 @@ pub const GROUPS: &[Group] = &[
             ("a3x", "a3x", "a3, x"),
             ("a3y", "a3y", "a3, y"),
         ],
+        external: None,
     },
     Group {
         ty: "PolynomialParticular",
@@ -259,6 +265,7 @@ pub const GROUPS: &[Group] = &[
             ("b3x", "b3x", "b3 (cubic), x"),
             ("b3y", "b3y", "b3, y"),
         ],
+        external: None,
     },
     Group {
         ty: "FreeParticular",
@@ -270,12 +277,14 @@ pub const GROUPS: &[Group] = &[
             ("c33", "c33", "c33, cos θ coefficient of y"),
             ("c44", "c44", "c44, sin θ coefficient of y"),
         ],
+        external: None,
     },
     Group {
         ty: "FreeDampedFrequency",
         arg: "beta",
         doc: "Squared damped frequency of free flight (`docs/MODEL.md` §4).",
         fields: &[("beta_sq", "beta_sq", "β² = 1 − ν²")],
+        external: None,
     },
     Group {
         ty: "FreeHomogeneous",
@@ -287,12 +296,14 @@ pub const GROUPS: &[Group] = &[
             ("yh", "yh", "Y = y0 − yp(τ0)"),
             ("py", "py", "Q = y0' − yp'(τ0) + ν Y"),
         ],
+        external: None,
     },
     Group {
         ty: "FreeBasis",
         arg: "basis",
         doc: "The free-flight basis EC = e^{−νs} cos βs, ES = e^{−νs} sin(βs)/β at s.",
         fields: &[("ec", "ec", "EC(s)"), ("es", "es", "ES(s)")],
+        external: None,
     },
     Group {
         ty: "FreeForcing",
@@ -304,12 +315,14 @@ pub const GROUPS: &[Group] = &[
             ("fyc", "fyc", "cos ηs coefficient of the y forcing"),
             ("fys", "fys", "sin ηs coefficient of the y forcing"),
         ],
+        external: None,
     },
     Group {
         ty: "ForcingRotation",
         arg: "rotation",
         doc: "The forcing phasor's rotation (cos ηs, sin ηs) over a local time s.",
         fields: &[("ce", "ce", "cos ηs"), ("se", "se", "sin ηs")],
+        external: None,
     },
     Group {
         ty: "ForcedBasis",
@@ -321,29 +334,25 @@ pub const GROUPS: &[Group] = &[
             ("dfc", "dfc", "FC'(s)"),
             ("dfs", "dfs", "FS'(s)"),
         ],
+        external: None,
     },
     Group {
         ty: "Slip",
         arg: "slip",
         doc: "The slip direction σ = sign w of slipping contact (`docs/MODEL.md` §10).",
         fields: &[("sigma", "sigma", "σ = ±1, the sign of the slip velocity w")],
+        external: None,
     },
     Group {
         ty: "SpeedChange",
         arg: "speed",
-        doc: "A running speed that changes in time (`docs/MODEL.md` §14): the unbalance η_m ρ̂ and the speed's rate η' = dη/dτ.",
-        fields: &[
-            (
-                "unb",
-                "unbalance",
-                "η_m ρ̂, the unbalance's radius (mass ratio times eccentricity ratio)",
-            ),
-            (
-                "eta_rate",
-                "speed_rate",
-                "η' = dη/dτ, the rate of the speed ratio",
-            ),
-        ],
+        doc: "A running speed that changes in time (`docs/MODEL.md` §14): the speed's rate η' = dη/dτ.",
+        fields: &[(
+            "eta_rate",
+            "speed_rate",
+            "η' = dη/dτ, the rate of the speed ratio",
+        )],
+        external: None,
     },
 ];
 
@@ -393,7 +402,7 @@ pub struct Symbols;
 impl Symbols {
     /// The declaration of `name`, if declared.
     pub fn find(name: &str) -> Option<Declared> {
-        for g in GROUPS {
+        for g in all_groups() {
             if let Some(&(_, field, _)) = g.fields.iter().find(|f| f.0 == name) {
                 return Some(Declared {
                     group: Some(g),
@@ -409,7 +418,7 @@ impl Symbols {
 
     /// Every place `name` is declared: the structs declaring it, and `"internal"`.
     pub fn declarations(name: &str) -> impl Iterator<Item = &'static str> + '_ {
-        let groups = GROUPS
+        let groups = all_groups()
             .iter()
             .filter(move |g| g.fields.iter().any(|f| f.0 == name))
             .map(|g| g.ty);
@@ -439,6 +448,60 @@ impl Symbols {
 
     /// The group whose struct is named `ty`.
     pub fn group(ty: &str) -> Option<&'static Group> {
-        GROUPS.iter().find(|g| g.ty == ty)
+        all_groups().iter().find(|g| g.ty == ty)
     }
+}
+
+/// The runtime's parameter struct as an input group: every model parameter of the table, as the
+/// symbol `params.<name>` (not emitted: the generated code names `crate::params::Params`).
+fn table_group() -> Group {
+    let fields: Vec<(&'static str, &'static str, &'static str)> = parameters::MODEL
+        .iter()
+        .map(|e| {
+            let symbol: &'static str =
+                Box::leak(format!("{TABLE_PREFIX}{}", e.name).into_boxed_str());
+            (symbol, e.name, e.doc)
+        })
+        .collect();
+    Group {
+        ty: "Params",
+        arg: "params",
+        doc: "The parameter table's values (the runtime's `Params`).",
+        fields: fields.leak(),
+        external: Some("crate::params::Params"),
+    }
+}
+
+/// `ModelParams` with the fields `keep` says (table order, then [`DERIVED`]'s).
+fn model_group(keep: impl Fn(&str) -> bool) -> Group {
+    let table = parameters::MODEL.iter().map(|e| (e.name, e.name, e.doc));
+    let derived = DERIVED.iter().map(|&(name, doc)| (name, name, doc));
+    let fields: Vec<_> = table.chain(derived).filter(|f| keep(f.0)).collect();
+    Group {
+        ty: MODEL_PARAMS,
+        arg: "model",
+        doc: "The model's parameters: the parameter table's entries the formulas read and the quantities derived from them (`docs/MODEL.md` §0, §1).",
+        fields: fields.leak(),
+        external: None,
+    }
+}
+
+/// Every declared struct: the table's, `ModelParams` with every table entry and derived
+/// quantity, then [`GROUPS`] (what declarations are checked against).
+pub fn all_groups() -> &'static [Group] {
+    static ALL: OnceLock<Vec<Group>> = OnceLock::new();
+    ALL.get_or_init(|| {
+        let mut all = vec![table_group(), model_group(|_| true)];
+        all.extend(GROUPS.iter().cloned());
+        all
+    })
+}
+
+/// The structs the generated code is emitted with: as [`all_groups`], with `ModelParams` holding
+/// only the fields some formula reads (`used`: the symbols of every formula but `model_params`
+/// itself), so that it carries nothing it does not need.
+pub fn emission_groups(used: &HashSet<String>) -> &'static [Group] {
+    let mut all = vec![table_group(), model_group(|name| used.contains(name))];
+    all.extend(GROUPS.iter().cloned());
+    all.leak()
 }

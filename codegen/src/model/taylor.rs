@@ -11,7 +11,7 @@
 use super::friction::{frictionless_contact_acceleration, rolling_force};
 use super::{Model, Rates, Vec2};
 use crate::expr::ExprId;
-use crate::taylor::System;
+use crate::ir::System;
 
 pub(super) fn derive(m: &mut Model) {
     let contact = contact(m);
@@ -38,7 +38,12 @@ fn states(m: &mut Model, acceleration: Vec2) -> Vec<(crate::expr::Symbol, ExprId
 
 /// h = z² − 1 = (x − ε̂x)² + (y − ε̂y)² − 1: positive in contact.
 fn boundary(m: &mut Model) -> (String, String, ExprId) {
-    let (x, y, ex, ey) = (m.var("lx"), m.var("ly"), m.var("ex"), m.var("ey"));
+    let (x, y, ex, ey) = (
+        m.var("lx"),
+        m.var("ly"),
+        m.var("offset_x"),
+        m.var("offset_y"),
+    );
     let g = &mut m.graph;
     let u = g.sub(x, ex);
     let v = g.sub(y, ey);
@@ -79,7 +84,7 @@ fn slipping(m: &mut Model) -> System {
     let states = states(m, acc);
     let (_, t, _) = m.contact_frame(q);
     let vt = m.dot(v, t);
-    let (rho, eta) = (m.var("rho_r"), m.var("eta"));
+    let (rho, eta) = (m.var("radius_ratio"), m.var("speed_ratio"));
     let g = &mut m.graph;
     let spin = g.mul(rho, eta);
     let w = g.add(vt, spin);
@@ -105,7 +110,7 @@ fn rolling(m: &mut Model) -> System {
     let (q, v, acc) = frictionless_contact_acceleration(m);
     let normal = m.normal_force(q);
     let (lambda, _, t) = rolling_force(m, q, v, acc);
-    let mu = m.var("mu");
+    let mu = m.var("friction_coefficient");
     let g = &mut m.graph;
     let a = [0, 1].map(|i| {
         let f = g.mul(lambda, t[i]);

@@ -6,8 +6,8 @@ use std::collections::HashMap;
 
 use super::{Model, Rates, Vec2};
 use crate::derive::{derivative, partial, solve_linear};
-use crate::emit::{Formula, Output};
 use crate::expr::{ExprId, Symbol};
+use crate::ir::{Formula, Output};
 
 impl Model {
     /// Initial-condition equations of a trajectory `q` at its start: q_i(0) = `start[i].0` and

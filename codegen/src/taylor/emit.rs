@@ -6,10 +6,10 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
-use super::{Coef, Op, Program, System};
-use crate::emit::{Emitted, Formula, Output, emit_formula};
+use super::{Coef, Op, Program};
+use crate::emit::{Emitted, emit_formula};
 use crate::expr::Graph;
-use crate::model::symbols::Group;
+use crate::ir::{Formula, Group, Output, System};
 use crate::optimize::OpCounts;
 
 /// The emitted module of one system, with what the file header reports.

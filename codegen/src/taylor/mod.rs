@@ -24,19 +24,7 @@ use std::collections::HashMap;
 
 use crate::expr::{ExprId, Func, Graph, Node, Symbol};
 
-/// An ODE system whose Taylor recurrences are generated.
-pub struct System {
-    /// Name of the generated module (`contact_taylor`, …).
-    pub name: String,
-    /// What the system is (doc comment).
-    pub summary: String,
-    /// Where the field is stated (`docs/MODEL.md` section).
-    pub source: String,
-    /// States: the symbol and its rate d/dτ, in the order the runtime stores them.
-    pub states: Vec<(Symbol, ExprId)>,
-    /// Observed quantities (switch functions): name, doc line, expression.
-    pub observed: Vec<(String, String, ExprId)>,
-}
+use crate::ir::System;
 
 /// A coefficient of a linear combination: a literal or a time-constant expression.
 #[derive(Clone, Copy, Debug, PartialEq)]

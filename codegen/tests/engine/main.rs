@@ -23,10 +23,11 @@ use std::collections::HashMap;
 use rotor_rub_codegen::derive::{
     SolveError, derivative, determinant, nth_derivative, partial, solve_linear,
 };
-use rotor_rub_codegen::emit::{Formula, Output, emit_formula};
+use rotor_rub_codegen::emit::emit_formula;
 use rotor_rub_codegen::expr::{Env, ExprId, Graph, Node, Symbol};
 use rotor_rub_codegen::format::format_file;
-use rotor_rub_codegen::model::symbols::Group;
+use rotor_rub_codegen::ir::Group;
+use rotor_rub_codegen::ir::{Formula, Output};
 use rotor_rub_codegen::optimize::plan;
 
 /// Unit roundoff of f64.
@@ -193,6 +194,7 @@ const TEST_GROUPS: &[Group] = &[Group {
         ("x", "x", ""),
         ("y", "y", ""),
     ],
+    external: None,
 }];
 
 impl Ast {

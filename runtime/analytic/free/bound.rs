@@ -48,7 +48,10 @@ pub(crate) struct BasisBound {
 impl BasisBound {
     /// The bounds on s ∈ [lo, hi] (`hi` may be infinite).
     pub(crate) fn on(constants: &FreeConstants, lo: f64, hi: f64) -> Self {
-        let (nu, b2) = (constants.model.nu, math::abs(constants.beta_sq()));
+        let (nu, b2) = (
+            constants.model.damping_ratio,
+            math::abs(constants.beta_sq()),
+        );
         let (ec, es) = constants.rates.bound(lo, hi);
         // EC' = −νEC − β²ES, ES' = EC − νES, applied twice, bounded term by term.
         let (dec, des) = (nu * ec + b2 * es, ec + nu * es);
@@ -67,7 +70,7 @@ impl BasisBound {
     pub(crate) fn with_forcing(self, constants: &FreeConstants, hi: f64) -> Self {
         BasisBound {
             kappa: constants.resonance.map_or(0.0, |r| r.bound(hi)),
-            eta: constants.model.eta,
+            eta: constants.model.speed_ratio,
             ..self
         }
     }

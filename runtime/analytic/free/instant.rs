@@ -32,7 +32,7 @@ impl FreeInstant {
     /// [`Self::at`] given the basis at `s`, which depends on ν and β² only: the stepper keeps
     /// it across parameter changes that leave them ([`FreeConstants::damping_key`]).
     pub(crate) fn with_basis(constants: &FreeConstants, s: f64, basis: FreeBasis) -> Self {
-        let (sd, cd) = math::sin_cos(constants.model.eta * s);
+        let (sd, cd) = math::sin_cos(constants.model.speed_ratio * s);
         FreeInstant {
             s,
             basis,

@@ -71,8 +71,8 @@ impl FreeConstants {
             deflection: deflection(&model),
             particular: p,
             steady_amplitude: amp.is_finite().then_some(amp),
-            rates: FreeRates::new(model.nu, beta_sq),
-            resonance: Resonance::near(model.nu, beta_sq, model.eta),
+            rates: FreeRates::new(model.damping_ratio, beta_sq),
+            resonance: Resonance::near(model.damping_ratio, beta_sq, model.speed_ratio),
             model,
         }
     }
@@ -128,7 +128,10 @@ impl FreeConstants {
     /// generated `free_step_transition`), so what depends on it alone — the stepper's Φ(dt),
     /// the basis at dt and its bounds — can be kept.
     pub(crate) fn damping_key(&self) -> (u64, u64) {
-        (self.model.nu.to_bits(), self.rates.beta_sq.to_bits())
+        (
+            self.model.damping_ratio.to_bits(),
+            self.rates.beta_sq.to_bits(),
+        )
     }
 }
 
@@ -268,8 +271,8 @@ impl FreeSegment {
             )
         };
         let model = ModelParams {
-            ex: offset.0,
-            ey: offset.1,
+            offset_x: offset.0,
+            offset_y: offset.1,
             ..c.model
         };
         let (ct, st) = phasor;

@@ -72,11 +72,11 @@ pub(super) fn position_gain(model: &ModelParams, kl: &LinearizedContact) -> f64 
 /// added as 4μ‖K_s‖_F (0 at μ = 0).
 pub fn max_contact_stiffness(params: &Params) -> f64 {
     let mut model = ModelParams::of(params);
-    let ks = frobenius([[model.kxx, model.kxy], [model.kyx, model.kyy]]);
+    let ks = frobenius([[model.k_xx, model.k_xy], [model.k_yx, model.k_yy]]);
     let jacobian = |z: f64| {
         let at = Position {
-            x: model.ex + z,
-            y: model.ey,
+            x: model.offset_x + z,
+            y: model.offset_y,
         };
         let t = coef::taylor_terms(&model, &at);
         [[t.a1, t.b1], [t.b2, t.a2]]
@@ -90,7 +90,7 @@ pub fn max_contact_stiffness(params: &Params) -> f64 {
     });
     let spectral = |m: [[f64; 2]; 2]| harmonic_amplitude(m[0][0], m[0][1], m[1][0], m[1][1]);
     let j_norm = spectral(j1).max(spectral(j0));
-    (model.kxx, model.kxy, model.kyx, model.kyy) = (0.0, 0.0, 0.0, 0.0);
+    (model.k_xx, model.k_xy, model.k_yx, model.k_yy) = (0.0, 0.0, 0.0, 0.0);
     let t = coef::taylor_terms(&model, &Position { x: 1.0, y: 0.0 });
     let k0 = coef::linearized_stiffness(&model, &t);
     let friction = 4.0 * params.friction_coefficient * ks;
@@ -105,14 +105,14 @@ pub fn max_contact_stiffness(params: &Params) -> f64 {
 /// the amplitude alone cannot detect resonance. The determinant comes from the generated
 /// `contact_modes` of the shifted stiffness Kl − η² I: det(M + iP I) = det M − P² + iP tr M.
 pub(super) fn harmonic_condition(model: &ModelParams, kl: &LinearizedContact) -> f64 {
-    let eta_sq = model.eta * model.eta;
+    let eta_sq = model.speed_ratio * model.speed_ratio;
     let shifted = LinearizedContact {
         fa1: kl.fa1 - eta_sq,
         fa2: kl.fa2 - eta_sq,
         ..*kl
     };
     let det = coef::contact_modes(model, &shifted).det;
-    let p = 2.0 * model.nu * model.eta;
+    let p = 2.0 * model.damping_ratio * model.speed_ratio;
     let trace = shifted.fa1 + shifted.fa2;
     // A lower bound of the modulus (no hypot on this per-sub-step path): the condition is
     // overestimated by at most √2, which only widens the near-resonant band slightly.

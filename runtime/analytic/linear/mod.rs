@@ -127,7 +127,7 @@ impl Linearization {
         } else {
             coef::slipping_linearized_stiffness(model, &at, &Slip { sigma: slip })
         };
-        let nu = model.nu;
+        let nu = model.damping_ratio;
         let modes = coef::contact_modes(model, &kl);
         let scale =
             1.0 + math::abs(kl.fa1) + math::abs(kl.fa2) + math::abs(kl.fb1) + math::abs(kl.fb2);
@@ -151,7 +151,7 @@ impl Linearization {
         let mut amplitude = harmonic_amplitude(c.c11, c.c22, c.c33, c.c44);
         // (Exact resonance gives NaN or infinite constants.)
         let resonant = amplitude.is_nan()
-            || amplitude > RESONANT_GAIN * math::abs(model.f)
+            || amplitude > RESONANT_GAIN * math::abs(model.unbalance_force)
             || harmonic_condition(model, &kl) > RESONANT_GAIN;
         if resonant {
             (
@@ -163,7 +163,7 @@ impl Linearization {
             amplitude = 0.0;
         }
         let c = &particular;
-        let (st, ct) = math::sin_cos(math::wrap_angle(model.eta * t0 + constants.phase));
+        let (st, ct) = math::sin_cos(math::wrap_angle(model.speed_ratio * t0 + constants.phase));
         let a = coef::shifted_stiffness(model, &kl);
         let norm_a = frobenius([[a.a11, a.a12], [a.a21, a.a22]]);
         let norm_kl = frobenius([[kl.fa1, kl.fb1], [kl.fb2, kl.fa2]]);
@@ -174,14 +174,14 @@ impl Linearization {
             particular,
             model: *model,
             nu,
-            eta: model.eta,
+            eta: model.speed_ratio,
             phase0: (ct, st),
-            offset: (model.ex, model.ey),
+            offset: (model.offset_x, model.offset_y),
             norm_a,
             norm_kl,
             gains,
             harmonic_amplitude: amplitude,
-            harmonic_shift: math::hypot(c.c55 - model.ex, c.c66 - model.ey),
+            harmonic_shift: math::hypot(c.c55 - model.offset_x, c.c66 - model.offset_y),
             resonant,
             slip,
         };

@@ -253,7 +253,10 @@ impl LinearSegment {
         let extra = math::hypot(a1x, a1y)
             + 2.0 * h * math::hypot(a2x, a2y)
             + 3.0 * h * h * math::hypot(a3x, a3y);
-        2.0 * l.nu * b.accel + l.norm_kl * b.speed + math::abs(l.model.f) * l.eta + extra
+        2.0 * l.nu * b.accel
+            + l.norm_kl * b.speed
+            + math::abs(l.model.unbalance_force) * l.eta
+            + extra
     }
 
     /// The linearization this segment belongs to.
