@@ -6,18 +6,19 @@
 //! Tolerance semantics: free flight is exact (rounding only); in contact `tol` is DOP853's
 //! relative and absolute tolerance per step, as for [`crate::Method::Dop853`].
 
-use crate::analytic::propagator::FreeFlightSolver;
+use crate::analytic::free_flight::FreeFlightSolver;
 use crate::coefficients::ModelParams;
 use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::field;
-use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
+use crate::params::ValidRange;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, PropagationError, Regime};
 use crate::reference::{
     Dop853, Dop853Dense, Dop853Step, Found, Integrator, Interpolant, OdeSystem, PhasorRotorSystem,
     REFERENCE_BUDGET, ReferenceSolver, SUBDIVISIONS, Switches, Tolerance, switch_in_deferred_step,
 };
+use crate::registration::{MethodInfo, Registered, Settings};
 
 /// The contact field of [`PhasorRotorSystem`] with the model parameters in the generated code's
 /// form prepared once per segment instead of at every stage ([`field::contact_acceleration`]:
@@ -248,7 +249,7 @@ pub struct HybridPropagator(
 );
 
 impl HybridPropagator {
-    /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
+    /// Validate `problem` and `tol` ([`MethodInfo::tolerance_range`]) and start at the problem's
     /// start time.
     #[inline(always)]
     pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
@@ -259,7 +260,7 @@ impl HybridPropagator {
     /// As [`HybridPropagator::new`] without checking the problem (see [`Registered::resume`]).
     #[inline(always)]
     fn start(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
-        Method::Hybrid.check_tolerance(tol)?;
+        Self::INFO.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
         Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
@@ -299,12 +300,12 @@ impl Registered for HybridPropagator {
     };
 
     #[inline(always)]
-    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
-        HybridPropagator::new(problem, options.tolerance())
+    fn build(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
+        HybridPropagator::new(problem, settings.tol)
     }
 
-    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
-        HybridPropagator::start(problem, options.tolerance())
+    fn resume(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
+        HybridPropagator::start(problem, settings.tol)
     }
 }
 

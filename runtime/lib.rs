@@ -27,6 +27,7 @@ pub mod method;
 pub mod params;
 pub mod propagate;
 pub mod reference;
+pub mod registration;
 pub mod speed;
 pub mod stepper;
 #[cfg(feature = "proptest")]

@@ -4,77 +4,13 @@
 //! and so do the CLI's `--method` values and help and the benches' method lists.
 //!
 //! Adding a method: write its module (a type implementing [`Propagate`], usually a
-//! [`crate::driver::Piecewise`] over its segment solvers, plus [`Registered`]), then add one line
-//! to the list.
+//! [`crate::driver::Piecewise`] over its segment solvers, plus [`Registered`] from
+//! `registration.rs`, which is all a method knows of the registry), then add one line to the list.
 
-use core::fmt;
-
+pub use crate::params::ValidRange;
 use crate::params::{Problem, State};
 use crate::propagate::{Event, Propagate, PropagationError, Regime};
-
-/// A closed range `[min, max]` of valid values of a method option.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ValidRange {
-    /// Smallest valid value.
-    pub min: f64,
-    /// Largest valid value.
-    pub max: f64,
-}
-
-impl ValidRange {
-    /// Whether `x` lies in the range (never for NaN).
-    pub fn contains(&self, x: f64) -> bool {
-        x >= self.min && x <= self.max
-    }
-}
-
-impl fmt::Display for ValidRange {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "[{:e}, {:e}]", self.min, self.max)
-    }
-}
-
-/// The fixed contact sub-step of exprb2 and of fixed-step exprb43 (`--step`), in units of τ.
-/// Below 1e-6 a run takes hours for what 1e-6 gives to 1e-9 in switch times; above 0.1 the
-/// sub-step exceeds the contact period of stiff stators and exprb2's switch times err by
-/// O(1) (measured on the paper preset at η = 1.2 and 2.5 against DOP853 at tol 1e-13).
-pub const STEP_RANGE: ValidRange = ValidRange {
-    min: 1e-6,
-    max: 0.1,
-};
-
-/// What the registry knows about a method.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MethodInfo {
-    /// Command-line name.
-    pub name: &'static str,
-    /// One line for help texts.
-    pub description: &'static str,
-    /// Tolerance when none is given.
-    pub default_tolerance: f64,
-    /// Tolerances whose answers are meaningful (measured: `docs/MODEL.md` §13).
-    pub tolerance_range: ValidRange,
-    /// Whether it integrates the full equations numerically, so that it can serve as the
-    /// reference of `compare` and `fig2`.
-    pub numerical_reference: bool,
-    /// Whether it takes a contact scheme and a fixed sub-step ([`Options::contact_scheme`],
-    /// [`Options::step`]).
-    pub contact_scheme: bool,
-}
-
-/// A method's entry in the registry: its facts and how to build it from [`Options`].
-pub trait Registered: Propagate + Sized {
-    /// The method's facts.
-    const INFO: MethodInfo;
-    /// Start the method on `problem` with validated `options`.
-    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError>;
-    /// Continue a run from a state it reached: as [`Registered::build`], but the problem's
-    /// initial state and start time are not checked against the parameter table's start
-    /// ranges (a run may leave them); the state is checked for divergence only. The caller has
-    /// validated the parameters (a speed held over a step of a speed profile,
-    /// [`crate::variable_speed`]).
-    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError>;
-}
+pub use crate::registration::{ContactScheme, MethodInfo, Registered, STEP_RANGE, Settings};
 
 macro_rules! registry {
     ($($(#[$doc:meta])* $variant:ident => $ty:ty,)+) => {
@@ -106,14 +42,16 @@ macro_rules! registry {
 
         impl Inner {
             fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+                let settings = options.settings();
                 Ok(match options.method {
-                    $(Method::$variant => Inner::$variant(<$ty>::build(problem, options)?),)+
+                    $(Method::$variant => Inner::$variant(<$ty>::build(problem, &settings)?),)+
                 })
             }
 
             fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+                let settings = options.settings();
                 Ok(match options.method {
-                    $(Method::$variant => Inner::$variant(<$ty>::resume(problem, options)?),)+
+                    $(Method::$variant => Inner::$variant(<$ty>::resume(problem, &settings)?),)+
                 })
             }
 
@@ -193,75 +131,11 @@ impl Method {
         Method::ALL.iter().copied().find(|m| m.name() == name)
     }
 
-    /// The one tolerance validation: `tol` in [`Method::tolerance_range`], else
-    /// [`PropagationError::InvalidOption`] naming the value and the range.
+    /// The one tolerance validation ([`MethodInfo::check_tolerance`]): `tol` in
+    /// [`Method::tolerance_range`], else [`PropagationError::InvalidOption`] naming the value
+    /// and the range.
     pub fn check_tolerance(self, tol: f64) -> Result<(), PropagationError> {
-        let valid = self.tolerance_range();
-        if valid.contains(tol) {
-            Ok(())
-        } else {
-            Err(PropagationError::InvalidOption {
-                method: self.name(),
-                what: "tol",
-                value: tol,
-                valid,
-            })
-        }
-    }
-}
-
-/// The fixed contact sub-step validation: `step` in [`STEP_RANGE`].
-pub fn check_step(step: f64) -> Result<(), PropagationError> {
-    if STEP_RANGE.contains(step) {
-        Ok(())
-    } else {
-        Err(PropagationError::InvalidOption {
-            method: Method::Analytic.name(),
-            what: "step",
-            value: step,
-            valid: STEP_RANGE,
-        })
-    }
-}
-
-/// The analytic method's contact scheme (`docs/MODEL.md` §8).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ContactScheme {
-    /// Exponential Rosenbrock–Euler: the paper's closed-form step re-linearized at every sub-step
-    /// start, fixed sub-step, second order.
-    Exprb2,
-    /// Hochbruck–Ostermann exprb43: fourth order, embedded third-order estimate, adaptive.
-    Exprb43,
-}
-
-impl ContactScheme {
-    /// Every scheme; a scheme's index here is its code in the C ABI (`ROTOR_RUB_SCHEME_*`).
-    pub const ALL: [ContactScheme; 2] = [ContactScheme::Exprb2, ContactScheme::Exprb43];
-
-    /// The scheme's command-line name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            ContactScheme::Exprb2 => "exprb2",
-            ContactScheme::Exprb43 => "exprb43",
-        }
-    }
-
-    /// The scheme's code in the C ABI: its index in [`ContactScheme::ALL`].
-    pub const fn code(self) -> i32 {
-        match self {
-            ContactScheme::Exprb2 => 0,
-            ContactScheme::Exprb43 => 1,
-        }
-    }
-
-    /// The scheme with the given C ABI code.
-    pub fn from_code(code: i32) -> Option<ContactScheme> {
-        ContactScheme::ALL.into_iter().find(|s| s.code() == code)
-    }
-
-    /// The scheme with the given name.
-    pub fn from_name(name: &str) -> Option<ContactScheme> {
-        ContactScheme::ALL.into_iter().find(|s| s.name() == name)
+        self.info().check_tolerance(tol)
     }
 }
 
@@ -311,8 +185,18 @@ impl Options {
     pub fn validate(&self) -> Result<(), PropagationError> {
         self.method.check_tolerance(self.tolerance())?;
         match self.step {
-            Some(step) => check_step(step),
+            Some(step) => Method::Analytic.info().check_step(step),
             None => Ok(()),
+        }
+    }
+
+    /// What the method is built with: the tolerance in force, the contact scheme and the fixed
+    /// sub-step.
+    pub fn settings(&self) -> Settings {
+        Settings {
+            tol: self.tolerance(),
+            contact_scheme: self.contact_scheme,
+            step: self.step,
         }
     }
 }

@@ -137,7 +137,7 @@ pub enum PropagationError {
         /// Its value.
         value: f64,
         /// Its valid range.
-        valid: crate::method::ValidRange,
+        valid: crate::params::ValidRange,
     },
 }
 

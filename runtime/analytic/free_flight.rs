@@ -1,6 +1,7 @@
-//! Free flight between contacts, shared by the analytic and the hybrid methods: the exact free
-//! segment (`docs/MODEL.md` §4, §11) searched for the next contact as time advances, and dropped
-//! from the search for good once no contact can ever happen again.
+//! Free flight between contacts, shared by the analytic, hybrid and taylor methods: the exact
+//! free segment (`docs/MODEL.md` §4, §11) searched for the next contact as time advances, and
+//! dropped from the search for good once no contact can ever happen again ([`FreeFlight`]), as
+//! the driver's free-flight [`SegmentSolver`] ([`FreeFlightSolver`]).
 //!
 //! The search runs on a fixed grid of chunks k·Δ in local time, independent of the targets it is
 //! asked for: a target inside a chunk searches the whole chunk and keeps a crossing found beyond
@@ -10,7 +11,9 @@
 use super::free::{FreeConstants, FreeSegment};
 use super::segment::{Point, Segment, point_of};
 use super::switch::{Direction, first_crossing_to};
+use crate::driver::{Located, SegmentSolver};
 use crate::params::{Params, State};
+use crate::propagate::{Event, EventKind, PropagationError, Regime};
 
 /// Search chunks between two checks of whether the flight has settled.
 const SETTLE_CHECK_CHUNKS: u64 = 8;
@@ -100,5 +103,64 @@ impl FreeFlight {
             },
             _ => FreeAdvance::Reached(self.segment.point(s_target).state),
         }
+    }
+}
+
+/// Free flight in closed form, searched for the next contact (`docs/MODEL.md` §4): serves every
+/// target in [`SegmentSolver::locate`], never asks for a step.
+pub struct FreeFlightSolver {
+    params: Params,
+    constants: FreeConstants,
+    flight: FreeFlight,
+    located: f64,
+}
+
+impl FreeFlightSolver {
+    /// A solver for `params`, with a flight started at `(time, state)`.
+    #[inline]
+    pub fn new(params: &Params, time: f64, state: State) -> Self {
+        let constants = FreeConstants::new(params);
+        FreeFlightSolver {
+            params: *params,
+            constants,
+            flight: FreeFlight::new(params, &constants, time, state),
+            located: time,
+        }
+    }
+}
+
+impl SegmentSolver for FreeFlightSolver {
+    fn start(
+        &mut self,
+        _regime: Regime,
+        _slip: f64,
+        time: f64,
+        state: State,
+    ) -> Result<(), PropagationError> {
+        self.flight = FreeFlight::new(&self.params, &self.constants, time, state);
+        self.located = time;
+        Ok(())
+    }
+
+    fn locate(&mut self, target: f64) -> Located {
+        match self.flight.advance(target) {
+            FreeAdvance::Reached(state) => {
+                self.located = target;
+                Located::Reached(state)
+            }
+            FreeAdvance::Contact { time, state } => Located::Switch(Event {
+                time,
+                kind: EventKind::Enter,
+                state,
+            }),
+        }
+    }
+
+    fn step(&mut self) -> Result<(), PropagationError> {
+        Ok(())
+    }
+
+    fn computed_to(&self) -> f64 {
+        self.located
     }
 }

@@ -1,9 +1,8 @@
-//! The analytic method's segment solvers: exact free flight ([`FreeFlightSolver`], shared with
-//! the hybrid method) and re-linearized closed-form contact ([`ExprbContact`]), with switches
+//! The analytic method: exact free flight ([`FreeFlightSolver`], shared with the hybrid and
+//! taylor methods) and re-linearized closed-form contact ([`ExprbContact`]), with switches
 //! located on the closed forms (`docs/MODEL.md` §4–§8), strung together by the piecewise driver.
 
-use super::free::FreeConstants;
-use super::free_flight::{FreeAdvance, FreeFlight};
+use super::free_flight::FreeFlightSolver;
 use super::linear::{ContactConstants, max_contact_stiffness};
 use super::schemes::{SubStep, exprb2_with, exprb43_with};
 use super::segment::{Segment, point_of};
@@ -11,77 +10,17 @@ use super::switch::{Budget, Direction, SlipVelocity, first_crossing_to, first_sl
 use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::math;
-use crate::method::{
-    ContactScheme, Method, MethodInfo, Options, Registered, ValidRange, check_step,
-};
+use crate::params::ValidRange;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
 use crate::reference::{Dop853, ReferenceSolver};
+use crate::registration::{ContactScheme, MethodInfo, Registered, Settings};
 
 /// Default fixed sub-step of exprb2 (switch error ≈ 1e-6 on the paper's cases, `docs/MODEL.md`
 /// §8).
 pub const DEFAULT_EXPRB2_STEP: f64 = 1e-3;
 /// Most step attempts for one accepted exprb43 sub-step before giving up.
 const MAX_ATTEMPTS: u32 = 60;
-
-/// Free flight in closed form, searched for the next contact (`docs/MODEL.md` §4): serves every
-/// target in [`SegmentSolver::locate`], never asks for a step.
-pub struct FreeFlightSolver {
-    params: Params,
-    constants: FreeConstants,
-    flight: FreeFlight,
-    located: f64,
-}
-
-impl FreeFlightSolver {
-    /// A solver for `params`, with a flight started at `(time, state)`.
-    #[inline]
-    pub fn new(params: &Params, time: f64, state: State) -> Self {
-        let constants = FreeConstants::new(params);
-        FreeFlightSolver {
-            params: *params,
-            constants,
-            flight: FreeFlight::new(params, &constants, time, state),
-            located: time,
-        }
-    }
-}
-
-impl SegmentSolver for FreeFlightSolver {
-    fn start(
-        &mut self,
-        _regime: Regime,
-        _slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
-        self.flight = FreeFlight::new(&self.params, &self.constants, time, state);
-        self.located = time;
-        Ok(())
-    }
-
-    fn locate(&mut self, target: f64) -> Located {
-        match self.flight.advance(target) {
-            FreeAdvance::Reached(state) => {
-                self.located = target;
-                Located::Reached(state)
-            }
-            FreeAdvance::Contact { time, state } => Located::Switch(Event {
-                time,
-                kind: EventKind::Enter,
-                state,
-            }),
-        }
-    }
-
-    fn step(&mut self) -> Result<(), PropagationError> {
-        Ok(())
-    }
-
-    fn computed_to(&self) -> f64 {
-        self.located
-    }
-}
 
 /// Contact by exprb2 or exprb43 sub-steps (`docs/MODEL.md` §8), each re-linearized at its start,
 /// its exit searched on the sub-step's closed form.
@@ -286,7 +225,7 @@ impl AnalyticPropagator {
     ///
     /// # Errors
     /// [`PropagationError::InvalidProblem`], or [`PropagationError::InvalidOption`] for a `tol`
-    /// or `fixed_step` outside its range ([`Method::tolerance_range`], [`crate::method::STEP_RANGE`]).
+    /// or `fixed_step` outside its range ([`MethodInfo::tolerance_range`], [`crate::registration::STEP_RANGE`]).
     pub fn new(
         problem: &Problem,
         scheme: ContactScheme,
@@ -305,9 +244,9 @@ impl AnalyticPropagator {
         tol: f64,
         fixed_step: Option<f64>,
     ) -> Result<Self, PropagationError> {
-        Method::Analytic.check_tolerance(tol)?;
+        Self::INFO.check_tolerance(tol)?;
         if let Some(step) = fixed_step {
-            check_step(step)?;
+            Self::INFO.check_step(step)?;
         }
         let params = problem.params;
         let t0 = problem.start_time;
@@ -346,21 +285,21 @@ impl Registered for AnalyticPropagator {
         contact_scheme: true,
     };
 
-    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+    fn build(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
         AnalyticPropagator::new(
             problem,
-            options.contact_scheme,
-            options.tolerance(),
-            options.step,
+            settings.contact_scheme,
+            settings.tol,
+            settings.step,
         )
     }
 
-    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
+    fn resume(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
         AnalyticPropagator::start(
             problem,
-            options.contact_scheme,
-            options.tolerance(),
-            options.step,
+            settings.contact_scheme,
+            settings.tol,
+            settings.step,
         )
     }
 }

@@ -11,7 +11,7 @@ mod validate;
 
 pub use presets::Preset;
 pub use table::{Info, Parameter, Params};
-pub use validate::{Number, ParamError, Range};
+pub use validate::{Number, ParamError, Range, ValidRange};
 
 /// A state `(x, y, x', y')` of the rotor centre, in clearance units and dimensionless time.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

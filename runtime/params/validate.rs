@@ -53,6 +53,28 @@ impl fmt::Display for Range {
     }
 }
 
+/// A closed range `[min, max]` of valid values of a method option.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValidRange {
+    /// Smallest valid value.
+    pub min: f64,
+    /// Largest valid value.
+    pub max: f64,
+}
+
+impl ValidRange {
+    /// Whether `x` lies in the range (never for NaN).
+    pub fn contains(&self, x: f64) -> bool {
+        x >= self.min && x <= self.max
+    }
+}
+
+impl fmt::Display for ValidRange {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{:e}, {:e}]", self.min, self.max)
+    }
+}
+
 /// A number for messages: plain when short, `{:e}` otherwise (never 300 digits).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Number(pub f64);

@@ -35,9 +35,10 @@ use super::switch::{Switches, switch_in_step};
 use super::system::PreparedRotorSystem;
 use crate::driver::within_bounds;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, StepBudget};
-use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
+use crate::params::ValidRange;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, Propagate, PropagationError, Regime};
+use crate::registration::{MethodInfo, Registered, Settings};
 
 /// Step budget of one [`Propagate::advance`] call: this many steps plus
 /// [`STEPS_PER_TIME_UNIT`] per unit of the requested time span. Exceeding it reports
@@ -261,14 +262,14 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
     /// # Errors
     /// [`PropagationError::InvalidProblem`] or [`PropagationError::InvalidOption`] for the
     /// tolerance.
-    pub fn new(problem: &Problem, method: Method, tol: f64) -> Result<Self, PropagationError> {
+    pub fn new(problem: &Problem, method: &MethodInfo, tol: f64) -> Result<Self, PropagationError> {
         problem.validate()?;
         Self::start(problem, method, tol)
     }
 
     /// As [`ReferencePropagator::new`] without checking the problem (see
     /// [`Registered::resume`]).
-    fn start(problem: &Problem, method: Method, tol: f64) -> Result<Self, PropagationError> {
+    fn start(problem: &Problem, method: &MethodInfo, tol: f64) -> Result<Self, PropagationError> {
         method.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
@@ -329,20 +330,20 @@ impl<S: Scheme<4>> Propagate for ReferencePropagator<S> {
 }
 
 macro_rules! reference_propagator {
-    ($(#[$doc:meta])* $name:ident, $scheme:ty, $method:expr, $info:expr) => {
+    ($(#[$doc:meta])* $name:ident, $scheme:ty, $info:expr) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug)]
         pub struct $name(ReferencePropagator<$scheme>);
 
         impl $name {
-            /// Validate `problem` and `tol` (in the method's [`Method::tolerance_range`];
+            /// Validate `problem` and `tol` (in the method's [`MethodInfo::tolerance_range`];
             /// `rtol = atol = tol`) and start at the problem's start time.
             ///
             /// # Errors
             /// [`PropagationError::InvalidProblem`], or [`PropagationError::InvalidOption`] for
             /// the tolerance.
             pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
-                ReferencePropagator::new(problem, $method, tol).map($name)
+                ReferencePropagator::new(problem, &<Self as Registered>::INFO, tol).map($name)
             }
 
             /// Work counters of the integration so far.
@@ -364,12 +365,12 @@ macro_rules! reference_propagator {
         impl Registered for $name {
             const INFO: MethodInfo = $info;
 
-            fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
-                $name::new(problem, options.tolerance())
+            fn build(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
+                $name::new(problem, settings.tol)
             }
 
-            fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
-                ReferencePropagator::start(problem, $method, options.tolerance()).map($name)
+            fn resume(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
+                ReferencePropagator::start(problem, &Self::INFO, settings.tol).map($name)
             }
         }
 
@@ -382,7 +383,6 @@ reference_propagator!(
     /// with switches located on its 7th-order dense output. See the module documentation.
     Dop853Propagator,
     Dop853,
-    Method::Dop853,
     MethodInfo {
         name: "dop853",
         description: "adaptive Dormand–Prince 8(5,3) on the full equations",
@@ -401,7 +401,6 @@ reference_propagator!(
     /// switches located on its 4th-order dense output. See the module documentation.
     Rk45Propagator,
     Rk45,
-    Method::Rk45,
     MethodInfo {
         name: "rk45",
         description: "adaptive Dormand–Prince 5(4) (MATLAB's ode45) on the full equations",

@@ -3,7 +3,7 @@
 
 use super::{MAX_SUBSTEPS, StepperError};
 use crate::analytic::switch::Budget;
-use crate::method::ContactScheme;
+use crate::registration::ContactScheme;
 
 /// How the stepper takes its steps.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -11,9 +11,9 @@ use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
 use crate::analytic::segment::{Point, Segment, point_of};
 use crate::analytic::switch::{Direction, Search};
 use crate::field;
-use crate::method::ContactScheme;
 use crate::params::State;
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
+use crate::registration::ContactScheme;
 
 /// Relative slack when rounding the remaining span to a whole number of nominal sub-steps.
 const SUBSTEP_SLACK: f64 = 1e-9;

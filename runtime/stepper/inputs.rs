@@ -7,9 +7,9 @@ use super::friction::Slip;
 use super::{FreeTransition, OnCap, Stepper, StepperConfig, StepperError, SwitchStart};
 use crate::analytic::free::FreeConstants;
 use crate::math;
-use crate::method::ContactScheme;
 use crate::params::{Parameter, Params, Problem, State};
 use crate::propagate::Regime;
+use crate::registration::ContactScheme;
 
 impl Stepper {
     /// Apply the input force u = (`fx`, `fy`) from the current time on (held until the next

@@ -21,12 +21,13 @@ mod solver;
 
 pub use solver::TaylorContact;
 
-use crate::analytic::propagator::FreeFlightSolver;
+use crate::analytic::free_flight::FreeFlightSolver;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
-use crate::method::{Method, MethodInfo, Options, Registered, ValidRange};
 use crate::params::Problem;
+use crate::params::ValidRange;
 use crate::propagate::{PropagationError, Regime};
 use crate::reference::REFERENCE_BUDGET;
+use crate::registration::{MethodInfo, Registered, Settings};
 
 /// The taylor method (see [`crate::Method::Taylor`]).
 pub struct TaylorPropagator(Piecewise<TaylorSolvers>);
@@ -56,7 +57,7 @@ impl Solvers for TaylorSolvers {
 }
 
 impl TaylorPropagator {
-    /// Validate `problem` and `tol` ([`Method::tolerance_range`]) and start at the problem's
+    /// Validate `problem` and `tol` ([`MethodInfo::tolerance_range`]) and start at the problem's
     /// start time.
     pub fn new(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
         problem.validate()?;
@@ -65,7 +66,7 @@ impl TaylorPropagator {
 
     /// As [`TaylorPropagator::new`] without checking the problem (see [`Registered::resume`]).
     fn start(problem: &Problem, tol: f64) -> Result<Self, PropagationError> {
-        Method::Taylor.check_tolerance(tol)?;
+        Self::INFO.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
         Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
@@ -95,12 +96,12 @@ impl Registered for TaylorPropagator {
         contact_scheme: false,
     };
 
-    fn build(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
-        TaylorPropagator::new(problem, options.tolerance())
+    fn build(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
+        TaylorPropagator::new(problem, settings.tol)
     }
 
-    fn resume(problem: &Problem, options: &Options) -> Result<Self, PropagationError> {
-        TaylorPropagator::start(problem, options.tolerance())
+    fn resume(problem: &Problem, settings: &Settings) -> Result<Self, PropagationError> {
+        TaylorPropagator::start(problem, settings.tol)
     }
 }
 

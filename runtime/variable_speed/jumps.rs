@@ -17,7 +17,7 @@
 //! period-n rubbing from counting as jumps, and the lines follow the steep but continuous
 //! flanks of the resonance curve.
 
-use super::revolutions::Revolution;
+use super::period::Revolution;
 
 /// A jump of the largest radius.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

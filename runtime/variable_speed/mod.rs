@@ -19,6 +19,7 @@ pub use jumps::{Jump, JumpSearch, Jumps, MAX_JUMPS, find_jumps};
 pub use options::{
     DEFAULT_SPEED_HOLDS, SPEED_HOLDS_RANGE, VariableSpeedError, VariableSpeedOptions,
 };
+pub use period::{Revolution, SpeedDirection, WHIRL_THRESHOLD, WhirlDirection};
 pub use propagator::VariableSpeedPropagator;
-pub use revolutions::{Revolution, Revolutions, SpeedDirection, WHIRL_THRESHOLD, WhirlDirection};
+pub use revolutions::Revolutions;
 pub use stepper::SpeedProfileStepper;

@@ -1,13 +1,114 @@
-//! The sums of one forcing period of a run (`revolutions.rs`), node by node: the radius's
-//! extremes between nodes from the cubic Hermite polynomial of r² = |q|², the time in contact,
-//! the orbit's signed area and its spread about its mean position (the whirl).
+//! One forcing period of a run (`revolutions.rs`): its row ([`Revolution`]) and the sums it is
+//! made of, node by node: the radius's extremes between nodes from the cubic Hermite polynomial
+//! of r² = |q|², the time in contact, the orbit's signed area and its spread about its mean
+//! position (the whirl).
 
 use core::f64::consts::{PI, TAU};
 
-use super::revolutions::Revolution;
 use crate::math;
 use crate::params::State;
 use crate::propagate::Regime;
+
+/// Which way the speed went over a revolution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SpeedDirection {
+    /// The speed rose (run-up).
+    Up,
+    /// The speed fell (coast-down).
+    Down,
+    /// The speed was the same at both ends.
+    Hold,
+}
+
+impl SpeedDirection {
+    /// `up`, `down` or `hold`, as written in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SpeedDirection::Up => "up",
+            SpeedDirection::Down => "down",
+            SpeedDirection::Hold => "hold",
+        }
+    }
+}
+
+/// Which way the orbit turned over a revolution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum WhirlDirection {
+    /// With the rotor's spin (counter-clockwise).
+    Forward,
+    /// Against it.
+    Backward,
+    /// Neither clearly: |whirl| below [`WHIRL_THRESHOLD`] (a flat orbit, or one that reverses).
+    Mixed,
+}
+
+impl WhirlDirection {
+    /// `forward`, `backward` or `mixed`, as written in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            WhirlDirection::Forward => "forward",
+            WhirlDirection::Backward => "backward",
+            WhirlDirection::Mixed => "mixed",
+        }
+    }
+}
+
+/// |whirl| below which a revolution's whirl counts as [`WhirlDirection::Mixed`]: an ellipse of
+/// axis ratio 1:20 traversed once has whirl 0.1.
+pub const WHIRL_THRESHOLD: f64 = 0.1;
+
+/// One revolution of a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Revolution {
+    /// k, counted from the start of the tracking.
+    pub index: u64,
+    /// When it starts.
+    pub start: f64,
+    /// When it ends.
+    pub end: f64,
+    /// Its mean speed ratio 2π/(end − start).
+    pub speed_ratio: f64,
+    /// η(end) − η(start).
+    pub speed_change: f64,
+    /// The largest |q| (clearances from the rotor's rest position).
+    pub max_radius: f64,
+    /// The smallest |q|.
+    pub min_radius: f64,
+    /// The fraction of the revolution spent in contact.
+    pub contact_fraction: f64,
+    /// The orbit's signed area about its own mean position over π times its mean squared
+    /// distance from it: +1 for one forward circle, −1 for one backward circle, 2ab/(a² + b²)
+    /// for an ellipse of semi-axes a, b traversed forward once, n for n turns.
+    pub whirl: f64,
+    /// Contacts that started.
+    pub enters: u32,
+    /// Contacts that ended.
+    pub exits: u32,
+}
+
+impl Revolution {
+    /// Which way the speed went.
+    pub fn direction(&self) -> SpeedDirection {
+        if self.speed_change > 0.0 {
+            SpeedDirection::Up
+        } else if self.speed_change < 0.0 {
+            SpeedDirection::Down
+        } else {
+            SpeedDirection::Hold
+        }
+    }
+
+    /// Which way the orbit turned.
+    pub fn whirl_direction(&self) -> WhirlDirection {
+        if self.whirl > WHIRL_THRESHOLD {
+            WhirlDirection::Forward
+        } else if self.whirl < -WHIRL_THRESHOLD {
+            WhirlDirection::Backward
+        } else {
+            WhirlDirection::Mixed
+        }
+    }
+}
 
 /// The sums one revolution accumulates, node by node.
 pub(super) struct Accumulator {
