@@ -23,10 +23,12 @@ use std::hint::black_box;
 use common::{PERIODS, Run};
 use criterion::{BenchmarkId, Criterion};
 use rotor_rub::analytic::schemes::{SubStep, exprb43_into};
-use rotor_rub::analytic::segment::{Segment, point_of};
+use rotor_rub::analytic::segment::Segment;
 use rotor_rub::analytic::switch::{
     Budget, Direction, SlipPoint, SlipVelocity, first_crossing_to, locate,
 };
+use rotor_rub::coefficients::ModelParams;
+use rotor_rub::geometry;
 use rotor_rub::{EventKind, Method, Options, Preset, Problem, Propagate, Propagator, field};
 
 const TOL: f64 = 1e-10;
@@ -97,15 +99,15 @@ fn sub_step(c: &mut Criterion) {
         });
     }
     exprb43_into(&params, slip, entry.time, entry.state, h, 1e-10, &mut slot).expect("regular");
-    let (ox, oy) = (params.offset_x, params.offset_y);
-    let start = point_of(entry.state, ox, oy);
-    let end = point_of(slot.end, ox, oy);
+    let model = ModelParams::of(&params);
+    let start = geometry::point(&model, entry.state);
+    let end = geometry::point(&model, slot.end);
     g.bench_function("exit search on the sub-step", |b| {
         b.iter(|| first_crossing_to(&slot.segment, 0.0, start, h, end, Direction::Down))
     });
     let offset = SlipVelocity::start_offset(&params, entry.time, &entry.state, slip);
     let scale = SlipVelocity::scale_at(&params, &entry.state);
-    let f = SlipVelocity::new(&slot.segment, &params, entry.time, slip, offset, scale);
+    let f = SlipVelocity::new(&slot.segment, entry.time, slip, offset, scale);
     let from = SlipPoint {
         s: 0.0,
         state: entry.state,

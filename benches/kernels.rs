@@ -17,9 +17,11 @@ use common::Case;
 use rotor_rub::analytic::free::{FreeConstants, FreeSegment};
 use rotor_rub::analytic::linear::Linearization;
 use rotor_rub::analytic::schemes::exprb43;
-use rotor_rub::analytic::segment::{Segment, point_of};
+use rotor_rub::analytic::segment::Segment;
 use rotor_rub::analytic::switch::{Direction, first_crossing};
 use rotor_rub::coefficients as coef;
+use rotor_rub::coefficients::ModelParams;
+use rotor_rub::geometry;
 use rotor_rub::reference::{
     Dop853, Integrator, RotorSystem, Switches, Tolerance, first_crossing as dense_crossing,
     inside_measure, switch_in_step,
@@ -146,7 +148,7 @@ fn main() {
 
     {
         let mut g = c.benchmark_group("switch");
-        let start = point_of(exit.state, params.offset_x, params.offset_y);
+        let start = geometry::point(&ModelParams::of(&params), exit.state);
         let horizon = 1.5 * (next_entry.time - exit.time);
         let chunk = 0.5 / params.speed_ratio.max(1.0 + params.damping_ratio);
         let found = first_crossing(&free_seg, 0.0, start, horizon, Direction::Up, chunk)
@@ -169,7 +171,7 @@ fn main() {
         let (mut t, mut s) = (entry.time, entry.state);
         let exit_step = loop {
             let step = exprb43(&params, t, s, h, 1e-10).expect("regular contact");
-            let start = point_of(s, params.offset_x, params.offset_y);
+            let start = geometry::point(&ModelParams::of(&params), s);
             if first_crossing(
                 &step.segment,
                 0.0,
@@ -185,7 +187,7 @@ fn main() {
             (t, s) = (t + h, step.end);
         };
         let (s0, step) = exit_step;
-        let start = point_of(s0, params.offset_x, params.offset_y);
+        let start = geometry::point(&ModelParams::of(&params), s0);
         g.bench_function("exit on an exprb43 sub-step", |b| {
             b.iter(|| {
                 first_crossing(
@@ -212,7 +214,7 @@ fn main() {
             Tolerance::uniform(1e-10),
             0.25 * params.forcing_period(),
         );
-        let g_in = |y: &[f64; 4]| inside_measure(&params, Regime::Contact, y);
+        let g_in = |y: &[f64; 4]| inside_measure(&ModelParams::of(&params), Regime::Contact, y);
         let dstep = loop {
             let st = integ.step(&sys, f64::INFINITY).expect("steps");
             if dense_crossing(&st.dense, &st.y0, &st.y1, g_in).is_some() {

@@ -25,6 +25,8 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion};
+use rotor_rub::coefficients::ModelParams;
+use rotor_rub::geometry;
 use rotor_rub::stepper::SwitchStart;
 use rotor_rub::{
     ContactScheme, Method, Options, Preset, Problem, Propagator, Regime, State, Stepper,
@@ -144,7 +146,7 @@ fn timing_report(dt: f64, scheme: ContactScheme, switch_start: SwitchStart) {
 fn rk4_step(problem: &Problem, t: f64, s: &State, dt: f64) -> State {
     let p = &problem.params;
     let f = |t: f64, s: &State| {
-        let regime = if field::switching_function(p, s).0 > 0.0 {
+        let regime = if geometry::point(&ModelParams::of(p), *s).h > 0.0 {
             Regime::Contact
         } else {
             Regime::Free

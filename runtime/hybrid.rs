@@ -7,10 +7,10 @@
 //! relative and absolute tolerance per step, as for [`crate::Method::Dop853`].
 
 use crate::analytic::free_flight::FreeFlightSolver;
-use crate::coefficients::ModelParams;
+use crate::coefficients::{ModelParams, Phasor};
 use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
-use crate::field;
+use crate::field::{self, Field};
 use crate::params::ValidRange;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, PropagationError, Regime};
@@ -21,48 +21,45 @@ use crate::reference::{
 use crate::registration::{MethodInfo, Registered, Settings};
 
 /// The contact field of [`PhasorRotorSystem`] with the model parameters in the generated code's
-/// form prepared once per segment instead of at every stage ([`field::contact_acceleration`]:
-/// the same arithmetic, so the same bits).
+/// form prepared once per segment instead of at every stage.
 #[derive(Clone, Copy, Debug)]
 struct ContactField {
     model: ModelParams,
-    /// The slip direction σ of slipping contact (±1), 0 when none is tracked.
-    slip: f64,
+    /// Frictionless contact, or slipping in a direction.
+    field: Field,
 }
 
 impl OdeSystem<6> for ContactField {
     #[inline(always)]
     fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
-        let [x, yy, vx, vy, c, s] = *y;
-        let state = State::new(x, yy, vx, vy);
-        let (ax, ay) = field::contact_acceleration(&self.model, self.slip, c, s, &state);
-        let eta = self.model.speed_ratio;
-        [vx, vy, ax, ay, -eta * s, eta * c]
+        phasor_rhs(&self.model, self.field, y)
     }
 }
 
-impl ContactField {
-    /// Whether the field is frictionless contact without an input force, so that
-    /// [`Frictionless`] is the same field.
-    fn frictionless(&self) -> bool {
-        self.slip == 0.0 && self.model.force_x == 0.0 && self.model.force_y == 0.0
-    }
-}
-
-/// A [`ContactField`] that is [`ContactField::frictionless`]: its right-hand side without the
-/// run-time tests for friction and an input force ([`field::frictionless_contact_acceleration`],
-/// the same arithmetic, so the same bits).
-struct Frictionless<'a>(&'a ContactField);
+/// [`ContactField`] for frictionless contact: the field fixed at compile time, so the contact
+/// steps (the hybrid method's hot path) need no dispatch.
+struct Frictionless<'a>(&'a ModelParams);
 
 impl OdeSystem<6> for Frictionless<'_> {
     #[inline(always)]
     fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
-        let [x, yy, vx, vy, c, s] = *y;
-        let state = State::new(x, yy, vx, vy);
-        let (ax, ay) = field::frictionless_contact_acceleration(&self.0.model, c, s, &state);
-        let eta = self.0.model.speed_ratio;
-        [vx, vy, ax, ay, -eta * s, eta * c]
+        phasor_rhs(self.0, Field::Contact, y)
     }
+}
+
+/// The 6-state field [x', y', x'', y'', c', s'] of `field` with the forcing carried as a phasor
+/// (c, s) = (cos θ, sin θ), c' = −η s, s' = η c.
+#[inline(always)]
+fn phasor_rhs(model: &ModelParams, field: Field, y: &[f64; 6]) -> [f64; 6] {
+    let [x, yy, vx, vy, c, s] = *y;
+    let (ax, ay) = field::acceleration(
+        model,
+        field,
+        &Phasor { ct: c, st: s },
+        &State::new(x, yy, vx, vy),
+    );
+    let eta = model.speed_ratio;
+    [vx, vy, ax, ay, -eta * s, eta * c]
 }
 
 /// DOP853 on the 6-state contact field (rotor plus forcing phasor).
@@ -106,7 +103,7 @@ impl Dop853Contact {
     /// contact ended with.
     #[inline]
     fn begin(&mut self, slip: f64, time: f64, state: State) {
-        self.system.slip = slip;
+        self.system.field = Field::of(Regime::Contact, slip);
         let y = PhasorRotorSystem::initial(&self.params, time, &state);
         self.switches = Switches::new(&self.params, Regime::Contact, slip, time, &y);
         match self.carried_step {
@@ -126,7 +123,7 @@ impl Dop853Contact {
     fn unstarted(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
         let system = ContactField {
             model: ModelParams::of(params),
-            slip: 0.0,
+            field: Field::Contact,
         };
         let max_step = 0.25 * params.forcing_period().min(core::f64::consts::TAU);
         let y0 = PhasorRotorSystem::initial(params, t0, &s0);
@@ -152,8 +149,8 @@ impl Dop853Contact {
             let dense = match self.dense {
                 Some(d) => d,
                 None => {
-                    let d = if self.system.frictionless() {
-                        self.step.dense(&Frictionless(&self.system))
+                    let d = if self.system.field == Field::Contact {
+                        self.step.dense(&Frictionless(&self.system.model))
                     } else {
                         self.step.dense(&self.system)
                     };
@@ -197,8 +194,8 @@ impl SegmentSolver for Dop853Contact {
 
     fn step(&mut self) -> Result<(), PropagationError> {
         let system = self.system;
-        if system.frictionless() {
-            self.step_on(&Frictionless(&system))
+        if system.field == Field::Contact {
+            self.step_on(&Frictionless(&system.model))
         } else {
             self.step_on(&system)
         }

@@ -21,6 +21,7 @@ pub mod coefficients;
 pub mod compare;
 pub mod driver;
 pub mod field;
+pub mod geometry;
 pub mod hybrid;
 pub mod math;
 pub mod method;

@@ -5,6 +5,7 @@
 //! times against a 30-digit reference where one is checked in.
 
 use proptest::prelude::*;
+use rotor_rub::coefficients::ModelParams;
 use rotor_rub::field;
 use rotor_rub::taylor::expansion::Expansion;
 use rotor_rub::{
@@ -85,8 +86,8 @@ proptest! {
     ) {
         for (p, regime, slip) in regimes() {
             let s = contact_state(&p, z, a, vx, vy);
-            let mut e = Expansion::new(&p, 6);
-            e.set_regime(&p, regime, slip);
+            let mut e = Expansion::new(&ModelParams::of(&p), 6);
+            e.set_regime(&ModelParams::of(&p), regime, slip);
             e.expand(&s, phasor(&p, t));
             let d = f(&p, regime, slip, t, &s);
             // Coefficient 1: the derivative of the polynomial at 0.
@@ -127,8 +128,8 @@ fn the_series_converges_at_its_order() {
         let s = contact_state(&p, 1.05, 0.7, 1.5, -0.8);
         let t = 0.4;
         for order in [3usize, 4, 5, 6] {
-            let mut e = Expansion::new(&p, order);
-            e.set_regime(&p, regime, slip);
+            let mut e = Expansion::new(&ModelParams::of(&p), order);
+            e.set_regime(&ModelParams::of(&p), regime, slip);
             e.expand(&s, phasor(&p, t));
             let err = |h: f64| diff(&e.state_at(h), &rk4(&p, regime, slip, t, s, h, 400));
             let (e1, e2) = (err(0.04), err(0.02));

@@ -308,6 +308,7 @@ pub mod peer {
     use differential_equations::prelude::{
         CrossingDirection, Event as PeerEvent, EventConfig, ExplicitRungeKutta, IVP, ODE,
     };
+    use super::switching;
     use rotor_rub::{Event, EventKind, Params, Problem, Regime, State, field};
 
     use super::{PERIODS, Run};
@@ -318,7 +319,7 @@ pub mod peer {
     impl ODE<f64, [f64; 4]> for Rotor {
         fn diff(&self, t: f64, y: &[f64; 4], dydt: &mut [f64; 4]) {
             let s = State::from_array(*y);
-            let (h, _) = field::switching_function(&self.0, &s);
+            let (h, _) = switching(&self.0, &s);
             let regime = if h > 0.0 {
                 Regime::Contact
             } else {
@@ -334,7 +335,7 @@ pub mod peer {
         }
 
         fn event(&self, _t: f64, y: &[f64; 4]) -> f64 {
-            field::switching_function(&self.0, &State::from_array(*y)).0
+            switching(&self.0, &State::from_array(*y)).0
         }
     }
 
@@ -366,7 +367,7 @@ pub mod peer {
                 out.section.push(state);
                 next_sample += 1;
             } else {
-                let (_, dh) = field::switching_function(&params, &state);
+                let (_, dh) = switching(&params, &state);
                 let kind = if dh > 0.0 {
                     EventKind::Enter
                 } else {
@@ -381,4 +382,10 @@ pub mod peer {
         }
         out
     }
+}
+
+/// h = z² − 1 and h' of a state, by hand.
+fn switching(p: &rotor_rub::Params, s: &rotor_rub::State) -> (f64, f64) {
+    let (u, v) = (s.x - p.offset_x, s.y - p.offset_y);
+    (u * u + v * v - 1.0, 2.0 * (u * s.vx + v * s.vy))
 }

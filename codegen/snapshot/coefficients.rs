@@ -78,10 +78,44 @@
 //                               after:    72 add   187 mul    2 div   1 sqrt   0 trans
 // speed_change_force           before:     0 add     4 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
-// held_speed_forcing           before:     0 add     3 mul    0 div   0 sqrt   0 trans
-//                               after:     0 add     3 mul    0 div   0 sqrt   0 trans
+// held_speed_forcing           before:     0 add     4 mul    1 div   0 sqrt   0 trans
+//                               after:     0 add     4 mul    1 div   0 sqrt   0 trans
 // varying_speed_unbalance      before:     2 add    10 mul    0 div   0 sqrt   0 trans
 //                               after:     2 add     9 mul    0 div   0 sqrt   0 trans
+// forcing_phase                before:     1 add     1 mul    0 div   0 sqrt   0 trans
+//                               after:     1 add     1 mul    0 div   0 sqrt   0 trans
+// switching_function           before:     9 add     6 mul    0 div   0 sqrt   0 trans
+//                               after:     5 add     6 mul    0 div   0 sqrt   0 trans
+// switching_curvature          before:     5 add     8 mul    0 div   0 sqrt   0 trans
+//                               after:     5 add     8 mul    0 div   0 sqrt   0 trans
+// stator_offset                before:     2 add     0 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     0 mul    0 div   0 sqrt   0 trans
+// position_at_offset           before:     2 add     0 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     0 mul    0 div   0 sqrt   0 trans
+// free_field                   before:     6 add     6 mul    0 div   0 sqrt   0 trans
+//                               after:     6 add     6 mul    0 div   0 sqrt   0 trans
+// contact_field                before:    38 add    22 mul    4 div   4 sqrt   0 trans
+//                               after:    14 add    16 mul    1 div   1 sqrt   0 trans
+// slipping_field               before:   138 add    76 mul   18 div  18 sqrt   0 trans
+//                               after:    19 add    36 mul    1 div   1 sqrt   0 trans
+// unbalance_force_at           before:     0 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     2 mul    0 div   0 sqrt   0 trans
+// slip_velocity_rate           before:    43 add    30 mul    4 div   4 sqrt   0 trans
+//                               after:     7 add    20 mul    2 div   1 sqrt   0 trans
+// slip_rate                    before:   181 add   106 mul   22 div  22 sqrt   0 trans
+//                               after:    23 add    54 mul    2 div   1 sqrt   0 trans
+// friction_cone                before:  2764 add  1602 mul  332 div 332 sqrt   0 trans
+//                               after:    89 add   226 mul    2 div   1 sqrt   0 trans
+// linearized_contact_field     before:    12 add    10 mul    0 div   0 sqrt   0 trans
+//                               after:    12 add    10 mul    0 div   0 sqrt   0 trans
+// linear_field_jacobians       before:     0 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
+// forcing_rate                 before:     0 add     4 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
+// harmonic_system              before:     9 add    22 mul    0 div   0 sqrt   0 trans
+//                               after:     5 add    14 mul    0 div   0 sqrt   0 trans
+// stator_bounds                before:     6 add    10 mul    0 div   2 sqrt   0 trans
+//                               after:     3 add     6 mul    0 div   1 sqrt   0 trans
 // contact_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
 // slipping_taylor::constants   before:     0 add     4 mul    0 div   0 sqrt   0 trans
@@ -109,6 +143,8 @@ pub struct ModelParams {
     pub speed_ratio: f64,
     /// viscous damping ratio of the rotor (ζ in the paper's Table 1; > 1 is over-damped)
     pub damping_ratio: f64,
+    /// phase of the unbalance at τ = 0, rad
+    pub phase: f64,
     /// stator stiffness over rotor stiffness: x force per x displacement
     pub k_xx: f64,
     /// stator stiffness over rotor stiffness: x force per y displacement (cross-coupling)
@@ -141,6 +177,26 @@ pub struct Position {
     pub x: f64,
     /// y
     pub y: f64,
+}
+/// An absolute time τ.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Time {
+    /// τ
+    pub t: f64,
+}
+/// A position relative to the stator centre, d = (u, v) = q − ε̂.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StatorOffset {
+    /// u = x − ε̂x
+    pub u: f64,
+    /// v = y − ε̂y
+    pub v: f64,
+}
+/// The rate w' of the slip velocity (`docs/MODEL.md` §10).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SlipVelocityRate {
+    /// w' = dw/dτ
+    pub rate: f64,
 }
 /// A rotor velocity (x', y').
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -441,6 +497,7 @@ pub fn model_params(params: &crate::params::Params) -> ModelParams {
     let damping_ratio = params.damping_ratio;
     let mass_ratio = params.mass_ratio;
     let eccentricity_ratio = params.eccentricity_ratio;
+    let phase = params.phase;
     let k_xx = params.k_xx;
     let k_xy = params.k_xy;
     let k_yx = params.k_yx;
@@ -454,6 +511,7 @@ pub fn model_params(params: &crate::params::Params) -> ModelParams {
     ModelParams {
         speed_ratio: speed_ratio,
         damping_ratio: damping_ratio,
+        phase: phase,
         k_xx: k_xx,
         k_xy: k_xy,
         k_yx: k_yx,
@@ -1881,8 +1939,12 @@ pub struct HeldForcing {
     pub in_phase: f64,
     /// a_s = η_m ρ̂ η', the sin θ coefficient of the x forcing
     pub quadrature: f64,
+    /// r_c = a_c/F
+    pub in_phase_ratio: f64,
+    /// r_s = a_s/F
+    pub quadrature_ratio: f64,
 }
-/// The unbalance forcing with η and η' held constant as one rotating harmonic: x = a_c cos θ + a_s sin θ, y = a_c sin θ − a_s cos θ, i.e. A (cos(θ − δ), sin(θ − δ)), A = √(a_c² + a_s²), δ = atan2(a_s, a_c).
+/// The unbalance forcing with η and η' held constant as one rotating harmonic: x = a_c cos θ + a_s sin θ, y = a_c sin θ − a_s cos θ, i.e. A (cos(θ − δ), sin(θ − δ)), A = √(a_c² + a_s²), δ = atan2(a_s, a_c); and the same coefficients relative to the constant-speed amplitude F, so that the held forcing is the constant-speed one with the unbalance scaled by √(r_c² + r_s²) and the phase moved by δ.
 ///
 /// Source: docs/MODEL.md §14.
 /// Derivation: the coefficients of cos θ and sin θ in the x component of the model's `unbalance_at_varying_speed`; the y component is checked to be the same harmonic a quarter turn on.
@@ -1895,6 +1957,8 @@ pub fn held_speed_forcing(model: &ModelParams, speed: &SpeedChange) -> HeldForci
     HeldForcing {
         in_phase: speed_ratio * speed_ratio * unbalance,
         quadrature: speed_rate * unbalance,
+        in_phase_ratio: 1.0,
+        quadrature_ratio: speed_rate / (speed_ratio * speed_ratio),
     }
 }
 /// The unbalance forcing η_m ρ̂ (η² (cos θ, sin θ) − η' (−sin θ, cos θ)) at a changing speed.
@@ -1919,6 +1983,616 @@ pub fn varying_speed_unbalance(
     Force {
         fx: -(-(st * speed_rate * unbalance) - ct * t0 * unbalance),
         fy: -(ct * speed_rate * unbalance - st * t0 * unbalance),
+    }
+}
+/// Outputs of [`forcing_phase`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForcingPhase {
+    /// θ
+    pub theta: f64,
+}
+/// The forcing phase θ(τ) = ητ + φ0 at a constant speed: the unbalance's angle.
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the model's forcing phasor's angle, θ' = η, θ(0) = φ0.
+#[inline]
+#[must_use]
+pub fn forcing_phase(model: &ModelParams, time: &Time) -> ForcingPhase {
+    let speed_ratio = model.speed_ratio;
+    let phase = model.phase;
+    let t = time.t;
+    ForcingPhase {
+        theta: phase + speed_ratio * t,
+    }
+}
+/// Outputs of [`switching_function`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Switching {
+    /// h = z² − 1
+    pub h: f64,
+    /// h' = dh/dτ
+    pub dh: f64,
+}
+/// The switching function h = z² − 1 of a state (negative in free flight, positive in contact) and its rate h' = 2 (u x' + v y').
+///
+/// Source: docs/MODEL.md §1, §6 (cases 13–15).
+/// Derivation: the model's `boundary` and its total time derivative.
+#[inline]
+#[must_use]
+pub fn switching_function(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+) -> Switching {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
+    Switching {
+        h: t0 * t0 + t1 * t1 - 1.0,
+        dh: 2.0 * t0 * vx + 2.0 * t1 * vy,
+    }
+}
+/// Outputs of [`switching_curvature`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SwitchingCurvature {
+    /// h''
+    pub d2h: f64,
+}
+/// The second rate h'' = 2 (|q'|² + d·a) of the switching function along a motion with acceleration a.
+///
+/// Source: docs/MODEL.md §6 (case 14).
+/// Derivation: the second total time derivative of the model's `boundary` with q'' = a.
+#[inline]
+#[must_use]
+pub fn switching_curvature(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    acceleration: &Acceleration,
+) -> SwitchingCurvature {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ax = acceleration.ax;
+    let ay = acceleration.ay;
+    SwitchingCurvature {
+        d2h: 2.0 * vx * vx + 2.0 * (x - offset_x) * ax + 2.0 * vy * vy
+            + 2.0 * (y - offset_y) * ay,
+    }
+}
+/// A position relative to the stator centre, d = (u, v) = q − ε̂ (its length is z, its direction the contact normal).
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the model's `stator_offset`.
+#[inline]
+#[must_use]
+pub fn stator_offset(model: &ModelParams, at: &Position) -> StatorOffset {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    StatorOffset {
+        u: x - offset_x,
+        v: y - offset_y,
+    }
+}
+/// The position whose offset from the stator centre is d: q = ε̂ + d.
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the model's `stator_offset` solved for the position.
+#[inline]
+#[must_use]
+pub fn position_at_offset(model: &ModelParams, offset: &StatorOffset) -> Position {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let u = offset.u;
+    let v = offset.v;
+    Position {
+        x: -(-(offset_x) - u),
+        y: -(-(offset_y) - v),
+    }
+}
+/// Free flight: q'' = F(cos θ, sin θ) + u − 2ν q' − q.
+///
+/// Source: docs/MODEL.md §1, §10, §15.
+/// Derivation: the model's acceleration with the regime's stiffness term and the forcing (unbalance and input force).
+#[inline]
+#[must_use]
+pub fn free_field(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> Acceleration {
+    let damping_ratio = model.damping_ratio;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    Acceleration {
+        ax: ct * unbalance_force + force_x - 2.0 * damping_ratio * vx - x,
+        ay: st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y,
+    }
+}
+/// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).
+///
+/// Source: docs/MODEL.md §1, §10, §15.
+/// Derivation: the model's acceleration with the regime's stiffness term and the forcing (unbalance and input force).
+#[inline]
+#[must_use]
+pub fn contact_field(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> Acceleration {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
+    let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    Acceleration {
+        ax: ct * unbalance_force + force_x - 2.0 * damping_ratio * vx - x
+            - t0 * t2 * k_xx - t1 * t2 * k_xy,
+        ay: st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
+            - t0 * t2 * k_yx - t1 * t2 * k_yy,
+    }
+}
+/// Contact slipping in direction σ: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q) − μσN t.
+///
+/// Source: docs/MODEL.md §1, §10, §15.
+/// Derivation: the model's acceleration with the regime's stiffness term and the forcing (unbalance and input force).
+#[inline]
+#[must_use]
+pub fn slipping_field(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+    slip: &Slip,
+) -> Acceleration {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let sigma = slip.sigma;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
+    let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
+    let t3 = 1.0 - t2;
+    let t4 = t0 * t2 * (t0 * t3 * k_xx + t1 * t3 * k_xy)
+        + t1 * t2 * (t0 * t3 * k_yx + t1 * t3 * k_yy);
+    Acceleration {
+        ax: ct * unbalance_force + force_x + t1 * t2 * sigma * t4 * friction_coefficient
+            - 2.0 * damping_ratio * vx - x - t0 * t3 * k_xx - t1 * t3 * k_xy,
+        ay: st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
+            - t0 * t3 * k_yx - t1 * t3 * k_yy
+            - t0 * t2 * sigma * t4 * friction_coefficient,
+    }
+}
+/// The unbalance force F (cos θ, sin θ) at the forcing phasor (cos θ, sin θ).
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the model's `unbalance` piece.
+#[inline]
+#[must_use]
+pub fn unbalance_force_at(model: &ModelParams, phasor: &Phasor) -> Force {
+    let unbalance_force = model.unbalance_force;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    Force {
+        fx: ct * unbalance_force,
+        fy: st * unbalance_force,
+    }
+}
+/// The rate w' of the slip velocity w = q'·t + ρ_R η along a motion with acceleration a (a closed form's own): w' = t·a + q'·t', t' = −(q'·t/z) n.
+///
+/// Source: docs/MODEL.md §10.
+/// Derivation: the total time derivative of the model's `slip_velocity` with q'' = a.
+#[inline]
+#[must_use]
+pub fn slip_velocity_rate(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    acceleration: &Acceleration,
+) -> SlipVelocityRate {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ax = acceleration.ax;
+    let ay = acceleration.ay;
+    let t0 = y - offset_y;
+    let t1 = x - offset_x;
+    let t2 = t1 * t1 + t0 * t0;
+    let t3 = 1.0 / m::sqrt(t2);
+    let t4 = 1.0 / t2;
+    let t5 = 2.0 * t1 * vx + 2.0 * t0 * vy;
+    SlipVelocityRate {
+        rate: 0.5 * t0 * t3 * t4 * vx * t5 + t1 * t3 * ay - 0.5 * t1 * t3 * t4 * vy * t5
+            - t0 * t3 * ax,
+    }
+}
+/// The rate w' of the slip velocity along the field of slipping in direction σ (= λ − μσN).
+///
+/// Source: docs/MODEL.md §10.
+/// Derivation: the total time derivative of the model's `slip_velocity` along the slipping field.
+#[inline]
+#[must_use]
+pub fn slip_rate(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+    slip: &Slip,
+) -> SlipVelocityRate {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let sigma = slip.sigma;
+    let t0 = y - offset_y;
+    let t1 = x - offset_x;
+    let t2 = t1 * t1 + t0 * t0;
+    let t3 = 1.0 / m::sqrt(t2);
+    let t4 = 1.0 / t2;
+    let t5 = 2.0 * t1 * vx + 2.0 * t0 * vy;
+    let t6 = 1.0 - t3;
+    let t7 = t1 * t3 * (t1 * t6 * k_xx + t0 * t6 * k_xy)
+        + t0 * t3 * (t1 * t6 * k_yx + t0 * t6 * k_yy);
+    SlipVelocityRate {
+        rate: 0.5 * t0 * t3 * t4 * vx * t5
+            + t1 * t3
+                * (st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
+                    - t1 * t6 * k_yx - t0 * t6 * k_yy
+                    - t1 * t3 * sigma * t7 * friction_coefficient)
+            - 0.5 * t1 * t3 * t4 * vy * t5
+            - t0 * t3
+                * (ct * unbalance_force + force_x
+                    + t0 * t3 * sigma * t7 * friction_coefficient
+                    - 2.0 * damping_ratio * vx - x - t1 * t6 * k_xx - t0 * t6 * k_xy),
+    }
+}
+/// Outputs of [`friction_cone`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionCone {
+    /// μN − λ
+    pub upper: f64,
+    /// μN + λ
+    pub lower: f64,
+    /// (μN − λ)'
+    pub upper_rate: f64,
+    /// (μN + λ)'
+    pub lower_rate: f64,
+}
+/// The friction cone's margins μN − λ and μN + λ of a contact state (rolling holds while both are ≥ 0) and their rates along the rolling field.
+///
+/// Source: docs/MODEL.md §10.
+/// Derivation: the model's `normal_force`, the rolling force λ and their total time derivatives along q'' = G − λ t.
+#[inline]
+#[must_use]
+pub fn friction_cone(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> FrictionCone {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = y - offset_y;
+    let t1 = x - offset_x;
+    let t2 = t1 * t1 + t0 * t0;
+    let t3 = 1.0 / m::sqrt(t2);
+    let t4 = ct * unbalance_force;
+    let t5 = -2.0 * damping_ratio * vx;
+    let t6 = -x;
+    let t7 = 1.0 - t3;
+    let t8 = -t1 * t7 * k_xx;
+    let t9 = -t0 * t7 * k_xy;
+    let t10 = t4 + force_x + t5 + t6 + t8 + t9;
+    let t11 = t1 * t3 * vy - t0 * t3 * vx;
+    let t12 = t1 * t3 * vx + t0 * t3 * vy;
+    let t13 = t1 * t7 * k_xx + t0 * t7 * k_xy;
+    let t14 = t1 * t7 * k_yx + t0 * t7 * k_yy;
+    let t15 = (t1 * t3 * t13 + t0 * t3 * t14) * friction_coefficient;
+    let t16 = st * unbalance_force;
+    let t17 = -2.0 * damping_ratio * vy;
+    let t18 = -y;
+    let t19 = -t1 * t7 * k_yx;
+    let t20 = -t0 * t7 * k_yy;
+    let t21 = t16 + force_y + t17 + t18 + t19 + t20;
+    let t22 = -t0 * t3 * t10;
+    let t23 = t1 * t3 * t21;
+    let t24 = -t3 * t11 * t12;
+    let t25 = t22 + t23 + t24;
+    let t26 = t4 + force_x + t5 + t6 + t8 + t9 + t0 * t3 * t25;
+    let t27 = 1.0 / t2;
+    let t28 = 2.0 * t1 * vx + 2.0 * t0 * vy;
+    let t29 = -(speed_ratio * st * unbalance_force) - 2.0 * damping_ratio * t26 - vx
+        - t7 * k_xx * vx - 0.5 * t1 * t3 * t27 * k_xx * t28 - t7 * k_xy * vy
+        - 0.5 * t0 * t3 * t27 * k_xy * t28;
+    let t30 = t16 + force_y + t17 + t18 + t19 + t20 - t1 * t3 * t25;
+    let t31 = 0.5 * t0 * t3 * t27 * vx * t28 + t1 * t3 * t30 - t0 * t3 * t26
+        - 0.5 * t1 * t3 * t27 * vy * t28;
+    let t32 = t3 * vx * vx + t1 * t3 * t26 + t3 * vy * vy + t0 * t3 * t30
+        - 0.5 * t1 * t3 * t27 * vx * t28 - 0.5 * t0 * t3 * t27 * vy * t28;
+    let t33 = friction_coefficient
+        * (t3 * t13 * vx
+            + t1 * t3
+                * (t7 * k_xx * vx + 0.5 * t1 * t3 * t27 * k_xx * t28 + t7 * k_xy * vy
+                    + 0.5 * t0 * t3 * t27 * k_xy * t28) + t3 * t14 * vy
+            + t0 * t3
+                * (t7 * k_yx * vx + 0.5 * t1 * t3 * t27 * k_yx * t28 + t7 * k_yy * vy
+                    + 0.5 * t0 * t3 * t27 * k_yy * t28) - 0.5 * t1 * t3 * t27 * t13 * t28
+            - 0.5 * t0 * t3 * t27 * t14 * t28);
+    let t34 = speed_ratio * ct * unbalance_force - 2.0 * damping_ratio * t30 - vy
+        - t7 * k_yx * vx - 0.5 * t1 * t3 * t27 * k_yx * t28 - t7 * k_yy * vy
+        - 0.5 * t0 * t3 * t27 * k_yy * t28;
+    FrictionCone {
+        upper: t0 * t3 * t10 + t3 * t11 * t12 + t15 - t1 * t3 * t21,
+        lower: t22 + t23 + t24 + t15,
+        upper_rate: t3 * vy * t10 + t0 * t3 * t29 + t3 * t12 * t31 + t3 * t11 * t32 + t33
+            + 0.5 * t1 * t3 * t27 * t21 * t28 - 0.5 * t0 * t3 * t27 * t10 * t28
+            - 0.5 * t3 * t27 * t11 * t12 * t28 - t3 * vx * t21 - t1 * t3 * t34,
+        lower_rate: 0.5 * t0 * t3 * t27 * t10 * t28 + t3 * vx * t21 + t1 * t3 * t34
+            + 0.5 * t3 * t27 * t11 * t12 * t28 + t33 - t3 * vy * t10 - t0 * t3 * t29
+            - 0.5 * t1 * t3 * t27 * t21 * t28 - t3 * t12 * t31 - t3 * t11 * t32,
+    }
+}
+/// The linearized contact field under an extra force a: q'' = F(cos θ, sin θ) + u + a − 2ν q' − Kl q − Fd.
+///
+/// Source: docs/MODEL.md §3, §8.
+/// Derivation: the model's acceleration with the linearized stiffness term Kl q + Fd, the forcing and the force a.
+#[inline]
+#[must_use]
+pub fn linearized_contact_field(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    load: &Force,
+    phasor: &Phasor,
+    kl: &LinearizedContact,
+) -> Acceleration {
+    let damping_ratio = model.damping_ratio;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let fx = load.fx;
+    let fy = load.fy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
+    Acceleration {
+        ax: ct * unbalance_force + force_x + fx - fd1 - 2.0 * damping_ratio * vx
+            - x * fa1 - y * fb1,
+        ay: st * unbalance_force + force_y + fy - fd2 - 2.0 * damping_ratio * vy
+            - x * fb2 - y * fa2,
+    }
+}
+/// Outputs of [`linear_field_jacobians`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldJacobians {
+    /// ∂x''/∂x
+    pub q11: f64,
+    /// ∂x''/∂y
+    pub q12: f64,
+    /// ∂y''/∂x
+    pub q21: f64,
+    /// ∂y''/∂y
+    pub q22: f64,
+    /// ∂x''/∂x'
+    pub v11: f64,
+    /// ∂x''/∂y'
+    pub v12: f64,
+    /// ∂y''/∂x'
+    pub v21: f64,
+    /// ∂y''/∂y'
+    pub v22: f64,
+}
+/// The Jacobians of the linearized contact field's acceleration in position (−Kl) and in velocity (the damping), row by row.
+///
+/// Source: docs/MODEL.md §8, §12.
+/// Derivation: partial derivatives of the model's linearized acceleration.
+#[inline]
+#[must_use]
+pub fn linear_field_jacobians(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+) -> FieldJacobians {
+    let damping_ratio = model.damping_ratio;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let t0 = -2.0 * damping_ratio;
+    FieldJacobians {
+        q11: -fa1,
+        q12: -fb1,
+        q21: -fb2,
+        q22: -fa2,
+        v11: t0,
+        v12: 0.0,
+        v21: 0.0,
+        v22: t0,
+    }
+}
+/// The rate of the unbalance forcing d/dτ F (cos θ, sin θ) = F η (−sin θ, cos θ) at a phasor (its length F η is the same at every phase).
+///
+/// Source: docs/MODEL.md §1.
+/// Derivation: the total time derivative of the model's `unbalance` piece with θ' = η.
+#[inline]
+#[must_use]
+pub fn forcing_rate(model: &ModelParams, phasor: &Phasor) -> Force {
+    let speed_ratio = model.speed_ratio;
+    let unbalance_force = model.unbalance_force;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    Force {
+        fx: -speed_ratio * st * unbalance_force,
+        fy: speed_ratio * ct * unbalance_force,
+    }
+}
+/// Outputs of [`harmonic_system`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HarmonicSystem {
+    /// Re\[0\]\[0\]
+    pub re11: f64,
+    /// Re\[0\]\[1\]
+    pub re12: f64,
+    /// Re\[1\]\[0\]
+    pub re21: f64,
+    /// Re\[1\]\[1\]
+    pub re22: f64,
+    /// Im\[0\]\[0\]
+    pub im11: f64,
+    /// Im\[0\]\[1\]
+    pub im12: f64,
+    /// Im\[1\]\[0\]
+    pub im21: f64,
+    /// Im\[1\]\[1\]
+    pub im22: f64,
+    /// Re det
+    pub det_re: f64,
+    /// Im det
+    pub det_im: f64,
+}
+/// The harmonic system (Kl − η² I + iη C) Z = F (1, −i)ᵀ of the linearized contact equations (C the damping matrix): its real and imaginary parts and its determinant, whose size against its terms is the system's condition.
+///
+/// Source: docs/MODEL.md §5, §11.
+/// Derivation: the linearized stiffness and the model's damping piece at the forcing frequency η.
+#[inline]
+#[must_use]
+pub fn harmonic_system(model: &ModelParams, kl: &LinearizedContact) -> HarmonicSystem {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let t0 = speed_ratio * speed_ratio;
+    let t1 = -t0;
+    let t2 = t1 + fa1;
+    let t3 = t1 + fa2;
+    let t4 = 2.0 * speed_ratio * damping_ratio;
+    HarmonicSystem {
+        re11: t2,
+        re12: fb1,
+        re21: fb2,
+        re22: t3,
+        im11: t4,
+        im12: 0.0,
+        im21: 0.0,
+        im22: t4,
+        det_re: t2 * t3 - 4.0 * t0 * damping_ratio * damping_ratio - fb1 * fb2,
+        det_im: 2.0 * speed_ratio * damping_ratio * t2
+            + 2.0 * speed_ratio * damping_ratio * t3,
+    }
+}
+/// Outputs of [`stator_bounds`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StatorBounds {
+    /// ‖K_s‖_F
+    pub stator_norm: f64,
+    /// 4μ‖K_s‖_F
+    pub friction_gradient: f64,
+}
+/// The stator stiffness's Frobenius norm ‖K_s‖_F and the bound 4μ‖K_s‖_F of friction's share of the linearized contact stiffness on z ≥ 1.
+///
+/// Source: docs/MODEL.md §10, §12.
+/// Derivation: the model's stator stiffness; the bound's proof is in this formula's source.
+#[inline]
+#[must_use]
+pub fn stator_bounds(model: &ModelParams) -> StatorBounds {
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let friction_coefficient = model.friction_coefficient;
+    let t0 = m::sqrt(k_xx * k_xx + k_xy * k_xy + k_yx * k_yx + k_yy * k_yy);
+    StatorBounds {
+        stator_norm: t0,
+        friction_gradient: 4.0 * friction_coefficient * t0,
     }
 }
 /// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).

@@ -9,9 +9,10 @@
 //! at a target is always the closed form evaluated from the segment start (`docs/MODEL.md` §13).
 
 use super::free::{FreeConstants, FreeSegment};
-use super::segment::{Point, Segment, point_of};
+use super::segment::{Point, Segment};
 use super::switch::{Direction, first_crossing_to};
 use crate::driver::{Located, SegmentSolver};
+use crate::geometry;
 use crate::params::{Params, State};
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
 
@@ -57,7 +58,7 @@ impl FreeFlight {
             t0,
             segment: FreeSegment::new(params, constants, t0, state),
             chunks: 0,
-            last: point_of(state, params.offset_x, params.offset_y),
+            last: geometry::point(constants.model(), state),
             found: None,
             settled: false,
             chunk: 0.5 / omega,

@@ -5,10 +5,11 @@
 use super::free_flight::FreeFlightSolver;
 use super::linear::{ContactConstants, max_contact_stiffness};
 use super::schemes::{SubStep, exprb2_with, exprb43_with};
-use super::segment::{Segment, point_of};
+use super::segment::Segment;
 use super::switch::{Budget, Direction, SlipVelocity, first_crossing_to, first_slip_switch};
 use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
+use crate::geometry;
 use crate::math;
 use crate::params::ValidRange;
 use crate::params::{Params, Problem, State};
@@ -130,17 +131,16 @@ impl ExprbContact {
                 state: slot.end,
             });
         }
-        let (ox, oy) = (self.params.offset_x, self.params.offset_y);
-        let start = point_of(state, ox, oy);
+        let model = self.constants.model();
+        let start = geometry::point(model, state);
         // The sub-step's end is the segment's point at its length: no need to evaluate it again.
-        let end = point_of(slot.end, ox, oy);
+        let end = geometry::point(model, slot.end);
         let exit = first_crossing_to(&slot.segment, 0.0, start, slot.length, end, Direction::Down);
         self.exit = exit.map(|(s, p)| (s, p.state, EventKind::Exit));
         if self.slip != 0.0 {
             let limit = exit.map_or(slot.length, |(s, _)| s);
             let f = SlipVelocity::new(
                 &slot.segment,
-                &self.params,
                 t0,
                 self.slip,
                 self.slip_offset,

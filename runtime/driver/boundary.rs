@@ -2,7 +2,9 @@
 //! no solver can misread.
 
 use super::TOUCH_DEPTH;
-use crate::field;
+use crate::coefficients::ModelParams;
+use crate::field::{self, Field};
+use crate::geometry::{self, Point};
 use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::Regime;
@@ -14,13 +16,13 @@ use crate::propagate::Regime;
 /// ±2·[`TOUCH_DEPTH`] on that side (z changes by about 3e-14, below every method's resolution),
 /// so that no solver sees a sign of h that is only rounding.
 pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, State) {
-    let (h, dh) = field::switching_function(params, state);
+    let model = ModelParams::of(params);
+    let Point { h, dh, .. } = geometry::point(&model, *state);
     if math::abs(h) > TOUCH_DEPTH || h.is_nan() {
         return (field::regime_of(params, time, state), *state);
     }
-    let (ax, ay) = field::acceleration(params, Regime::Free, 0.0, time, state);
-    let (u, v) = (state.x - params.offset_x, state.y - params.offset_y);
-    let c = state.vx * state.vx + state.vy * state.vy + u * ax + v * ay;
+    let free = field::acceleration(&model, Field::Free, &field::phasor(&model, time), state);
+    let c = 0.5 * geometry::curvature(&model, state, free);
     // March out geometrically until the expansion leaves the band; its sign there is the side.
     let mut s = 1e-20;
     let mut side = 0.0;
@@ -44,12 +46,8 @@ pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, 
         Regime::Contact | Regime::Rolling => 2.0 * TOUCH_DEPTH,
         Regime::Free => -2.0 * TOUCH_DEPTH,
     };
-    let z = math::hypot(u, v);
-    let scale = math::sqrt(1.0 + target) / z;
-    let moved = State {
-        x: params.offset_x + u * scale,
-        y: params.offset_y + v * scale,
-        ..*state
-    };
-    (regime, moved)
+    let (u, v) = geometry::offset(&model, state.x, state.y);
+    let scale = math::sqrt(1.0 + target) / math::hypot(u, v);
+    let (x, y) = geometry::at_offset(&model, (u * scale, v * scale));
+    (regime, State { x, y, ..*state })
 }

@@ -18,8 +18,8 @@ use super::integrator::{AcceptedStep, Integrator};
 use super::ode::OdeSystem;
 use super::scheme::{Interpolant, Scheme};
 use super::system::inside_measure;
+use crate::coefficients::{ModelParams, Phasor};
 use crate::field::{self, SlipZero};
-use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::{EventKind, Regime};
 
@@ -46,7 +46,7 @@ pub enum Function {
 /// value when it is negative, keeps that start from being found again).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Switches {
-    params: Params,
+    model: ModelParams,
     regime: Regime,
     slip: f64,
     offset: f64,
@@ -63,7 +63,7 @@ impl Switches {
         y: &[f64; N],
     ) -> Self {
         let mut s = Switches {
-            params: *params,
+            model: ModelParams::of(params),
             regime,
             slip,
             offset: 0.0,
@@ -82,7 +82,7 @@ impl Switches {
     /// As [`Switches::new`] with the friction function's offset given (a segment continued).
     pub fn with_offset(params: &Params, regime: Regime, slip: f64, offset: f64) -> Self {
         Switches {
-            params: *params,
+            model: ModelParams::of(params),
             regime,
             slip,
             offset,
@@ -110,7 +110,7 @@ impl Switches {
     #[inline(always)]
     pub fn measure<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> (f64, f64) {
         if f == Function::Boundary {
-            return inside_measure(&self.params, self.regime, y);
+            return inside_measure(&self.model, self.regime, y);
         }
         self.friction_measure(f, t, y)
     }
@@ -119,21 +119,16 @@ impl Switches {
     #[inline(never)]
     fn friction_measure<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> (f64, f64) {
         let state = rotor_state(y);
-        let (ct, st) = phasor(&self.params, t, y);
-        let fr = field::friction_with_phasor(&self.params, ct, st, &state);
-        let mu = self.params.friction_coefficient;
+        let phasor = phasor(&self.model, t, y);
         match f {
-            Function::SlipVelocity => (
-                self.slip * fr.slip_velocity - self.offset,
-                self.slip * fr.slip_acceleration(&self.params, self.slip),
-            ),
+            Function::SlipVelocity => {
+                let w = field::friction_with_phasor(&self.model, &phasor, &state).slip_velocity;
+                let rate = field::slip_rate(&self.model, &phasor, &state, self.slip);
+                (self.slip * w - self.offset, self.slip * rate)
+            }
             _ => {
-                let (dn, dl) = field::rolling_rates_with_phasor(&self.params, ct, st, &state);
-                let sign = if fr.lambda < 0.0 { -1.0 } else { 1.0 };
-                (
-                    mu * fr.normal - math::abs(fr.lambda) - self.offset,
-                    mu * dn - sign * dl,
-                )
+                let (margin, rate) = field::cone_margin(&self.model, &phasor, &state);
+                (margin - self.offset, rate)
             }
         }
     }
@@ -147,7 +142,8 @@ impl Switches {
             }),
             Function::SlipLimit => Some(EventKind::Slip),
             Function::SlipVelocity => {
-                match field::at_slip_zero(&self.params, t, &rotor_state(y), self.slip) {
+                let phasor = phasor(&self.model, t, y);
+                match field::at_slip_zero(&self.model, &phasor, &rotor_state(y), self.slip) {
                     SlipZero::Roll => Some(EventKind::Roll),
                     SlipZero::Reverse => Some(EventKind::Reverse),
                     SlipZero::Touch => None,
@@ -164,14 +160,11 @@ fn rotor_state<const N: usize>(y: &[f64; N]) -> State {
 }
 
 /// (cos θ, sin θ): carried in the state vector as components 4 and 5 when it has them (the
-/// phasor system), else from the time.
-fn phasor<const N: usize>(params: &Params, t: f64, y: &[f64; N]) -> (f64, f64) {
+/// phasor system), else from the time ([`field::phasor`]).
+fn phasor<const N: usize>(model: &ModelParams, t: f64, y: &[f64; N]) -> Phasor {
     match (y.get(4), y.get(5)) {
-        (Some(&c), Some(&s)) => (c, s),
-        _ => {
-            let (s, c) = math::sin_cos(params.speed_ratio * t + params.phase);
-            (c, s)
-        }
+        (Some(&ct), Some(&st)) => Phasor { ct, st },
+        _ => field::phasor(model, t),
     }
 }
 

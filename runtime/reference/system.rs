@@ -3,8 +3,9 @@
 //! the hybrid method's contact phase, `docs/MODEL.md` §8).
 
 use super::ode::OdeSystem;
-use crate::coefficients::ModelParams;
-use crate::field;
+use crate::coefficients::{ModelParams, Phasor};
+use crate::field::{self, Field};
+use crate::geometry;
 use crate::params::{Params, State};
 use crate::propagate::Regime;
 
@@ -36,52 +37,22 @@ impl OdeSystem<4> for RotorSystem {
 }
 
 /// [`RotorSystem`] with the model's parameters prepared once, in the generated code's form, and the
-/// field picked once (the constant-speed reference propagators build one per step): free flight
-/// and frictionless contact without an input force run [`field::unforced_free_acceleration`] and
-/// [`field::frictionless_contact_acceleration`] inlined, every other case
-/// [`field::acceleration_of_model`] — the arithmetic of [`field::derivative`], so the same bits,
-/// without rebuilding the parameters and testing regime, friction and input force at every stage.
+/// field picked once (the constant-speed reference propagators build one per step): the
+/// arithmetic of [`field::derivative`], so the same bits, without rebuilding the parameters and
+/// picking the field at every stage.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PreparedRotorSystem {
     model: ModelParams,
-    speed_ratio: f64,
-    phase: f64,
-    regime: Regime,
-    slip: f64,
-    field: PreparedField,
-}
-
-/// Which field a [`PreparedRotorSystem`] runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum PreparedField {
-    /// Free flight without an input force.
-    UnforcedFree,
-    /// Frictionless contact without an input force.
-    UnforcedFrictionlessContact,
-    /// Any other regime, slip or input force.
-    General,
+    field: Field,
 }
 
 impl PreparedRotorSystem {
     /// The field of `regime` (slip direction `slip`) for `params`.
     #[inline]
     pub fn new(params: &Params, regime: Regime, slip: f64) -> Self {
-        let model = ModelParams::of(params);
-        let unforced = model.force_x == 0.0 && model.force_y == 0.0;
-        let field = match regime {
-            Regime::Free if unforced => PreparedField::UnforcedFree,
-            Regime::Contact if unforced && slip == 0.0 => {
-                PreparedField::UnforcedFrictionlessContact
-            }
-            _ => PreparedField::General,
-        };
         PreparedRotorSystem {
-            model,
-            speed_ratio: params.speed_ratio,
-            phase: params.phase,
-            regime,
-            slip,
-            field,
+            model: ModelParams::of(params),
+            field: Field::of(regime, slip),
         }
     }
 }
@@ -90,18 +61,8 @@ impl OdeSystem<4> for PreparedRotorSystem {
     #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64; 4]) -> [f64; 4] {
         let s = State::from_array(*y);
-        let (sin_t, cos_t) = crate::math::sin_cos(self.speed_ratio * t + self.phase);
-        let (ax, ay) = match self.field {
-            PreparedField::UnforcedFree => {
-                field::unforced_free_acceleration(&self.model, cos_t, sin_t, &s)
-            }
-            PreparedField::UnforcedFrictionlessContact => {
-                field::frictionless_contact_acceleration(&self.model, cos_t, sin_t, &s)
-            }
-            PreparedField::General => {
-                field::acceleration_of_model(&self.model, self.regime, self.slip, cos_t, sin_t, &s)
-            }
-        };
+        let phasor = field::phasor(&self.model, t);
+        let (ax, ay) = field::acceleration(&self.model, self.field, &phasor, &s);
         [s.vx, s.vy, ax, ay]
     }
 }
@@ -122,8 +83,8 @@ pub struct PhasorRotorSystem {
 impl PhasorRotorSystem {
     /// The 6-state vector `[x, y, x', y', cos θ, sin θ]` at time `t` for rotor state `s`.
     pub fn initial(params: &Params, t: f64, s: &State) -> [f64; 6] {
-        let (sin_t, cos_t) = crate::math::sin_cos(params.speed_ratio * t + params.phase);
-        [s.x, s.y, s.vx, s.vy, cos_t, sin_t]
+        let p = field::phasor(&ModelParams::of(params), t);
+        [s.x, s.y, s.vx, s.vy, p.ct, p.st]
     }
 
     /// The rotor part of a 6-state vector.
@@ -138,25 +99,30 @@ impl OdeSystem<6> for PhasorRotorSystem {
     fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
         let [x, yy, vx, vy, c, s] = *y;
         let state = State::new(x, yy, vx, vy);
-        let (ax, ay) =
-            field::acceleration_with_phasor(&self.params, self.regime, self.slip, c, s, &state);
+        let model = ModelParams::of(&self.params);
+        let field = Field::of(self.regime, self.slip);
+        let (ax, ay) = field::acceleration(&model, field, &Phasor { ct: c, st: s }, &state);
         let eta = self.params.speed_ratio;
         [vx, vy, ax, ay, -eta * s, eta * c]
     }
 }
 
 /// The switching function oriented so that it is positive inside `regime`:
-/// `(σ h, σ h')` with h = z² − 1, σ = +1 in contact and −1 in free flight. Works on any state
-/// vector whose first four components are `[x, y, x', y']`.
+/// `(σ h, σ h')` with h = z² − 1 ([`crate::geometry::point`]), σ = +1 in contact and −1 in free
+/// flight. Works on any state vector whose first four components are `[x, y, x', y']`.
 #[inline]
-pub fn inside_measure<const N: usize>(params: &Params, regime: Regime, y: &[f64; N]) -> (f64, f64) {
+pub fn inside_measure<const N: usize>(
+    model: &ModelParams,
+    regime: Regime,
+    y: &[f64; N],
+) -> (f64, f64) {
     let mut s = [0.0; 4];
     for (a, b) in s.iter_mut().zip(y.iter()) {
         *a = *b;
     }
-    let (h, dh) = field::switching_function(params, &State::from_array(s));
+    let p = geometry::point(model, State::from_array(s));
     match regime {
-        Regime::Contact | Regime::Rolling => (h, dh),
-        Regime::Free => (-h, -dh),
+        Regime::Contact | Regime::Rolling => (p.h, p.dh),
+        Regime::Free => (-p.h, -p.dh),
     }
 }

@@ -55,11 +55,12 @@ impl HeldSpeed {
     }
 
     /// The constant-speed parameters whose forcing is this held forcing: `base` with the held
-    /// speed, the unbalance scaled to carry the rate's force (eccentricity ratio
-    /// ρ̂ √(1 + (η'_h/η_h²)²)) and the phase moved by its lag δ. With η'_h = 0 only the speed
-    /// and the phase change (the phase constant itself when it lies in the parameter table's
-    /// range, else reduced to [0, 2π)). The result is not validated: the scaled eccentricity
-    /// can leave its range at very low speeds (checked by the caller).
+    /// speed, the unbalance scaled by the held forcing's amplitude over the constant-speed one
+    /// (eccentricity ratio ρ̂ √(r_c² + r_s²), the generated `held_speed_forcing`'s ratios) and the
+    /// phase moved by its lag δ = atan2(r_s, r_c). With η'_h = 0 only the speed and the phase
+    /// change (the phase constant itself when it lies in the parameter table's range, else
+    /// reduced to [0, 2π)). The result is not validated: the scaled eccentricity can leave its
+    /// range at very low speeds (checked by the caller, [`HeldSpeed::eccentricity_scale`]).
     pub fn params(&self, base: &Params) -> Params {
         let at_speed = Params {
             speed_ratio: self.speed_ratio,
@@ -71,19 +72,25 @@ impl HeldSpeed {
                 ..at_speed
             };
         }
+        let (scale, lag) = self.eccentricity_scale(&at_speed);
+        Params {
+            eccentricity_ratio: base.eccentricity_ratio * scale,
+            phase: phase_parameter(self.phase_constant - lag),
+            ..at_speed
+        }
+    }
+
+    /// The factor √(r_c² + r_s²) the held step scales the unbalance by, and the lag δ, at the
+    /// parameters `at_speed` (which carry the held speed).
+    pub fn eccentricity_scale(&self, at_speed: &Params) -> (f64, f64) {
         let forcing = coef::held_speed_forcing(
-            &ModelParams::of(&at_speed),
+            &ModelParams::of(at_speed),
             &SpeedChange {
                 speed_rate: self.rate,
             },
         );
-        let amplitude = math::hypot(forcing.in_phase, forcing.quadrature);
-        let lag = math::atan2(forcing.quadrature, forcing.in_phase);
-        Params {
-            eccentricity_ratio: amplitude / (base.mass_ratio * self.speed_ratio * self.speed_ratio),
-            phase: phase_parameter(self.phase_constant - lag),
-            ..at_speed
-        }
+        let (c, s) = (forcing.in_phase_ratio, forcing.quadrature_ratio);
+        (math::hypot(c, s), math::atan2(s, c))
     }
 }
 

@@ -8,9 +8,10 @@ use super::{Stepper, StepperError, check_bounded};
 use crate::analytic::free::FreeSegment;
 use crate::analytic::linear::ContactConstants;
 use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
-use crate::analytic::segment::{Point, Segment, point_of};
+use crate::analytic::segment::{Point, Segment};
 use crate::analytic::switch::{Direction, Search};
 use crate::field;
+use crate::geometry;
 use crate::params::State;
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
 use crate::registration::ContactScheme;
@@ -127,7 +128,7 @@ impl Stepper {
         let tr = &self.transition;
         let seg =
             FreeSegment::with_offset_distance(p, tr.constants(), tr.offset_distance(), t, state);
-        let start = point_of(state, p.offset_x, p.offset_y);
+        let start = geometry::point(tr.constants().model(), state);
         let end = seg.point(rem);
         // h holds frequencies up to 2·max(η, 1): chunks as in `FreeFlight`.
         let chunk = 0.5 / p.speed_ratio.max(1.0 + p.damping_ratio);
@@ -175,9 +176,9 @@ impl Stepper {
         state: State,
         report: &mut StepReport,
     ) -> Option<(f64, Point)> {
-        let (ex, ey) = (self.params.offset_x, self.params.offset_y);
-        let start = point_of(state, ex, ey);
-        let end = point_of(sub.end, ex, ey);
+        let model = self.transition.constants().model();
+        let start = geometry::point(model, state);
+        let end = geometry::point(model, sub.end);
         let found = locate_with(
             &sub.segment,
             (0.0, start),

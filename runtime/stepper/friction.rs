@@ -123,14 +123,7 @@ impl Stepper {
         if slip.sigma == 0.0 {
             return None;
         }
-        let f = SlipVelocity::new(
-            &sub.segment,
-            &self.params,
-            t,
-            slip.sigma,
-            slip.offset,
-            slip.scale,
-        );
+        let f = SlipVelocity::new(&sub.segment, t, slip.sigma, slip.offset, slip.scale);
         first_slip_switch(&f, state, limit, self.config.budget())
     }
 

@@ -6,6 +6,7 @@
 use super::friction::Slip;
 use super::{FreeTransition, OnCap, Stepper, StepperConfig, StepperError, SwitchStart};
 use crate::analytic::free::FreeConstants;
+use crate::coefficients::{self as coef, ModelParams, Time};
 use crate::math;
 use crate::params::{Parameter, Params, Problem, State};
 use crate::propagate::Regime;
@@ -45,8 +46,8 @@ impl Stepper {
         if eta == self.params.speed_ratio {
             return Ok(());
         }
-        let p = &self.params;
-        let theta = math::wrap_angle(p.speed_ratio * self.time + p.phase);
+        let model = ModelParams::of(&self.params);
+        let theta = math::wrap_angle(coef::forcing_phase(&model, &Time { t: self.time }).theta);
         let phase = math::wrap_angle(theta - math::wrap_angle(eta * self.time));
         let params = Params {
             speed_ratio: eta,

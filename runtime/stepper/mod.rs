@@ -86,9 +86,10 @@ pub use search::{
 pub use transition::FreeTransition;
 
 use crate::analytic::free::FreeConstants;
-use crate::analytic::segment::point_of;
+use crate::coefficients::ModelParams;
 use crate::driver::within_bounds;
 use crate::field;
+use crate::geometry;
 use crate::math;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{PropagationError, Regime};
@@ -302,13 +303,13 @@ impl Stepper {
     #[inline]
     fn free_step(&self) -> Option<State> {
         let tr = &self.transition;
-        let (ex, ey) = tr.offset();
+        let model = tr.constants().model();
         let end = tr.apply(&self.state, self.phasor);
-        let b = point_of(end, ex, ey);
+        let b = geometry::point(model, end);
         if b.h >= 0.0 || b.h.is_nan() {
             return None;
         }
-        let a = point_of(self.state, ex, ey);
+        let a = geometry::point(model, self.state);
         let m2 = tr.curvature_bound(&self.state, self.phasor, math::sqrt((a.h + 1.0).max(0.0)));
         no_crossing_likely(a.h.min(0.0), a.dh, b.h, b.dh, m2, tr.dt(), TOUCH).then_some(end)
     }
@@ -332,8 +333,8 @@ fn check_bounded(time: f64, state: State) -> Result<(), StepperError> {
     }
 }
 
-/// (cos θ, sin θ) of the forcing at time `t`.
+/// (cos θ, sin θ) of the forcing at time `t` ([`field::phasor`]).
 fn phasor_at(params: &Params, t: f64) -> (f64, f64) {
-    let (s, c) = math::sin_cos(math::wrap_angle(params.speed_ratio * t + params.phase));
-    (c, s)
+    let p = field::phasor(&ModelParams::of(params), t);
+    (p.ct, p.st)
 }

@@ -7,8 +7,9 @@ use super::kernels::{self, CAPACITY, MAX_ORDER, Series};
 use crate::coefficients::{
     ModelParams, Slip, TAYLOR_SERIES_MAX, contact_taylor, rolling_taylor, slipping_taylor,
 };
+use crate::geometry;
 use crate::math;
-use crate::params::{Params, State};
+use crate::params::State;
 use crate::propagate::Regime;
 
 /// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
@@ -68,10 +69,10 @@ pub struct Expansion {
 
 impl Expansion {
     /// An expansion of order `order` (≤ [`MAX_ORDER`]) for the field of frictionless contact.
-    pub fn new(params: &Params, order: usize) -> Self {
+    pub fn new(model: &ModelParams, order: usize) -> Self {
         let order = order.clamp(2, MAX_ORDER);
         Expansion {
-            field: Field::Contact(contact_taylor::constants(&ModelParams::of(params))),
+            field: Field::Contact(contact_taylor::constants(model)),
             slip: 1.0,
             order,
             series: [[0.0; CAPACITY]; TAYLOR_SERIES_MAX],
@@ -79,15 +80,14 @@ impl Expansion {
     }
 
     /// Switch to the field of `regime` (contact slipping in direction `slip` when `slip` ≠ 0).
-    pub fn set_regime(&mut self, params: &Params, regime: Regime, slip: f64) {
-        let model = ModelParams::of(params);
+    pub fn set_regime(&mut self, model: &ModelParams, regime: Regime, slip: f64) {
         self.slip = if slip < 0.0 { -1.0 } else { 1.0 };
         self.field = match regime {
-            Regime::Rolling => Field::Rolling(rolling_taylor::constants(&model)),
+            Regime::Rolling => Field::Rolling(rolling_taylor::constants(model)),
             _ if slip != 0.0 => {
-                Field::Slipping(slipping_taylor::constants(&model, &Slip { sigma: slip }))
+                Field::Slipping(slipping_taylor::constants(model, &Slip { sigma: slip }))
             }
-            _ => Field::Contact(contact_taylor::constants(&model)),
+            _ => Field::Contact(contact_taylor::constants(model)),
         };
     }
 
@@ -186,7 +186,7 @@ impl Expansion {
     /// The size of the terms a switch function's value at the expansion point is computed from
     /// (its rounding is relative to it): 1 for z² − 1 (z ≈ 1), |q'| + ρ_R η for w, μN + |λ|
     /// (the larger margin) for the friction cone.
-    pub fn rounding_scale(&self, switch: Switch, params: &Params) -> f64 {
+    pub fn rounding_scale(&self, switch: Switch, model: &ModelParams) -> f64 {
         let at0 = |i: usize| {
             self.series
                 .get(i)
@@ -195,7 +195,7 @@ impl Expansion {
         match switch {
             Switch::Boundary => 1.0,
             Switch::SlipVelocity => {
-                at0(2).max(at0(3)) + math::abs(params.radius_ratio * params.speed_ratio)
+                at0(2).max(at0(3)) + math::abs(model.radius_ratio * model.speed_ratio)
             }
             Switch::ConeUpper | Switch::ConeLower => {
                 at0(rolling_taylor::CONE_UPPER).max(at0(rolling_taylor::CONE_LOWER))
@@ -209,19 +209,18 @@ impl Expansion {
     }
 
     /// Put the crossing of z = 1 near local time `s` onto the surface of the step's polynomial
-    /// state: Newton steps on |q(s) − ε̂|² − 1 (two suffice from the switch polynomial's root,
-    /// which differs from it by truncation only).
-    pub fn polish_boundary(&self, params: &Params, mut s: f64, h: f64) -> f64 {
+    /// state: Newton steps on the switching function h = z² − 1 of the polynomial state
+    /// ([`geometry::point`]; two suffice from the switch polynomial's root, which differs from it
+    /// by truncation only).
+    pub fn polish_boundary(&self, model: &ModelParams, mut s: f64, h: f64) -> f64 {
         for _ in 0..3 {
             let (x, vx) = self.eval_d(0, s);
             let (y, vy) = self.eval_d(1, s);
-            let (u, v) = (x - params.offset_x, y - params.offset_y);
-            let f = u * u + v * v - 1.0;
-            let df = 2.0 * (u * vx + v * vy);
-            if df == 0.0 || !f.is_finite() {
+            let p = geometry::point(model, State::new(x, y, vx, vy));
+            if p.dh == 0.0 || !p.h.is_finite() {
                 break;
             }
-            let next = s - f / df;
+            let next = s - p.h / p.dh;
             if !(next >= 0.0 && next <= h) || next == s {
                 break;
             }

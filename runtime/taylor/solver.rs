@@ -4,15 +4,15 @@
 
 use super::expansion::{Expansion, Switch, order_for};
 use super::roots::first_exit;
+use crate::coefficients::ModelParams;
 use crate::driver::{Located, SegmentSolver};
 use crate::field::{self, SlipZero};
-use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::{Event, EventKind, PropagationError, Regime, within_bounds};
 
 /// A contact regime's solver: Taylor steps on the regime's field.
 pub struct TaylorContact {
-    params: Params,
+    model: ModelParams,
     expansion: Expansion,
     max_step: f64,
     /// The segment's start time: step starts are kept in time since it (`local`), so that they
@@ -38,8 +38,8 @@ impl TaylorContact {
     /// A solver for `params` at tolerance `tol`, started at `(t0, s0)` in frictionless contact.
     pub fn new(params: &Params, tol: f64, t0: f64, s0: State) -> Self {
         TaylorContact {
-            params: *params,
-            expansion: Expansion::new(params, order_for(tol)),
+            model: ModelParams::of(params),
+            expansion: Expansion::new(&ModelParams::of(params), order_for(tol)),
             // A quarter of the shorter of the forcing period and 2π, as the other methods.
             max_step: 0.25 * params.forcing_period().min(core::f64::consts::TAU),
             origin: t0,
@@ -56,8 +56,8 @@ impl TaylorContact {
     }
 
     fn phasor(&self, t: f64) -> (f64, f64) {
-        let (s, c) = math::sin_cos(self.params.speed_ratio * t + self.params.phase);
-        (c, s)
+        let p = field::phasor(&self.model, t);
+        (p.ct, p.st)
     }
 
     /// The earliest switch in the current expansion over `[0, h]`: local time and which.
@@ -68,7 +68,7 @@ impl TaylorContact {
                 continue;
             }
             let c = self.expansion.switch_polynomial(sw);
-            let scale = self.expansion.rounding_scale(sw, &self.params);
+            let scale = self.expansion.rounding_scale(sw, &self.model);
             if let Some(s) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
                 && first.is_none_or(|(f, _)| s < f)
             {
@@ -89,7 +89,7 @@ impl SegmentSolver for TaylorContact {
     ) -> Result<(), PropagationError> {
         self.regime = regime;
         self.slip = slip;
-        self.expansion.set_regime(&self.params, regime, slip);
+        self.expansion.set_regime(&self.model, regime, slip);
         self.origin = time;
         self.local = 0.0;
         self.length = 0.0;
@@ -140,7 +140,7 @@ impl SegmentSolver for TaylorContact {
                 break;
             };
             let s = match sw {
-                Switch::Boundary => self.expansion.polish_boundary(&self.params, s, h),
+                Switch::Boundary => self.expansion.polish_boundary(&self.model, s, h),
                 _ => s,
             };
             let time = self.origin + (self.local + s);
@@ -149,7 +149,8 @@ impl SegmentSolver for TaylorContact {
                 Switch::Boundary => Some(EventKind::Exit),
                 Switch::ConeUpper | Switch::ConeLower => Some(EventKind::Slip),
                 Switch::SlipVelocity => {
-                    match field::at_slip_zero(&self.params, time, &state, self.slip) {
+                    let phasor = field::phasor(&self.model, time);
+                    match field::at_slip_zero(&self.model, &phasor, &state, self.slip) {
                         SlipZero::Roll => Some(EventKind::Roll),
                         SlipZero::Reverse => Some(EventKind::Reverse),
                         SlipZero::Touch => None,

@@ -3,7 +3,8 @@
 //! θ(τ) of the piece, plus the force of the speed's change (generated, `speed_change_force`).
 //! On a piece that holds its speed this is the constant-speed field, bit for bit.
 
-use crate::field;
+use crate::coefficients::{ModelParams, Phasor};
+use crate::field::{self, Field};
 use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::Regime;
@@ -89,11 +90,12 @@ impl OdeSystem<4> for RampSystem {
             speed_ratio: self.piece.speed_at(t),
             ..self.params
         };
-        let (sin_t, cos_t) = math::sin_cos(self.piece.phase_at(t));
-        let (mut ax, mut ay) =
-            field::acceleration_with_phasor(&params, self.regime, self.slip, cos_t, sin_t, &state);
+        let (st, ct) = math::sin_cos(self.piece.phase_at(t));
+        let (model, phasor) = (ModelParams::of(&params), Phasor { ct, st });
+        let field = Field::of(self.regime, self.slip);
+        let (mut ax, mut ay) = field::acceleration(&model, field, &phasor, &state);
         if self.piece.rate != 0.0 {
-            let (fx, fy) = field::speed_change_force(&params, self.piece.rate, cos_t, sin_t);
+            let (fx, fy) = field::speed_change_force(&model, self.piece.rate, &phasor);
             ax += fx;
             ay += fy;
         }

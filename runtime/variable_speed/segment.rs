@@ -140,8 +140,8 @@ impl Program<'_> {
 }
 
 /// The analytic method's held steps carry the speed-change force in the unbalance: check that
-/// the scaled eccentricity ratio ρ̂ √(1 + (η'/η²)²) stays in the table's range on every piece
-/// that changes speed (at its lowest speed, with a margin for rounding).
+/// the scaled eccentricity ratio ([`HeldSpeed::eccentricity_scale`]) stays in the table's range
+/// on every piece that changes speed (at its lowest speed, with a margin for rounding).
 pub(super) fn check_held_unbalance(
     profile: &SpeedProfile<'_>,
     params: &Params,
@@ -151,8 +151,16 @@ pub(super) fn check_held_unbalance(
         let [a, b] = pair else { continue };
         let rate = (b.speed_ratio - a.speed_ratio) / (b.time - a.time);
         let low = a.speed_ratio.min(b.speed_ratio);
-        let ratio = rate / (low * low);
-        let needed = params.eccentricity_ratio * crate::math::sqrt(1.0 + ratio * ratio);
+        let held = HeldSpeed {
+            speed_ratio: low,
+            rate,
+            phase_constant: 0.0,
+        };
+        let at_low = Params {
+            speed_ratio: low,
+            ..*params
+        };
+        let needed = params.eccentricity_ratio * held.eccentricity_scale(&at_low).0;
         if !range.contains(needed * (1.0 + 1e-9)) {
             return Err(VariableSpeedError::HeldUnbalance {
                 speed_ratio: low,

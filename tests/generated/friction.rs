@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use rotor_rub::coefficients::{
     self as coef, LinearizedContact, ModelParams, Phasor, Position, Slip, Velocity,
 };
-use rotor_rub::field;
+use rotor_rub::field::{self, Field};
 use rotor_rub::propagate::Regime;
 use rotor_rub::{Params, State};
 
@@ -145,11 +145,11 @@ proptest! {
         let state = State::new(q.x, q.y, v.x, v.y);
         let rolling = s.g_force(q, v) - t * s.lambda(q, v);
         let p = s.params();
-        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Rolling, 0.0, phasor.ct, phasor.st, &state);
+        let (ax, ay) = field::acceleration(&ModelParams::of(&p), Field::of(Regime::Rolling, 0.0), &Phasor { ct: phasor.ct, st: phasor.st }, &state);
         prop_assert!(close(ax, rolling.x, scale * (1.0 + v.norm()), 1e-13));
         prop_assert!(close(ay, rolling.y, scale * (1.0 + v.norm()), 1e-13));
         let slipping = s.g_force(q, v) - t * (s.mu * s.sigma * s.normal(q));
-        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Contact, s.sigma, phasor.ct, phasor.st, &state);
+        let (ax, ay) = field::acceleration(&ModelParams::of(&p), Field::of(Regime::Contact, s.sigma), &Phasor { ct: phasor.ct, st: phasor.st }, &state);
         prop_assert!(close(ax, slipping.x, scale, 1e-13) && close(ay, slipping.y, scale, 1e-13));
     }
 
@@ -215,18 +215,21 @@ proptest! {
         let state = State::new(q.x, q.y, v.x, v.y);
         let (ct, st) = (s.theta.cos(), s.theta.sin());
         let rate = |regime: Regime, sigma: f64| {
-            let (ax, ay) = field::acceleration_with_phasor(&p, regime, sigma, ct, st, &state);
+            let (ax, ay) = field::acceleration(&ModelParams::of(&p), Field::of(regime, sigma), &Phasor { ct, st }, &state);
             let a = Vector2::new(ax, ay);
             let h = 1e-5;
             (s.slip_velocity(q + v * h, v + a * h) - s.slip_velocity(q - v * h, v - a * h)) / (2.0 * h)
         };
-        let f = field::friction_with_phasor(&p, ct, st, &state);
+        let f = field::friction_with_phasor(&ModelParams::of(&p), &Phasor { ct, st }, &state);
         let scale = (1.0 + s.case.ks().norm()) * (1.0 + v.norm()).powi(2);
-        prop_assert!(close(rate(Regime::Contact, s.sigma), f.slip_acceleration(&p, s.sigma), scale, 1e-8));
+        let slip_rate = field::slip_rate(&ModelParams::of(&p), &Phasor { ct, st }, &state, s.sigma);
+        prop_assert!(close(rate(Regime::Contact, s.sigma), slip_rate, scale, 1e-8));
+        prop_assert!(close(slip_rate, f.lambda - s.mu * s.sigma * f.normal, scale, 1e-12));
         prop_assert!(close(rate(Regime::Rolling, 0.0), 0.0, scale, 1e-8));
     }
 
-    /// N' and λ' (`rolling_rates`) against central differences of N and λ along the rolling
+    /// The friction cone's rates (μN ∓ λ)' (`friction_cone`) against central differences of the
+    /// margins along the rolling
     /// field, the forcing phase advancing at η (step 1e-5: error ~1e-10 relative).
     #[test]
     fn rolling_rates_match_finite_differences(s in any_situation()) {
@@ -234,7 +237,7 @@ proptest! {
         let (q, v) = (s.q, s.v);
         let state = State::new(q.x, q.y, v.x, v.y);
         let (ct, st) = (s.theta.cos(), s.theta.sin());
-        let (ax, ay) = field::acceleration_with_phasor(&p, Regime::Rolling, 0.0, ct, st, &state);
+        let (ax, ay) = field::acceleration(&ModelParams::of(&p), Field::of(Regime::Rolling, 0.0), &Phasor { ct, st }, &state);
         let a = Vector2::new(ax, ay);
         let h = 1e-5;
         let at = |sign: f64| {
@@ -242,12 +245,17 @@ proptest! {
             let vv = v + a * (sign * h);
             let th = s.theta + sign * h * s.case.eta;
             let st2 = State::new(qq.x, qq.y, vv.x, vv.y);
-            field::friction_with_phasor(&p, th.cos(), th.sin(), &st2)
+            field::friction_with_phasor(&ModelParams::of(&p), &Phasor { ct: th.cos(), st: th.sin() }, &st2)
         };
         let (plus, minus) = (at(1.0), at(-1.0));
-        let (dn, dl) = field::rolling_rates_with_phasor(&p, ct, st, &state);
-        let scale = (1.0 + s.case.ks().norm()) * (1.0 + v.norm()).powi(3);
-        prop_assert!(close(dn, (plus.normal - minus.normal) / (2.0 * h), scale, 1e-7));
-        prop_assert!(close(dl, (plus.lambda - minus.lambda) / (2.0 * h), scale, 1e-7));
+        let cone = coef::friction_cone(
+            &ModelParams::of(&p),
+            &Position { x: q.x, y: q.y },
+            &Velocity { vx: v.x, vy: v.y },
+            &Phasor { ct, st },
+        );
+        let scale = (1.0 + s.case.ks().norm()) * (1.0 + v.norm()).powi(3) * (1.0 + s.mu);
+        prop_assert!(close(cone.upper_rate, (plus.cone.0 - minus.cone.0) / (2.0 * h), scale, 1e-7));
+        prop_assert!(close(cone.lower_rate, (plus.cone.1 - minus.cone.1) / (2.0 * h), scale, 1e-7));
     }
 }

@@ -4,7 +4,7 @@ use rotor_rub::reference::{
     Dop853, Dop853Propagator, Integrator, Interpolant, Rk45Propagator, RotorSystem, Tolerance,
     first_crossing, refine_crossing,
 };
-use rotor_rub::{Event, EventKind, Params, Problem, Propagate, Regime, State, advance_to, field};
+use rotor_rub::{Event, EventKind, Params, Problem, Propagate, Regime, State, advance_to};
 
 use crate::common::{paper, run_events};
 
@@ -16,7 +16,7 @@ fn first_free_maximum(p: &Problem, end: f64) -> Option<(f64, f64)> {
         regime: Regime::Free,
         slip: 0.0,
     };
-    let h = |y: &[f64; 4]| field::switching_function(&p.params, &State::from_array(*y));
+    let h = |y: &[f64; 4]| switching(&p.params, &State::from_array(*y));
     let mut integ = Integrator::<Dop853, 4>::new(
         &sys,
         p.start_time,
@@ -173,7 +173,7 @@ fn on_boundary(vx: f64, vy: f64) -> Problem {
     p.params.offset_y = -0.25;
     p.initial = State::new(1.5, -0.25, vx, vy);
     p.start_time = 0.25;
-    assert_eq!(field::switching_function(&p.params, &p.initial).0, 0.0);
+    assert_eq!(switching(&p.params, &p.initial).0, 0.0);
     p
 }
 
@@ -183,7 +183,7 @@ fn check_start_on_boundary<P: Propagate>(mut prop: P, params: &Params, want: Reg
     assert_eq!(prop.advance(t0), Ok(None));
     // Shortly after the start the rotor is on the side of its regime.
     let s = advance_to(&mut prop, t0 + 1e-3, |e| panic!("zero-length switch {e:?}")).unwrap();
-    let (h, _) = field::switching_function(params, &s.state);
+    let (h, _) = switching(params, &s.state);
     match want {
         Regime::Contact | Regime::Rolling => assert!(h > 0.0, "h = {h}"),
         Regime::Free => assert!(h < 0.0, "h = {h}"),
@@ -241,7 +241,7 @@ fn events_follow_the_propagate_contract() {
         assert_eq!(e.kind, kind);
         regime = e.kind.regime_after();
         assert_eq!(prop.regime(), regime);
-        let (h, _) = field::switching_function(&p.params, &e.state);
+        let (h, _) = switching(&p.params, &e.state);
         assert!(h.abs() < 1e-13, "h = {h:e} at the switch state");
         worst_h = worst_h.max(h.abs());
         last = e.time;
@@ -289,4 +289,10 @@ fn shallow_grazing_is_found_below_its_depth() {
         assert!(first_contact(&mut Dop853Propagator::new(&p, tol).unwrap(), end).is_some());
         assert!(first_contact(&mut Rk45Propagator::new(&p, tol).unwrap(), end).is_some());
     }
+}
+
+/// h = z² − 1 and h' of a state, by hand.
+fn switching(p: &rotor_rub::Params, s: &rotor_rub::State) -> (f64, f64) {
+    let (u, v) = (s.x - p.offset_x, s.y - p.offset_y);
+    (u * u + v * v - 1.0, 2.0 * (u * s.vx + v * s.vy))
 }

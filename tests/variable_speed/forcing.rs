@@ -4,8 +4,8 @@
 //! generated formulas: the field on a ramp piece (generated forcing + speed-change force) and
 //! the held forcing A (cos(θ − δ), sin(θ − δ)).
 
-use rotor_rub::coefficients::{self as coef, ModelParams, SpeedChange};
-use rotor_rub::field;
+use rotor_rub::coefficients::{self as coef, ModelParams, Phasor, SpeedChange};
+use rotor_rub::field::{self, Field};
 use rotor_rub::reference::OdeSystem;
 use rotor_rub::speed::{HeldSpeed, SpeedPiece};
 use rotor_rub::variable_speed::RampSystem;
@@ -89,12 +89,13 @@ fn the_field_in_contact_adds_the_same_force_to_the_constant_speed_field() {
         ..params
     };
     let theta = piece.phase_at(tau);
-    let (bx, by) = field::acceleration_with_phasor(
-        &at_speed,
-        Regime::Contact,
-        0.0,
-        theta.cos(),
-        theta.sin(),
+    let (bx, by) = field::acceleration(
+        &ModelParams::of(&at_speed),
+        Field::Contact,
+        &Phasor {
+            ct: theta.cos(),
+            st: theta.sin(),
+        },
         &state,
     );
     let unbalance = params.mass_ratio * params.eccentricity_ratio;

@@ -126,11 +126,8 @@ pub(super) fn rolling_force(m: &mut Model, q: Vec2, v: Vec2, acc: Vec2) -> (Expr
 fn friction_state(m: &mut Model) {
     let (q, v, acc) = frictionless_contact_acceleration(m);
     let normal = m.normal_force(q);
-    let (lambda, vt, _) = rolling_force(m, q, v, acc);
-    let (rho, eta) = (m.var("radius_ratio"), m.var("speed_ratio"));
-    let g = &mut m.graph;
-    let spin = g.mul(rho, eta);
-    let w = g.add(vt, spin);
+    let (lambda, _, _) = rolling_force(m, q, v, acc);
+    let w = m.slip_velocity(q, v);
     m.add_formula(
         "friction_state",
         "The friction quantities of a contact state: the normal force N = nᵀK_s g, the slip velocity w = q'·t + ρ_R η of the rotor surface at the contact point, and λ = t·G − (q'·t)(q'·n)/z (G: every force but friction), the tangential force that keeps w constant. While slipping w' = λ − μσN.",

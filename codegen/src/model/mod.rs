@@ -46,6 +46,7 @@ mod friction;
 mod linearization;
 pub mod parameters;
 mod polynomial;
+mod regimes;
 mod speed;
 pub mod symbols;
 mod taylor;
@@ -82,6 +83,7 @@ pub fn derive_all() -> Model {
     friction::derive(&mut m);
     speed::derive(&mut m);
     taylor::derive(&mut m);
+    regimes::derive(&mut m);
     m
 }
 
@@ -218,9 +220,10 @@ impl Model {
         q
     }
 
-    /// The contact function g(q) = (1 − 1/z)(u, v), (u, v) = q − ε̂, z = |(u, v)|: the stator's
-    /// deflection, the rotor's penetration beyond the clearance along the radius.
-    pub(crate) fn contact_function(&mut self, q: Vec2) -> Vec2 {
+    /// The rotor's position relative to the stator centre, stated once (`docs/MODEL.md` §1):
+    /// d = (u, v) = q − ε̂, its squared length z² = u² + v² and its length z. Every contact
+    /// quantity (the contact function, the frame, the switching function) is built on it.
+    pub(crate) fn stator_offset(&mut self, q: Vec2) -> (Vec2, ExprId, ExprId) {
         let (ex, ey) = (self.var("offset_x"), self.var("offset_y"));
         let g = &mut self.graph;
         let u = g.sub(q[0], ex);
@@ -229,6 +232,23 @@ impl Model {
         let vv = g.mul(v, v);
         let z2 = g.add(uu, vv);
         let z = g.sqrt(z2);
+        ([u, v], z2, z)
+    }
+
+    /// The switching function h = z² − 1 of a position: negative in free flight, positive in
+    /// contact (squared so that it is smooth and cheap).
+    pub(crate) fn boundary(&mut self, q: Vec2) -> ExprId {
+        let (_, z2, _) = self.stator_offset(q);
+        let g = &mut self.graph;
+        let one = g.constant(1.0);
+        g.sub(z2, one)
+    }
+
+    /// The contact function g(q) = (1 − 1/z)(u, v) ([`Model::stator_offset`]): the stator's
+    /// deflection, the rotor's penetration beyond the clearance along the radius.
+    pub(crate) fn contact_function(&mut self, q: Vec2) -> Vec2 {
+        let ([u, v], _, z) = self.stator_offset(q);
+        let g = &mut self.graph;
         let one = g.constant(1.0);
         let inv_z = g.powi(z, -1);
         let scale = g.sub(one, inv_z);
@@ -253,21 +273,26 @@ impl Model {
     }
 
     /// The outward normal n = (u, v)/z and the counter-clockwise tangent t = (−v, u)/z of the
-    /// contact at q, with z (`docs/MODEL.md` §10).
+    /// contact at q ([`Model::stator_offset`]), with z (`docs/MODEL.md` §10).
     pub(crate) fn contact_frame(&mut self, q: Vec2) -> (Vec2, Vec2, ExprId) {
-        let (ex, ey) = (self.var("offset_x"), self.var("offset_y"));
+        let ([u, v], _, z) = self.stator_offset(q);
         let g = &mut self.graph;
-        let u = g.sub(q[0], ex);
-        let v = g.sub(q[1], ey);
-        let uu = g.mul(u, u);
-        let vv = g.mul(v, v);
-        let z2 = g.add(uu, vv);
-        let z = g.sqrt(z2);
         let inv_z = g.powi(z, -1);
         let n = [g.mul(u, inv_z), g.mul(v, inv_z)];
         let mv = g.neg(v);
         let t = [g.mul(mv, inv_z), g.mul(u, inv_z)];
         (n, t, z)
+    }
+
+    /// The slip velocity w = q'·t + ρ_R η of the rotor's surface at the contact point
+    /// (`docs/MODEL.md` §10): the rotor spins counter-clockwise at η.
+    pub(crate) fn slip_velocity(&mut self, q: Vec2, v: Vec2) -> ExprId {
+        let (_, t, _) = self.contact_frame(q);
+        let vt = self.dot(v, t);
+        let (rho, eta) = (self.var("radius_ratio"), self.var("speed_ratio"));
+        let g = &mut self.graph;
+        let spin = g.mul(rho, eta);
+        g.add(vt, spin)
     }
 
     /// The normal elastic contact force N = nᵀ K_s g(q) (≥ 0 when the symmetric part of K_s

@@ -90,15 +90,21 @@ fn held_speed_forcing(m: &mut Model, forcing: Vec2) {
         minus_quadrature,
         "the y forcing's cos θ part is minus the x forcing's sin θ part",
     );
+    let force = m.derived("unbalance_force");
+    let g = &mut m.graph;
+    let in_phase_ratio = g.div(in_phase, force);
+    let quadrature_ratio = g.div(quadrature, force);
     m.add_formula(
         "held_speed_forcing",
-        "The unbalance forcing with η and η' held constant as one rotating harmonic: x = a_c cos θ + a_s sin θ, y = a_c sin θ − a_s cos θ, i.e. A (cos(θ − δ), sin(θ − δ)), A = √(a_c² + a_s²), δ = atan2(a_s, a_c).",
+        "The unbalance forcing with η and η' held constant as one rotating harmonic: x = a_c cos θ + a_s sin θ, y = a_c sin θ − a_s cos θ, i.e. A (cos(θ − δ), sin(θ − δ)), A = √(a_c² + a_s²), δ = atan2(a_s, a_c); and the same coefficients relative to the constant-speed amplitude F, so that the held forcing is the constant-speed one with the unbalance scaled by √(r_c² + r_s²) and the phase moved by δ.",
         "docs/MODEL.md §14",
         "the coefficients of cos θ and sin θ in the x component of the model's `unbalance_at_varying_speed`; the y component is checked to be the same harmonic a quarter turn on.",
         "HeldForcing",
         vec![
             ("in_phase", "a_c = η_m ρ̂ η², the cos θ coefficient of the x forcing", in_phase),
             ("quadrature", "a_s = η_m ρ̂ η', the sin θ coefficient of the x forcing", quadrature),
+            ("in_phase_ratio", "r_c = a_c/F", in_phase_ratio),
+            ("quadrature_ratio", "r_s = a_s/F", quadrature_ratio),
         ],
     );
 }

@@ -51,6 +51,27 @@ pub const GROUPS: &[Group] = &[
         external: None,
     },
     Group {
+        ty: "Time",
+        arg: "time",
+        doc: "An absolute time τ.",
+        fields: &[("abs_time", "t", "τ")],
+        external: None,
+    },
+    Group {
+        ty: "StatorOffset",
+        arg: "offset",
+        doc: "A position relative to the stator centre, d = (u, v) = q − ε̂.",
+        fields: &[("du", "u", "u = x − ε̂x"), ("dv", "v", "v = y − ε̂y")],
+        external: None,
+    },
+    Group {
+        ty: "SlipVelocityRate",
+        arg: "slip_rate",
+        doc: "The rate w' of the slip velocity (`docs/MODEL.md` §10).",
+        fields: &[("w_rate", "rate", "w' = dw/dτ")],
+        external: None,
+    },
+    Group {
         ty: "Velocity",
         arg: "rate",
         doc: "A rotor velocity (x', y').",

@@ -36,22 +36,10 @@ fn states(m: &mut Model, acceleration: Vec2) -> Vec<(crate::expr::Symbol, ExprId
     ]
 }
 
-/// h = z² − 1 = (x − ε̂x)² + (y − ε̂y)² − 1: positive in contact.
+/// h = z² − 1 ([`Model::boundary`]): positive in contact.
 fn boundary(m: &mut Model) -> (String, String, ExprId) {
-    let (x, y, ex, ey) = (
-        m.var("lx"),
-        m.var("ly"),
-        m.var("offset_x"),
-        m.var("offset_y"),
-    );
-    let g = &mut m.graph;
-    let u = g.sub(x, ex);
-    let v = g.sub(y, ey);
-    let uu = g.mul(u, u);
-    let vv = g.mul(v, v);
-    let one = g.constant(1.0);
-    let z2 = g.add(uu, vv);
-    let h = g.sub(z2, one);
+    let q = [m.var("lx"), m.var("ly")];
+    let h = m.boundary(q);
     (
         "boundary".to_owned(),
         "h = z² − 1 (positive in contact)".to_owned(),
@@ -82,12 +70,7 @@ fn slipping(m: &mut Model) -> System {
     let stiffness = m.stiffness(q, Some(Some(sigma)));
     let acc = m.acceleration(v, stiffness, forcing);
     let states = states(m, acc);
-    let (_, t, _) = m.contact_frame(q);
-    let vt = m.dot(v, t);
-    let (rho, eta) = (m.var("radius_ratio"), m.var("speed_ratio"));
-    let g = &mut m.graph;
-    let spin = g.mul(rho, eta);
-    let w = g.add(vt, spin);
+    let w = m.slip_velocity(q, v);
     let observed = vec![
         boundary(m),
         (

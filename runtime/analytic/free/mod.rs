@@ -107,6 +107,12 @@ impl FreeConstants {
         f(unforced)
     }
 
+    /// The model's parameters these constants were made for (the generated formulas' inputs).
+    #[inline]
+    pub fn model(&self) -> &ModelParams {
+        &self.model
+    }
+
     /// β² = 1 − ν².
     #[inline]
     pub fn beta_sq(&self) -> f64 {
@@ -187,12 +193,12 @@ impl FreeSegment {
         t0: f64,
         state: State,
     ) -> Self {
-        let (st, ct) = math::sin_cos(math::wrap_angle(params.speed_ratio * t0 + params.phase));
+        let phasor = crate::field::phasor(&constants.model, t0);
         Self::build(
             constants,
             (params.offset_x, params.offset_y),
             off,
-            (ct, st),
+            (phasor.ct, phasor.st),
             state,
         )
     }

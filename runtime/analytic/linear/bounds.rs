@@ -5,10 +5,9 @@
 
 use super::{LinearSegment, Response};
 use crate::analytic::free::harmonic_amplitude;
-use crate::analytic::segment::{Bounds, Point, Segment, point_of};
-use crate::coefficients::{
-    self as coef, Force, LinearizedContact, ModelParams, Position, Velocity,
-};
+use crate::analytic::segment::{Bounds, Point, Segment};
+use crate::coefficients::{self as coef, LinearizedContact, ModelParams, Position};
+use crate::geometry;
 use crate::math;
 use crate::params::Params;
 
@@ -18,40 +17,19 @@ pub(super) fn frobenius(m: [[f64; 2]; 2]) -> f64 {
     math::sqrt(a * a + d * d + b * b + c * c)
 }
 
-/// The homogeneous linearized contact acceleration q'' = −2ν q' − Kl q (the generated
-/// `linear_acceleration` with no extra force) at position `q` and velocity `v`.
-#[inline]
-fn homogeneous_acceleration(
-    model: &ModelParams,
-    kl: &LinearizedContact,
-    q: [f64; 2],
-    v: [f64; 2],
-) -> [f64; 2] {
-    let a = coef::linear_acceleration(
-        model,
-        &Position { x: q[0], y: q[1] },
-        &Velocity { vx: v[0], vy: v[1] },
-        &Force::default(),
-        kl,
-    );
-    [a.ax, a.ay]
-}
-
 /// Gains of the homogeneous linearized contact acceleration: |q''| ≤ g_v |q'| + g_q |q| with g_v
 /// the largest singular value of its Jacobian in q' (this function) and g_q the Frobenius norm
 /// (≥ the largest singular value, one root instead of three on this per-sub-step path) of its
-/// Jacobian in q ([`position_gain`]), read off as its values at unit vectors (the map is
-/// linear).
+/// Jacobian in q ([`position_gain`]); the Jacobians are the generated `linear_field_jacobians`.
 pub(super) fn velocity_gain(model: &ModelParams, kl: &LinearizedContact) -> f64 {
-    let acc = |v: [f64; 2]| homogeneous_acceleration(model, kl, [0.0; 2], v);
-    let (c1, c2) = (acc([1.0, 0.0]), acc([0.0, 1.0]));
-    harmonic_amplitude(c1[0], c2[0], c1[1], c2[1])
+    let j = coef::linear_field_jacobians(model, kl);
+    harmonic_amplitude(j.v11, j.v12, j.v21, j.v22)
 }
 
 /// The position gain g_q of [`velocity_gain`].
 pub(super) fn position_gain(model: &ModelParams, kl: &LinearizedContact) -> f64 {
-    let acc = |q: [f64; 2]| homogeneous_acceleration(model, kl, q, [0.0; 2]);
-    frobenius([acc([1.0, 0.0]), acc([0.0, 1.0])])
+    let j = coef::linear_field_jacobians(model, kl);
+    frobenius([[j.q11, j.q12], [j.q21, j.q22]])
 }
 
 /// An upper bound of ‖Kl‖₂ over every linearization point with z ≥ 1: the square of the fastest
@@ -60,25 +38,19 @@ pub(super) fn position_gain(model: &ModelParams, kl: &LinearizedContact) -> f64 
 /// Argument, from the generated formulas only: Kl (`linearized_stiffness`) is affine in K_s,
 /// Kl = Kl₀ + K_s J with Kl₀ its value at K_s = 0 (the restoring spring), so
 /// ‖Kl‖₂ ≤ ‖Kl₀‖₂ + ‖K_s‖_F ‖J‖₂. The contact function g is rotation-equivariant about the stator
-/// centre (g(Rq) = R g(q)), so J(Rq) = R J(q) Rᵀ and ‖J‖₂ depends on z only: J is evaluated along
-/// (1, 0) (`taylor_terms`). J is affine in w = 1/z (checked in `tests/generated/field.rs`) and the
-/// norm is convex, so its supremum over w ∈ (0, 1] is at an end: J(1) at z = 1 and
-/// J(0) = 2 J(½) − J(1) from z = 2. (For the elastic law J = (1 − w) I + w n nᵀ: the bound is
-/// 1 + ‖K_s‖_F up to the singular-value margin.)
-///
-/// Slipping under friction adds μσ ∂(N t)/∂q to Kl (`docs/MODEL.md` §10). With N = (z − 1) nᵀK_s n,
-/// ∇N = (nᵀK_s n) n + ((z − 1)/z)(I − n nᵀ)(K_s + K_sᵀ) n, so |∇N| ≤ 3‖K_s‖₂, and
-/// ∂t/∂q = R(I − n nᵀ)/z has norm ≤ 1/z ≤ 1: ‖∂(N t)/∂q‖ ≤ |∇N| + |N|/z ≤ 4‖K_s‖₂ on z ≥ 1,
-/// added as 4μ‖K_s‖_F (0 at μ = 0).
+/// centre (g(Rq) = R g(q)), so J(Rq) = R J(q) Rᵀ and ‖J‖₂ depends on z only: J is evaluated at
+/// the offset (z, 0) from the stator centre (`taylor_terms`). J is affine in w = 1/z (checked in
+/// `tests/generated/field.rs`) and the norm is convex, so its supremum over w ∈ (0, 1] is at an
+/// end: J(1) at z = 1 and J(0) = 2 J(½) − J(1) from z = 2. (For the elastic law
+/// J = (1 − w) I + w n nᵀ: the bound is 1 + ‖K_s‖_F up to the singular-value margin.)
+/// Slipping under friction adds at most the generated `stator_bounds`' friction gradient
+/// 4μ‖K_s‖_F (its proof is with that formula; 0 at μ = 0).
 pub fn max_contact_stiffness(params: &Params) -> f64 {
     let mut model = ModelParams::of(params);
-    let ks = frobenius([[model.k_xx, model.k_xy], [model.k_yx, model.k_yy]]);
+    let stator = coef::stator_bounds(&model);
     let jacobian = |z: f64| {
-        let at = Position {
-            x: model.offset_x + z,
-            y: model.offset_y,
-        };
-        let t = coef::taylor_terms(&model, &at);
+        let (x, y) = geometry::at_offset(&model, (z, 0.0));
+        let t = coef::taylor_terms(&model, &Position { x, y });
         [[t.a1, t.b1], [t.b2, t.a2]]
     };
     let (j1, j2) = (jacobian(1.0), jacobian(2.0));
@@ -93,34 +65,27 @@ pub fn max_contact_stiffness(params: &Params) -> f64 {
     (model.k_xx, model.k_xy, model.k_yx, model.k_yy) = (0.0, 0.0, 0.0, 0.0);
     let t = coef::taylor_terms(&model, &Position { x: 1.0, y: 0.0 });
     let k0 = coef::linearized_stiffness(&model, &t);
-    let friction = 4.0 * params.friction_coefficient * ks;
-    spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]]) + ks * j_norm + friction
+    spectral([[k0.fa1, k0.fb1], [k0.fb2, k0.fa2]])
+        + stator.stator_norm * j_norm
+        + stator.friction_gradient
 }
 
-/// The condition of the harmonic system (Kl − η² I + 2iνη I) Z = F (1, −i)ᵀ that gives the
-/// harmonic particular constants: the size of its determinant's terms over the determinant's
-/// modulus. Rounding in the generated Cramer formulas is amplified by it; near resonance it can
-/// leave finite but wrong constants whose amplitude looks harmless (at z0 = 1 with η = 1 the
-/// tangential eigenvalue of Kl is 1 exactly and the computed determinant is rounding noise), so
-/// the amplitude alone cannot detect resonance. The determinant comes from the generated
-/// `contact_modes` of the shifted stiffness Kl − η² I: det(M + iP I) = det M − P² + iP tr M.
+/// The condition of the harmonic system (Kl − η² I + iη C) Z = F (1, −i)ᵀ (generated
+/// `harmonic_system`) that gives the harmonic particular constants: the size of its
+/// determinant's terms over the determinant's modulus. Rounding in the generated Cramer formulas
+/// is amplified by it; near resonance it can leave finite but wrong constants whose amplitude
+/// looks harmless (at z0 = 1 with η = 1 the tangential eigenvalue of Kl is 1 exactly and the
+/// computed determinant is rounding noise), so the amplitude alone cannot detect resonance.
 pub(super) fn harmonic_condition(model: &ModelParams, kl: &LinearizedContact) -> f64 {
-    let eta_sq = model.speed_ratio * model.speed_ratio;
-    let shifted = LinearizedContact {
-        fa1: kl.fa1 - eta_sq,
-        fa2: kl.fa2 - eta_sq,
-        ..*kl
-    };
-    let det = coef::contact_modes(model, &shifted).det;
-    let p = 2.0 * model.damping_ratio * model.speed_ratio;
-    let trace = shifted.fa1 + shifted.fa2;
+    let h = coef::harmonic_system(model, kl);
     // A lower bound of the modulus (no hypot on this per-sub-step path): the condition is
     // overestimated by at most √2, which only widens the near-resonant band slightly.
-    let modulus = math::abs(det - p * p).max(math::abs(p * trace));
-    let terms = math::abs(shifted.fa1 * shifted.fa2)
-        + math::abs(shifted.fb1 * shifted.fb2)
-        + p * p
-        + p * (math::abs(shifted.fa1) + math::abs(shifted.fa2));
+    let modulus = math::abs(h.det_re).max(math::abs(h.det_im));
+    // |det(A + iB)|'s terms: the moduli of the two complex products it is the difference of.
+    let modulus_of = |re: f64, im: f64| math::abs(re) + math::abs(im);
+    let product = |(a, b): (f64, f64), (c, d): (f64, f64)| modulus_of(a, b) * modulus_of(c, d);
+    let terms =
+        product((h.re11, h.im11), (h.re22, h.im22)) + product((h.re12, h.im12), (h.re21, h.im21));
     // (0/0 at a zero system is not resonant: there is no harmonic forcing to amplify.)
     if terms == 0.0 { 0.0 } else { terms / modulus }
 }
@@ -145,7 +110,7 @@ fn polynomial_bounds(norms: impl Iterator<Item = f64>, hi: f64) -> (f64, f64, f6
 impl Segment for LinearSegment {
     fn point(&self, s: f64) -> Point {
         let state = self.state_with(s, &self.lin.scalars(s));
-        point_of(state, self.lin.offset.0, self.lin.offset.1)
+        geometry::point(&self.lin.model, state)
     }
 
     fn bounds(&self, lo: f64, hi: f64) -> Bounds {

@@ -14,7 +14,7 @@ use super::free::harmonic_amplitude;
 use super::series::{MAX_RATE_HORIZON, Recurrence, SERIES_TERMS, Series, len_for_rate, rate};
 use crate::coefficients::{
     self as coef, ContactBasis, ContactModes, ContactParticular, CubicForcing, HomogeneousInitial,
-    LinearizedContact, ModelParams, Phasor, PolynomialParticular, Position, Slip, Velocity,
+    LinearizedContact, ModelParams, Phasor, PolynomialParticular, Position, Slip,
 };
 
 /// Gain of the harmonic particular solution (its amplitude over the forcing amplitude F) above
@@ -23,27 +23,33 @@ use crate::coefficients::{
 /// forcing is carried in the series response instead (`docs/MODEL.md` §11). Below it the loss is
 /// at most 1e3 ulps of the harmonic amplitude.
 pub const RESONANT_GAIN: f64 = 1e3;
+use crate::field;
+use crate::geometry;
 use crate::math;
 use crate::params::{Params, State};
 
 /// What every linearization of one parameter set shares, computed once per parameter set
-/// (the contact solvers keep it): the model parameters in the generated code's form, the forcing
-/// phase, and the velocity gain of the segment bounds (the homogeneous acceleration's Jacobian in
-/// q' is −2ν I whatever Kl: see [`Linearization::slipping_with`]).
+/// (the contact solvers keep it): the model parameters in the generated code's form and the
+/// velocity gain of the segment bounds (the linearized field's Jacobian in q' is the damping's,
+/// whatever Kl: see [`Linearization::slipping_with`]).
 #[derive(Clone, Copy, Debug)]
 pub struct ContactConstants {
     model: ModelParams,
-    phase: f64,
     velocity_gain: f64,
 }
 
 impl ContactConstants {
+    /// The model's parameters in the generated code's form.
+    #[inline]
+    pub fn model(&self) -> &ModelParams {
+        &self.model
+    }
+
     /// The constants of `params`.
     pub fn new(params: &Params) -> Self {
         let model = ModelParams::of(params);
         ContactConstants {
             model,
-            phase: params.phase,
             velocity_gain: velocity_gain(&model, &LinearizedContact::default()),
         }
     }
@@ -60,7 +66,6 @@ pub struct Linearization {
     nu: f64,
     eta: f64,
     phase0: (f64, f64),
-    offset: (f64, f64),
     /// Frobenius norms of A = Kl − ν²I and of Kl (for bounds).
     norm_a: f64,
     norm_kl: f64,
@@ -107,10 +112,8 @@ impl Linearization {
     /// [`Linearization::slipping`] with the parameter set's [`ContactConstants`], written into
     /// `out` (unspecified on error).
     ///
-    /// The velocity gain comes from the constants: the generated `linear_acceleration` at q = 0
-    /// and unit q' is 0 − 2ν q' − 0·Kl, and with Kl finite (checked before: `disc` and
-    /// `omega_sq_mean` are finite only if every entry is) 0·Kl is a signed zero that leaves
-    /// every entry as computed with Kl = 0, so the gain is the same bits for every Kl.
+    /// The velocity gain comes from the constants: the generated `linear_field_jacobians` in q'
+    /// do not depend on Kl (the damping's alone), so the gain is the same for every Kl.
     pub fn slipping_with(
         constants: &ContactConstants,
         slip: f64,
@@ -163,7 +166,7 @@ impl Linearization {
             amplitude = 0.0;
         }
         let c = &particular;
-        let (st, ct) = math::sin_cos(math::wrap_angle(model.speed_ratio * t0 + constants.phase));
+        let phasor = field::phasor(model, t0);
         let a = coef::shifted_stiffness(model, &kl);
         let norm_a = frobenius([[a.a11, a.a12], [a.a21, a.a22]]);
         let norm_kl = frobenius([[kl.fa1, kl.fb1], [kl.fb2, kl.fa2]]);
@@ -175,13 +178,12 @@ impl Linearization {
             model: *model,
             nu,
             eta: model.speed_ratio,
-            phase0: (ct, st),
-            offset: (model.offset_x, model.offset_y),
+            phase0: (phasor.ct, phasor.st),
             norm_a,
             norm_kl,
             gains,
             harmonic_amplitude: amplitude,
-            harmonic_shift: math::hypot(c.c55 - model.offset_x, c.c66 - model.offset_y),
+            harmonic_shift: geometry::distance(model, c.c55, c.c66),
             resonant,
             slip,
         };
@@ -225,17 +227,12 @@ impl Linearization {
 
     /// The Taylor coefficients in s of the harmonic forcing F (cos θ, sin θ) from the segment
     /// start, `[a0x, a0y, a1x, a1y, …]`, added to `out`: a_m = F η^m/m! (cos, sin)(θ0 + mπ/2).
-    /// The force itself comes from the model (the generated free acceleration at rest).
+    /// The force itself comes from the model (the generated `unbalance_force_at`).
     fn add_harmonic_forcing(&self, out: &mut [f64; 2 * SERIES_TERMS]) {
         let (c0, s0) = self.phase0;
         let force = |ct: f64, st: f64| {
-            let a = coef::free_acceleration(
-                &self.model,
-                &Position::default(),
-                &Velocity::default(),
-                &Phasor { ct, st },
-            );
-            [a.ax, a.ay]
+            let f = coef::unbalance_force_at(&self.model, &Phasor { ct, st });
+            [f.fx, f.fy]
         };
         // d/ds turns (cos θ, sin θ) by a quarter turn: even orders use the force at θ0, odd
         // ones at θ0 + π/2, with the sign (−1)^⌊m/2⌋.

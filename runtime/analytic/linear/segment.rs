@@ -6,9 +6,8 @@ use super::Linearization;
 use crate::analytic::segment::Bounds;
 use crate::analytic::series::{self, Series};
 use crate::coefficients::{
-    self as coef, Acceleration, ContactBasis, ContactModes, ContactParticular, Force,
-    HomogeneousStart, LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular,
-    Position, Velocity,
+    self as coef, ContactBasis, ContactModes, ContactParticular, Force, HomogeneousStart,
+    LinearizedContact, LocalTime, ModelParams, Phasor, PolynomialParticular, Position, Velocity,
 };
 use crate::math;
 use crate::params::State;
@@ -185,7 +184,6 @@ impl LinearSegment {
                 nu: 0.0,
                 eta: 0.0,
                 phase0: (1.0, 0.0),
-                offset: (0.0, 0.0),
                 norm_a: 0.0,
                 norm_kl: 0.0,
                 gains: (0.0, 0.0),
@@ -199,35 +197,17 @@ impl LinearSegment {
     }
 
     /// The acceleration q″ at local time `s` of the segment whose state there is `state`: the
-    /// linearized equations q″ = −Fd + F(cos θ, sin θ) + a(s) − 2ν q′ − Kl q (generated
-    /// `linear_acceleration`, with the unbalance from the generated free acceleration at rest and
-    /// the input force).
+    /// generated `linearized_contact_field`, q″ = F(cos θ, sin θ) + u + a(s) − 2ν q′ − Kl q − Fd,
+    /// with the extra cubic forcing a(s) of the segment.
     pub fn acceleration(&self, s: f64, state: &State) -> (f64, f64) {
         let l = &self.lin;
         let (ct, st) = l.phasor(s);
-        let unbalance = coef::free_acceleration(
-            &l.model,
-            &Position::default(),
-            &Velocity::default(),
-            &Phasor { ct, st },
-        );
-        // A constant input force acts on top (`docs/MODEL.md` §15; generated
-        // `input_acceleration`).
-        let unbalance = if l.model.force_x == 0.0 && l.model.force_y == 0.0 {
-            unbalance
-        } else {
-            let u = coef::input_acceleration(&l.model);
-            Acceleration {
-                ax: unbalance.ax + u.ax,
-                ay: unbalance.ay + u.ay,
-            }
-        };
         let [a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y] = self.part.forcing;
         let load = Force {
-            fx: unbalance.ax - l.kl.fd1 + a0x + s * (a1x + s * (a2x + s * a3x)),
-            fy: unbalance.ay - l.kl.fd2 + a0y + s * (a1y + s * (a2y + s * a3y)),
+            fx: a0x + s * (a1x + s * (a2x + s * a3x)),
+            fy: a0y + s * (a1y + s * (a2y + s * a3y)),
         };
-        let a = coef::linear_acceleration(
+        let a = coef::linearized_contact_field(
             &l.model,
             &Position {
                 x: state.x,
@@ -238,14 +218,19 @@ impl LinearSegment {
                 vy: state.vy,
             },
             &load,
+            &Phasor { ct, st },
             &l.kl,
         );
         (a.ax, a.ay)
     }
 
-    /// A bound of |q‴| on [lo, hi]: from q‴ = −2ν q″ − Kl q′ + F η (−sin θ, cos θ) + a′(s)
-    /// with the segment's speed and acceleration bounds `b` on the same interval
-    /// ([`crate::analytic::segment::Segment::bounds`]; ‖Kl‖₂ ≤ its Frobenius norm).
+    /// A bound of |q‴| on [lo, hi]: q‴ is the rate of [`Self::acceleration`],
+    /// J_v q″ + J_q q′ + (the forcing's rate) + a′(s) with J_v, J_q the field's Jacobians in q′
+    /// and q (generated `linear_field_jacobians`: the gains of the segment's bounds) and the
+    /// forcing's rate of length F η at every phase (generated `forcing_rate`), so with the
+    /// segment's speed and acceleration bounds `b` on the same interval
+    /// ([`crate::analytic::segment::Segment::bounds`]):
+    /// |q‴| ≤ g_v A + g_q V + F η + |a′|.
     pub fn jerk_bound(&self, hi: f64, b: &Bounds) -> f64 {
         let l = &self.lin;
         let [_, _, a1x, a1y, a2x, a2y, a3x, a3y] = self.part.forcing;
@@ -253,10 +238,8 @@ impl LinearSegment {
         let extra = math::hypot(a1x, a1y)
             + 2.0 * h * math::hypot(a2x, a2y)
             + 3.0 * h * h * math::hypot(a3x, a3y);
-        2.0 * l.nu * b.accel
-            + l.norm_kl * b.speed
-            + math::abs(l.model.unbalance_force) * l.eta
-            + extra
+        let rate = coef::forcing_rate(&l.model, &Phasor { ct: 1.0, st: 0.0 });
+        l.gains.0 * b.accel + l.gains.1 * b.speed + math::hypot(rate.fx, rate.fy) + extra
     }
 
     /// The linearization this segment belongs to.

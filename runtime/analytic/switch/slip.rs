@@ -7,9 +7,9 @@
 //! fixed scale (so that the kernel's touch threshold is relative to the size of w), and m ≤ 0
 //! the segment start's σw when it is negative by rounding (after `slip` or `reverse` the start is
 //! on w = 0: trap 1 of §10; the offset keeps it from being found again). On the closed form,
-//! g′ = −σw′/W with w′ = q″·t + q′·t′ = λ + t·(a − G): λ and G the nonlinear field's (generated),
-//! a the closed form's own acceleration ([`LinearSegment::acceleration`]), so g′ is the exact
-//! derivative of the closed form's g.
+//! g′ = −σw′/W with w′ = q″·t + q′·t′ (generated `slip_velocity_rate`) along the closed form's
+//! own acceleration a ([`LinearSegment::acceleration`]), so g′ is the exact derivative of the
+//! closed form's g.
 //!
 //! # The bound (the proof the kernel rests on)
 //! With t′ = −(q′·t/z) n and n′ = (q′·t/z) t: |t′| ≤ V/z, |t″| ≤ A/z + 3V²/z², and
@@ -21,10 +21,12 @@
 use super::{Budget, EventFunction, locate};
 use crate::analytic::linear::LinearSegment;
 use crate::analytic::segment::Segment;
+use crate::coefficients::{self as coef, Acceleration};
 use crate::field::{self, SlipZero};
+use crate::geometry::{self, position, velocity};
 use crate::math;
 use crate::params::{Params, State};
-use crate::propagate::{EventKind, Regime};
+use crate::propagate::EventKind;
 
 /// A point of the sub-step: its local time and state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +41,6 @@ pub struct SlipPoint {
 #[derive(Clone, Copy, Debug)]
 pub struct SlipVelocity<'a> {
     segment: &'a LinearSegment,
-    params: &'a Params,
     t0: f64,
     slip: f64,
     offset: f64,
@@ -50,17 +51,9 @@ impl<'a> SlipVelocity<'a> {
     /// The slip switch of `segment` (starting at absolute time `t0`, slipping in direction
     /// `slip`), with `offset` = m ≤ 0 and `scale` = W of the module documentation (see
     /// [`SlipVelocity::start_offset`] and [`SlipVelocity::scale_at`]).
-    pub fn new(
-        segment: &'a LinearSegment,
-        params: &'a Params,
-        t0: f64,
-        slip: f64,
-        offset: f64,
-        scale: f64,
-    ) -> Self {
+    pub fn new(segment: &'a LinearSegment, t0: f64, slip: f64, offset: f64, scale: f64) -> Self {
         SlipVelocity {
             segment,
-            params,
             t0,
             slip,
             offset,
@@ -95,19 +88,20 @@ impl EventFunction for SlipVelocity<'_> {
     }
 
     fn value(&self, p: &SlipPoint) -> (f64, f64) {
-        let t = self.t0 + p.s;
-        let (sin_t, cos_t) = math::sin_cos(self.params.speed_ratio * t + self.params.phase);
+        let model = self.segment.linearization().model();
         let st = &p.state;
-        let fr = field::friction_with_phasor(self.params, cos_t, sin_t, st);
-        let (gx, gy) =
-            field::acceleration_with_phasor(self.params, Regime::Contact, 0.0, cos_t, sin_t, st);
+        let phasor = field::phasor(model, self.t0 + p.s);
+        let w = coef::friction_state(model, &position(st), &velocity(st), &phasor).slip_velocity;
         let (ax, ay) = self.segment.acceleration(p.s, st);
-        // The tangent t = (−v, u)/z of the contact frame.
-        let (u, v) = (st.x - self.params.offset_x, st.y - self.params.offset_y);
-        let z = math::hypot(u, v);
-        let rate = fr.lambda + (-v * (ax - gx) + u * (ay - gy)) / z;
+        let rate = coef::slip_velocity_rate(
+            model,
+            &position(st),
+            &velocity(st),
+            &Acceleration { ax, ay },
+        )
+        .rate;
         (
-            -(self.slip * fr.slip_velocity - self.offset) / self.scale,
+            -(self.slip * w - self.offset) / self.scale,
             -self.slip * rate / self.scale,
         )
     }
@@ -116,7 +110,8 @@ impl EventFunction for SlipVelocity<'_> {
         let b = self.segment.bounds(lo, hi);
         let jerk = self.segment.jerk_bound(hi, &b);
         let st = &at_lo.state;
-        let z0 = math::hypot(st.x - self.params.offset_x, st.y - self.params.offset_y);
+        let model = self.segment.linearization().model();
+        let z0 = geometry::distance(model, st.x, st.y);
         let z = z0 - b.speed * (hi - lo);
         if z.is_nan() || z < 0.25 {
             return f64::INFINITY;
@@ -139,7 +134,9 @@ pub fn first_slip_switch(
     let mut from = SlipPoint { s: 0.0, state };
     for _ in 0..=MAX_TOUCHES {
         let (s, p) = locate(f, from.s, from, limit, None, f64::INFINITY, budget).found()?;
-        match field::at_slip_zero(f.params, f.t0 + s, &p.state, f.slip) {
+        let model = f.segment.linearization().model();
+        let phasor = field::phasor(model, f.t0 + s);
+        match field::at_slip_zero(model, &phasor, &p.state, f.slip) {
             SlipZero::Roll => return Some((s, p.state, EventKind::Roll)),
             SlipZero::Reverse => return Some((s, p.state, EventKind::Reverse)),
             SlipZero::Touch => from = p,
