@@ -9,10 +9,11 @@
 //! test suites keep their own hand-written field (`tests/generated/field.rs`, `tests/reference`).
 
 use crate::coefficients::{self as coef, ModelParams, Phasor, Slip, SpeedChange, Time};
-use crate::geometry::{self, H_ROUNDING, position, velocity};
+use crate::geometry::{self, position, velocity};
 use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::{EventKind, Regime};
+use crate::rounding;
 
 /// The forcing direction (cos θ, sin θ) at time `t`, θ = ητ + φ0 (the generated
 /// `forcing_phase`): the one place the runtime turns a time into the forcing's phase. θ is not
@@ -84,14 +85,14 @@ pub fn speed_change_force(model: &ModelParams, speed_rate: f64, phasor: &Phasor)
 }
 
 /// The regime of a state (`docs/MODEL.md` §6 case 14): by the sign of h = z² − 1; on z = 1 (|h|
-/// within [`H_ROUNDING`]), by the sign of h' (the radial velocity) unless it too is within its
+/// within [`rounding::VALUE`]), by the sign of h' (the radial velocity) unless it too is within its
 /// rounding (a tangential start: deciding by the rounding's sign would start a zero-length
 /// regime), then of h'' (both fields agree on z = 1, where g = 0, so the free field is used);
 /// free when all three vanish.
 pub fn regime_of(params: &Params, tau: f64, state: &State) -> Regime {
     let model = ModelParams::of(params);
     let p = geometry::point(&model, *state);
-    let sign = if math::abs(p.h) > H_ROUNDING {
+    let sign = if math::abs(p.h) > rounding::VALUE {
         p.h
     } else if math::abs(p.dh) > geometry::dh_rounding(&model, state) {
         p.dh
@@ -163,15 +164,21 @@ pub fn friction_with_phasor(model: &ModelParams, phasor: &Phasor, s: &State) -> 
 }
 
 /// The `slip` switch function of rolling, min(μN − λ, μN + λ) = μN − |λ| (positive while
-/// rolling holds), and its rate along the rolling field (generated `friction_cone`).
+/// rolling holds), and its rate along the rolling field (generated `friction_cone_rates`).
 #[inline]
 pub fn cone_margin(model: &ModelParams, phasor: &Phasor, s: &State) -> (f64, f64) {
-    let c = coef::friction_cone(model, &position(s), &velocity(s), phasor);
+    let c = coef::friction_cone_rates(model, &position(s), &velocity(s), phasor);
     if c.upper <= c.lower {
         (c.upper, c.upper_rate)
     } else {
         (c.lower, c.lower_rate)
     }
+}
+
+/// The slip velocity w = q'·t + ρ_R η of a state (generated `slip_velocity`).
+#[inline]
+pub fn slip_velocity(model: &ModelParams, s: &State) -> f64 {
+    coef::slip_velocity(model, &position(s), &velocity(s)).w
 }
 
 /// w' while slipping in direction `slip` (generated `slip_rate`: λ − μσN).

@@ -9,6 +9,7 @@ use crate::coefficients::{
 };
 use crate::math;
 use crate::params::State;
+use crate::rounding;
 
 /// A state with its switching function: h = z² − 1 and h' (`docs/MODEL.md` eq. (10), squared so
 /// that it is smooth and cheap).
@@ -67,14 +68,12 @@ pub fn distance(model: &ModelParams, x: f64, y: f64) -> f64 {
     math::hypot(u, v)
 }
 
-/// The rounding h carries near z = 1 (4 ulps of 1): within it a state counts as on z = 1.
-pub const H_ROUNDING: f64 = 4.0 * f64::EPSILON;
-
-/// The rounding h' = 2(u x' + v y') of `state` carries: 8 ulps of the size of its terms.
+/// The rounding h' = 2(u x' + v y') of `state` carries: [`rounding::RATE`] of the size of its
+/// terms (the rounding of h itself near z = 1 is [`rounding::VALUE`]).
 #[inline]
 pub fn dh_rounding(model: &ModelParams, state: &State) -> f64 {
     let (u, v) = offset(model, state.x, state.y);
-    8.0 * f64::EPSILON * (math::abs(u * state.vx) + math::abs(v * state.vy))
+    rounding::RATE * (math::abs(u * state.vx) + math::abs(v * state.vy))
 }
 
 /// A state's position as the generated functions take it.

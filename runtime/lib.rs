@@ -28,7 +28,9 @@ pub mod method;
 pub mod params;
 pub mod propagate;
 pub mod reference;
+pub mod refine;
 pub mod registration;
+pub mod rounding;
 pub mod speed;
 pub mod stepper;
 #[cfg(feature = "proptest")]

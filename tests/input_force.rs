@@ -1,6 +1,6 @@
 //! The external input force and the speed input (`docs/MODEL.md` §15): every method against
 //! DOP853 at tol 1e-13 on the nonlinear field with the force (an independent path: the numerical
-//! field adds the generated `input_acceleration`, while the closed forms move free flight's origin
+//! fields carry the force as part of the forcing, while the closed forms move free flight's origin
 //! to the static deflection and add Kl⁻¹u to contact's particular solution); a force changed at
 //! every step against DOP853 restarted at every step; the speed input's continuous phase;
 //! the stepper's early stop at a switch, its budget policy and its snapshot.

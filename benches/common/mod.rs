@@ -305,10 +305,10 @@ pub fn loosest_accurate(name: &str, case: Case, reference: &Run) -> Option<(Sett
 /// `t_eval` output giving the Poincaré section. It does not restart at switches: the contact
 /// kink is stepped over and left to its step-size control.
 pub mod peer {
+    use super::switching;
     use differential_equations::prelude::{
         CrossingDirection, Event as PeerEvent, EventConfig, ExplicitRungeKutta, IVP, ODE,
     };
-    use super::switching;
     use rotor_rub::{Event, EventKind, Params, Problem, Regime, State, field};
 
     use super::{PERIODS, Run};

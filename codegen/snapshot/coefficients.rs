@@ -19,7 +19,7 @@
 // free_eval                    before:    53 add    74 mul    0 div   0 sqrt   0 trans
 //                               after:    25 add    29 mul    0 div   0 sqrt   0 trans
 // free_step_transition         before:    10 add    12 mul    0 div   0 sqrt   0 trans
-//                               after:     4 add     5 mul    0 div   0 sqrt   0 trans
+//                               after:     4 add     4 mul    0 div   0 sqrt   0 trans
 // free_step_forcing            before:    40 add    68 mul    0 div   0 sqrt   0 trans
 //                               after:    30 add    51 mul    0 div   0 sqrt   0 trans
 // free_forcing                 before:     0 add     4 mul    0 div   0 sqrt   0 trans
@@ -49,33 +49,23 @@
 // input_contact_constant       before:     4 add     8 mul    2 div   0 sqrt   0 trans
 //                               after:     3 add     8 mul    1 div   0 sqrt   0 trans
 // polynomial_particular        before:   220 add   424 mul   76 div   0 sqrt   0 trans
-//                               after:    19 add    52 mul    1 div   0 sqrt   0 trans
+//                               after:    19 add    50 mul    1 div   0 sqrt   0 trans
 // polynomial_eval              before:    10 add    22 mul    0 div   0 sqrt   0 trans
 //                               after:    10 add    17 mul    0 div   0 sqrt   0 trans
-// contact_force                before:    30 add    16 mul    4 div   4 sqrt   0 trans
-//                               after:     6 add    10 mul    1 div   1 sqrt   0 trans
-// free_acceleration            before:     4 add     6 mul    0 div   0 sqrt   0 trans
-//                               after:     4 add     6 mul    0 div   0 sqrt   0 trans
-// input_acceleration           before:     0 add     0 mul    0 div   0 sqrt   0 trans
-//                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 // contact_remainder            before:    38 add    20 mul    4 div   4 sqrt   0 trans
 //                               after:    14 add    14 mul    1 div   1 sqrt   0 trans
 // linear_acceleration          before:     6 add     8 mul    0 div   0 sqrt   0 trans
 //                               after:     6 add     8 mul    0 div   0 sqrt   0 trans
 // shifted_stiffness            before:     2 add     2 mul    0 div   0 sqrt   0 trans
 //                               after:     2 add     1 mul    0 div   0 sqrt   0 trans
-// slipping_contact_force       before:   130 add    70 mul   18 div  18 sqrt   0 trans
-//                               after:    11 add    22 mul    1 div   1 sqrt   0 trans
 // slipping_linearized_stiffness before:  2328 add  1242 mul  270 div 270 sqrt   0 trans
-//                               after:    53 add   126 mul    2 div   1 sqrt   0 trans
+//                               after:    53 add   117 mul    2 div   1 sqrt   0 trans
 // slipping_remainder           before:   138 add    74 mul   18 div  18 sqrt   0 trans
-//                               after:    19 add    34 mul    1 div   1 sqrt   0 trans
+//                               after:    19 add    26 mul    1 div   1 sqrt   0 trans
 // friction_state               before:   140 add    72 mul   19 div  19 sqrt   0 trans
-//                               after:    23 add    43 mul    1 div   1 sqrt   0 trans
+//                               after:    23 add    35 mul    1 div   1 sqrt   0 trans
 // rolling_acceleration         before:   218 add   114 mul   28 div  28 sqrt   0 trans
 //                               after:    30 add    34 mul    1 div   1 sqrt   0 trans
-// rolling_rates                before:  1254 add   734 mul  149 div 149 sqrt   0 trans
-//                               after:    72 add   187 mul    2 div   1 sqrt   0 trans
 // speed_change_force           before:     0 add     4 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
 // held_speed_forcing           before:     0 add     4 mul    1 div   0 sqrt   0 trans
@@ -97,15 +87,19 @@
 // contact_field                before:    38 add    22 mul    4 div   4 sqrt   0 trans
 //                               after:    14 add    16 mul    1 div   1 sqrt   0 trans
 // slipping_field               before:   138 add    76 mul   18 div  18 sqrt   0 trans
-//                               after:    19 add    36 mul    1 div   1 sqrt   0 trans
+//                               after:    19 add    28 mul    1 div   1 sqrt   0 trans
 // unbalance_force_at           before:     0 add     2 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     2 mul    0 div   0 sqrt   0 trans
+// slip_velocity                before:    14 add     7 mul    2 div   2 sqrt   0 trans
+//                               after:     5 add     7 mul    1 div   1 sqrt   0 trans
 // slip_velocity_rate           before:    43 add    30 mul    4 div   4 sqrt   0 trans
 //                               after:     7 add    20 mul    2 div   1 sqrt   0 trans
 // slip_rate                    before:   181 add   106 mul   22 div  22 sqrt   0 trans
-//                               after:    23 add    54 mul    2 div   1 sqrt   0 trans
-// friction_cone                before:  2764 add  1602 mul  332 div 332 sqrt   0 trans
-//                               after:    89 add   226 mul    2 div   1 sqrt   0 trans
+//                               after:    23 add    46 mul    2 div   1 sqrt   0 trans
+// friction_cone                before:   254 add   132 mul   34 div  34 sqrt   0 trans
+//                               after:    25 add    35 mul    1 div   1 sqrt   0 trans
+// friction_cone_rates          before:  2764 add  1602 mul  332 div 332 sqrt   0 trans
+//                               after:    89 add   204 mul    2 div   1 sqrt   0 trans
 // linearized_contact_field     before:    12 add    10 mul    0 div   0 sqrt   0 trans
 //                               after:    12 add    10 mul    0 div   0 sqrt   0 trans
 // linear_field_jacobians       before:     0 add     2 mul    0 div   0 sqrt   0 trans
@@ -796,26 +790,27 @@ pub fn free_step_transition(
     let beta_sq = beta.beta_sq;
     let ec = basis.ec;
     let es = basis.es;
-    let t0 = ec + damping_ratio * es;
-    let t1 = ec - damping_ratio * es;
-    let t2 = damping_ratio * t1 - damping_ratio * ec - es * beta_sq;
+    let t0 = damping_ratio * es;
+    let t1 = ec + t0;
+    let t2 = ec - t0;
+    let t3 = damping_ratio * t2 - damping_ratio * ec - es * beta_sq;
     FreeStepTransition {
-        p00: t0,
+        p00: t1,
         p01: 0.0,
         p02: es,
         p03: 0.0,
         p10: 0.0,
-        p11: t0,
+        p11: t1,
         p12: 0.0,
         p13: es,
-        p20: t2,
+        p20: t3,
         p21: 0.0,
-        p22: t1,
+        p22: t2,
         p23: 0.0,
         p30: 0.0,
-        p31: t2,
+        p31: t3,
         p32: 0.0,
-        p33: t1,
+        p33: t2,
     }
 }
 /// Outputs of [`free_step_forcing`].
@@ -890,10 +885,11 @@ pub fn free_forcing(model: &ModelParams, phasor: &Phasor) -> FreeForcing {
     let ct = phasor.ct;
     let st = phasor.st;
     let t0 = ct * unbalance_force;
+    let t1 = st * unbalance_force;
     FreeForcing {
         fxc: t0,
         fxs: -st * unbalance_force,
-        fyc: st * unbalance_force,
+        fyc: t1,
         fys: t0,
     }
 }
@@ -1354,16 +1350,18 @@ pub fn polynomial_particular(
     let t7 = fa1 * t4 - fb2 * t2;
     let t8 = a1y - 4.0 * damping_ratio * t0 * t7 - 6.0 * t0 * t3;
     let t9 = fa2 * t6 - fb1 * t8;
-    let t10 = a0x - 2.0 * damping_ratio * t0 * t9 - 2.0 * t0 * t5;
-    let t11 = fa1 * t8 - fb2 * t6;
-    let t12 = a0y - 2.0 * damping_ratio * t0 * t11 - 2.0 * t0 * t7;
+    let t10 = t0 * t5;
+    let t11 = a0x - 2.0 * damping_ratio * t0 * t9 - 2.0 * t10;
+    let t12 = fa1 * t8 - fb2 * t6;
+    let t13 = t0 * t7;
+    let t14 = a0y - 2.0 * damping_ratio * t0 * t12 - 2.0 * t13;
     PolynomialParticular {
-        b0x: t0 * (fa2 * t10 - fb1 * t12),
-        b0y: t0 * (fa1 * t12 - fb2 * t10),
+        b0x: t0 * (fa2 * t11 - fb1 * t14),
+        b0y: t0 * (fa1 * t14 - fb2 * t11),
         b1x: t0 * t9,
-        b1y: t0 * t11,
-        b2x: t0 * t5,
-        b2y: t0 * t7,
+        b1y: t0 * t12,
+        b2x: t10,
+        b2y: t13,
         b3x: t0 * t1,
         b3y: t0 * t3,
     }
@@ -1406,68 +1404,6 @@ pub fn polynomial_eval(
         y: b0y + s * b1y + t0 * b2y + t1 * b3y,
         vx: b1x + 2.0 * s * b2x + 3.0 * t0 * b3x,
         vy: b1y + 2.0 * s * b2y + 3.0 * t0 * b3y,
-    }
-}
-/// The elastic contact force K_s·g(q), g = (1 − 1/z)(x − ε̂x, y − ε̂y), at a position (restoring sign).
-///
-/// Source: docs/MODEL.md §1.
-/// Derivation: the model's `elastic_contact` piece.
-#[inline]
-#[must_use]
-pub fn contact_force(model: &ModelParams, at: &Position) -> Force {
-    let k_xx = model.k_xx;
-    let k_xy = model.k_xy;
-    let k_yx = model.k_yx;
-    let k_yy = model.k_yy;
-    let offset_x = model.offset_x;
-    let offset_y = model.offset_y;
-    let x = at.x;
-    let y = at.y;
-    let t0 = x - offset_x;
-    let t1 = y - offset_y;
-    let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
-    Force {
-        fx: t0 * t2 * k_xx + t1 * t2 * k_xy,
-        fy: t0 * t2 * k_yx + t1 * t2 * k_yy,
-    }
-}
-/// Acceleration of free flight: q'' = F(cos θ, sin θ) − 2ν q' − q (in contact, minus `contact_force`).
-///
-/// Source: docs/MODEL.md §1.
-/// Derivation: the model's pieces: unbalance − damping − restoring.
-#[inline]
-#[must_use]
-pub fn free_acceleration(
-    model: &ModelParams,
-    at: &Position,
-    rate: &Velocity,
-    phasor: &Phasor,
-) -> Acceleration {
-    let damping_ratio = model.damping_ratio;
-    let unbalance_force = model.unbalance_force;
-    let x = at.x;
-    let y = at.y;
-    let vx = rate.vx;
-    let vy = rate.vy;
-    let ct = phasor.ct;
-    let st = phasor.st;
-    Acceleration {
-        ax: ct * unbalance_force - 2.0 * damping_ratio * vx - x,
-        ay: st * unbalance_force - 2.0 * damping_ratio * vy - y,
-    }
-}
-/// The acceleration the input force u adds to every regime's field: q'' += u.
-///
-/// Source: docs/MODEL.md §15.
-/// Derivation: the model's acceleration with the input force as its only piece.
-#[inline]
-#[must_use]
-pub fn input_acceleration(model: &ModelParams) -> Acceleration {
-    let force_x = model.force_x;
-    let force_y = model.force_y;
-    Acceleration {
-        ax: force_x,
-        ay: force_y,
     }
 }
 /// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) of the Taylor-linearized contact field, as a force on the acceleration (zero at the linearization point).
@@ -1567,37 +1503,6 @@ pub fn shifted_stiffness(
         a22: t0 + fa2,
     }
 }
-/// The contact force while slipping in direction σ: K_s·g(q) + μσN t (restoring sign).
-///
-/// Source: docs/MODEL.md §10.
-/// Derivation: the model's `elastic_contact` and `friction` pieces.
-#[inline]
-#[must_use]
-pub fn slipping_contact_force(model: &ModelParams, at: &Position, slip: &Slip) -> Force {
-    let k_xx = model.k_xx;
-    let k_xy = model.k_xy;
-    let k_yx = model.k_yx;
-    let k_yy = model.k_yy;
-    let offset_x = model.offset_x;
-    let offset_y = model.offset_y;
-    let friction_coefficient = model.friction_coefficient;
-    let x = at.x;
-    let y = at.y;
-    let sigma = slip.sigma;
-    let t0 = x - offset_x;
-    let t1 = y - offset_y;
-    let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
-    let t3 = 1.0 - t2;
-    let t4 = t0 * t3 * k_xx;
-    let t5 = t1 * t3 * k_xy;
-    let t6 = t0 * t3 * k_yx;
-    let t7 = t1 * t3 * k_yy;
-    let t8 = t0 * t2 * (t4 + t5) + t1 * t2 * (t6 + t7);
-    Force {
-        fx: t4 + t5 - t1 * t2 * sigma * t8 * friction_coefficient,
-        fy: t6 + t7 + t0 * t2 * sigma * t8 * friction_coefficient,
-    }
-}
 /// Linearized stiffness of slipping contact in direction σ: Kl = I + ∂(K_s g + μσN t)/∂q and Fd so that q + K_s g + μσN t ≈ Kl q + Fd about (x0, y0).
 ///
 /// Source: docs/MODEL.md §10, §3.
@@ -1637,39 +1542,36 @@ pub fn slipping_linearized_stiffness(
     let t15 = t2 * t6 * k_yy;
     let t16 = t14 + t15;
     let t17 = t0 * t5 * t13 + t2 * t5 * t16;
-    let t18 = t6 * k_yx;
-    let t19 = t1 * t5 * t8 * k_yx;
-    let t20 = t0 * t2 * t5 * t8 * k_yy;
-    let t21 = t5 * t13 + t0 * t5 * (t7 + t9 + t10) + t2 * t5 * (t18 + t19 + t20)
+    let t18 = t0 * t2 * t5 * t8 * sigma * friction_coefficient * t17;
+    let t19 = t6 * k_yx;
+    let t20 = t1 * t5 * t8 * k_yx;
+    let t21 = t0 * t2 * t5 * t8 * k_yy;
+    let t22 = t5 * t13 + t0 * t5 * (t7 + t9 + t10) + t2 * t5 * (t19 + t20 + t21)
         - t1 * t5 * t8 * t13 - t0 * t2 * t5 * t8 * t16;
-    let t22 = 1.0 + t7 + t9 + t10
-        + t0 * t2 * t5 * t8 * sigma * t17 * friction_coefficient
-        - t2 * t5 * sigma * friction_coefficient * t21;
-    let t23 = t0 * t2 * t5 * t8 * k_xx;
-    let t24 = t6 * k_xy;
-    let t25 = t3 * t5 * t8 * k_xy;
-    let t26 = t0 * t2 * t5 * t8 * k_yx;
-    let t27 = t6 * k_yy;
-    let t28 = t3 * t5 * t8 * k_yy;
-    let t29 = t0 * t5 * (t23 + t24 + t25) + t5 * t16 + t2 * t5 * (t26 + t27 + t28)
+    let t23 = 1.0 + t7 + t9 + t10 + t18 - t2 * t5 * sigma * friction_coefficient * t22;
+    let t24 = t0 * t2 * t5 * t8 * k_xx;
+    let t25 = t6 * k_xy;
+    let t26 = t3 * t5 * t8 * k_xy;
+    let t27 = t5 * sigma * friction_coefficient * t17;
+    let t28 = t0 * t2 * t5 * t8 * k_yx;
+    let t29 = t6 * k_yy;
+    let t30 = t3 * t5 * t8 * k_yy;
+    let t31 = t0 * t5 * (t24 + t25 + t26) + t5 * t16 + t2 * t5 * (t28 + t29 + t30)
         - t0 * t2 * t5 * t8 * t13 - t3 * t5 * t8 * t16;
-    let t30 = t23 + t24 + t25 + t3 * t5 * t8 * sigma * t17 * friction_coefficient
-        - t5 * sigma * t17 * friction_coefficient
-        - t2 * t5 * sigma * friction_coefficient * t29;
-    let t31 = t18 + t19 + t20 + t5 * sigma * t17 * friction_coefficient
-        + t0 * t5 * sigma * friction_coefficient * t21
-        - t1 * t5 * t8 * sigma * t17 * friction_coefficient;
-    let t32 = 1.0 + t26 + t27 + t28 + t0 * t5 * sigma * friction_coefficient * t29
-        - t0 * t2 * t5 * t8 * sigma * t17 * friction_coefficient;
+    let t32 = t24 + t25 + t26 + t3 * t5 * t8 * sigma * friction_coefficient * t17 - t27
+        - t2 * t5 * sigma * friction_coefficient * t31;
+    let t33 = t19 + t20 + t21 + t27 + t0 * t5 * sigma * friction_coefficient * t22
+        - t1 * t5 * t8 * sigma * friction_coefficient * t17;
+    let t34 = 1.0 + t28 + t29 + t30 + t0 * t5 * sigma * friction_coefficient * t31 - t18;
     LinearizedContact {
-        fa1: t22,
-        fb1: t30,
-        fb2: t31,
-        fa2: t32,
-        fd1: x + t11 + t12 - t2 * t5 * sigma * t17 * friction_coefficient - x * t22
-            - y * t30,
-        fd2: y + t14 + t15 + t0 * t5 * sigma * t17 * friction_coefficient - x * t31
+        fa1: t23,
+        fb1: t32,
+        fb2: t33,
+        fa2: t34,
+        fd1: x + t11 + t12 - t2 * t5 * sigma * friction_coefficient * t17 - x * t23
             - y * t32,
+        fd2: y + t14 + t15 + t0 * t5 * sigma * friction_coefficient * t17 - x * t33
+            - y * t34,
     }
 }
 /// The nonlinear remainder n(q) = Kl q + Fd − q − K_s·g(q) − μσN t of the linearized slipping contact field, as a force on the acceleration.
@@ -1704,13 +1606,16 @@ pub fn slipping_remainder(
     let t1 = y - offset_y;
     let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     let t3 = 1.0 - t2;
-    let t4 = t0 * t2 * (t0 * t3 * k_xx + t1 * t3 * k_xy)
-        + t1 * t2 * (t0 * t3 * k_yx + t1 * t3 * k_yy);
+    let t4 = t0 * t3 * k_xx;
+    let t5 = t1 * t3 * k_xy;
+    let t6 = t0 * t3 * k_yx;
+    let t7 = t1 * t3 * k_yy;
+    let t8 = t0 * t2 * (t4 + t5) + t1 * t2 * (t6 + t7);
     Force {
-        fx: fd1 + x * fa1 + y * fb1 + t1 * t2 * sigma * t4 * friction_coefficient - x
-            - t0 * t3 * k_xx - t1 * t3 * k_xy,
-        fy: fd2 + x * fb2 + y * fa2 - y - t0 * t3 * k_yx - t1 * t3 * k_yy
-            - t0 * t2 * sigma * t4 * friction_coefficient,
+        fx: fd1 + x * fa1 + y * fb1 + t1 * t2 * sigma * friction_coefficient * t8 - x
+            - t4 - t5,
+        fy: fd2 + x * fb2 + y * fa2 - y - t6 - t7
+            - t0 * t2 * sigma * friction_coefficient * t8,
     }
 }
 /// Outputs of [`friction_state`].
@@ -1757,19 +1662,21 @@ pub fn friction_state(
     let t1 = y - offset_y;
     let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     let t3 = 1.0 - t2;
-    let t4 = -t1 * t2 * vx;
-    let t5 = t0 * t2 * vy;
+    let t4 = t0 * t3 * k_xx;
+    let t5 = t1 * t3 * k_xy;
+    let t6 = t0 * t3 * k_yx;
+    let t7 = t1 * t3 * k_yy;
+    let t8 = -t1 * t2 * vx;
+    let t9 = t0 * t2 * vy;
     FrictionState {
-        normal: t0 * t2 * (t0 * t3 * k_xx + t1 * t3 * k_xy)
-            + t1 * t2 * (t0 * t3 * k_yx + t1 * t3 * k_yy),
-        slip_velocity: t4 + t5 + speed_ratio * radius_ratio,
+        normal: t0 * t2 * (t4 + t5) + t1 * t2 * (t6 + t7),
+        slip_velocity: t8 + t9 + speed_ratio * radius_ratio,
         lambda: t0 * t2
-            * (st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
-                - t0 * t3 * k_yx - t1 * t3 * k_yy)
+            * (st * unbalance_force + force_y - y - t6 - t7 - 2.0 * damping_ratio * vy)
             - t1 * t2
-                * (ct * unbalance_force + force_x - 2.0 * damping_ratio * vx - x
-                    - t0 * t3 * k_xx - t1 * t3 * k_xy)
-            - t2 * (t4 + t5) * (t0 * t2 * vx + t1 * t2 * vy),
+                * (ct * unbalance_force + force_x - x - t4 - t5
+                    - 2.0 * damping_ratio * vx)
+            - t2 * (t8 + t9) * (t0 * t2 * vx + t1 * t2 * vy),
     }
 }
 /// Acceleration while rolling: q'' = G − λ t, the frictionless contact field minus the tangential force λ that keeps the slip velocity w at 0.
@@ -1801,115 +1708,25 @@ pub fn rolling_acceleration(
     let ct = phasor.ct;
     let st = phasor.st;
     let t0 = ct * unbalance_force;
-    let t1 = -2.0 * damping_ratio * vx;
-    let t2 = -x;
-    let t3 = x - offset_x;
-    let t4 = y - offset_y;
-    let t5 = 1.0 / m::sqrt(t3 * t3 + t4 * t4);
-    let t6 = 1.0 - t5;
-    let t7 = -t3 * t6 * k_xx;
-    let t8 = -t4 * t6 * k_xy;
+    let t1 = -x;
+    let t2 = x - offset_x;
+    let t3 = y - offset_y;
+    let t4 = 1.0 / m::sqrt(t2 * t2 + t3 * t3);
+    let t5 = 1.0 - t4;
+    let t6 = -t2 * t5 * k_xx;
+    let t7 = -t3 * t5 * k_xy;
+    let t8 = -2.0 * damping_ratio * vx;
     let t9 = st * unbalance_force;
-    let t10 = -2.0 * damping_ratio * vy;
-    let t11 = -y;
-    let t12 = -t3 * t6 * k_yx;
-    let t13 = -t4 * t6 * k_yy;
-    let t14 = t3 * t5 * (t9 + force_y + t10 + t11 + t12 + t13)
-        - t4 * t5 * (t0 + force_x + t1 + t2 + t7 + t8)
-        - t5 * (t3 * t5 * vy - t4 * t5 * vx) * (t3 * t5 * vx + t4 * t5 * vy);
+    let t10 = -y;
+    let t11 = -t2 * t5 * k_yx;
+    let t12 = -t3 * t5 * k_yy;
+    let t13 = -2.0 * damping_ratio * vy;
+    let t14 = t2 * t4 * (t9 + force_y + t10 + t11 + t12 + t13)
+        - t3 * t4 * (t0 + force_x + t1 + t6 + t7 + t8)
+        - t4 * (t2 * t4 * vy - t3 * t4 * vx) * (t2 * t4 * vx + t3 * t4 * vy);
     Acceleration {
-        ax: t0 + force_x + t1 + t2 + t7 + t8 + t4 * t5 * t14,
-        ay: t9 + force_y + t10 + t11 + t12 + t13 - t3 * t5 * t14,
-    }
-}
-/// Outputs of [`rolling_rates`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrictionRates {
-    /// N' = dN/dτ
-    pub normal_rate: f64,
-    /// λ' = dλ/dτ
-    pub lambda_rate: f64,
-}
-/// The rates N' and λ' of the normal force and the rolling force along the rolling field (q'' = G − λ t, θ' = η): the slope of the `slip` switch function μN − |λ|.
-///
-/// Source: docs/MODEL.md §10.
-/// Derivation: total time derivatives of `friction_state`'s N and λ with the rolling acceleration and the forcing phasor's rates.
-#[inline]
-#[must_use]
-pub fn rolling_rates(
-    model: &ModelParams,
-    at: &Position,
-    rate: &Velocity,
-    phasor: &Phasor,
-) -> FrictionRates {
-    let speed_ratio = model.speed_ratio;
-    let damping_ratio = model.damping_ratio;
-    let k_xx = model.k_xx;
-    let k_xy = model.k_xy;
-    let k_yx = model.k_yx;
-    let k_yy = model.k_yy;
-    let offset_x = model.offset_x;
-    let offset_y = model.offset_y;
-    let force_x = model.force_x;
-    let force_y = model.force_y;
-    let unbalance_force = model.unbalance_force;
-    let x = at.x;
-    let y = at.y;
-    let vx = rate.vx;
-    let vy = rate.vy;
-    let ct = phasor.ct;
-    let st = phasor.st;
-    let t0 = x - offset_x;
-    let t1 = y - offset_y;
-    let t2 = t0 * t0 + t1 * t1;
-    let t3 = 1.0 / m::sqrt(t2);
-    let t4 = 1.0 - t3;
-    let t5 = t0 * t4 * k_xx + t1 * t4 * k_xy;
-    let t6 = 1.0 / t2;
-    let t7 = 2.0 * t0 * vx + 2.0 * t1 * vy;
-    let t8 = t0 * t4 * k_yx + t1 * t4 * k_yy;
-    let t9 = ct * unbalance_force;
-    let t10 = -2.0 * damping_ratio * vx;
-    let t11 = -x;
-    let t12 = -t0 * t4 * k_xx;
-    let t13 = -t1 * t4 * k_xy;
-    let t14 = t9 + force_x + t10 + t11 + t12 + t13;
-    let t15 = st * unbalance_force;
-    let t16 = -2.0 * damping_ratio * vy;
-    let t17 = -y;
-    let t18 = -t0 * t4 * k_yx;
-    let t19 = -t1 * t4 * k_yy;
-    let t20 = t15 + force_y + t16 + t17 + t18 + t19;
-    let t21 = t0 * t3 * vy - t1 * t3 * vx;
-    let t22 = t0 * t3 * vx + t1 * t3 * vy;
-    let t23 = t0 * t3 * t20 - t1 * t3 * t14 - t3 * t21 * t22;
-    let t24 = t9 + force_x + t10 + t11 + t12 + t13 + t1 * t3 * t23;
-    let t25 = t15 + force_y + t16 + t17 + t18 + t19 - t0 * t3 * t23;
-    FrictionRates {
-        normal_rate: t3 * t5 * vx
-            + t0 * t3
-                * (t4 * k_xx * vx + 0.5 * t0 * t3 * t6 * k_xx * t7 + t4 * k_xy * vy
-                    + 0.5 * t1 * t3 * t6 * k_xy * t7) + t3 * t8 * vy
-            + t1 * t3
-                * (t4 * k_yx * vx + 0.5 * t0 * t3 * t6 * k_yx * t7 + t4 * k_yy * vy
-                    + 0.5 * t1 * t3 * t6 * k_yy * t7) - 0.5 * t0 * t3 * t6 * t5 * t7
-            - 0.5 * t1 * t3 * t6 * t8 * t7,
-        lambda_rate: 0.5 * t1 * t3 * t6 * t14 * t7 + t3 * vx * t20
-            + t0 * t3
-                * (speed_ratio * ct * unbalance_force - 2.0 * damping_ratio * t25 - vy
-                    - t4 * k_yx * vx - 0.5 * t0 * t3 * t6 * k_yx * t7 - t4 * k_yy * vy
-                    - 0.5 * t1 * t3 * t6 * k_yy * t7) + 0.5 * t3 * t6 * t21 * t22 * t7
-            - t3 * vy * t14
-            - t1 * t3
-                * (-(speed_ratio * st * unbalance_force) - 2.0 * damping_ratio * t24 - vx
-                    - t4 * k_xx * vx - 0.5 * t0 * t3 * t6 * k_xx * t7 - t4 * k_xy * vy
-                    - 0.5 * t1 * t3 * t6 * k_xy * t7) - 0.5 * t0 * t3 * t6 * t20 * t7
-            - t3 * t22
-                * (0.5 * t1 * t3 * t6 * vx * t7 + t0 * t3 * t25 - t1 * t3 * t24
-                    - 0.5 * t0 * t3 * t6 * vy * t7)
-            - t3 * t21
-                * (t3 * vx * vx + t0 * t3 * t24 + t3 * vy * vy + t1 * t3 * t25
-                    - 0.5 * t0 * t3 * t6 * vx * t7 - 0.5 * t1 * t3 * t6 * vy * t7),
+        ax: t0 + force_x + t1 + t6 + t7 + t8 + t3 * t4 * t14,
+        ay: t9 + force_y + t10 + t11 + t12 + t13 - t2 * t4 * t14,
     }
 }
 /// The part of the unbalance forcing a changing speed adds to F (cos θ, sin θ): −η_m ρ̂ η' (−sin θ, cos θ), the unbalance lagging behind (or running ahead of) the rotor's rotation.
@@ -2123,8 +1940,8 @@ pub fn free_field(
     let ct = phasor.ct;
     let st = phasor.st;
     Acceleration {
-        ax: ct * unbalance_force + force_x - 2.0 * damping_ratio * vx - x,
-        ay: st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y,
+        ax: ct * unbalance_force + force_x - x - 2.0 * damping_ratio * vx,
+        ay: st * unbalance_force + force_y - y - 2.0 * damping_ratio * vy,
     }
 }
 /// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).
@@ -2159,10 +1976,10 @@ pub fn contact_field(
     let t1 = y - offset_y;
     let t2 = 1.0 - 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     Acceleration {
-        ax: ct * unbalance_force + force_x - 2.0 * damping_ratio * vx - x
-            - t0 * t2 * k_xx - t1 * t2 * k_xy,
-        ay: st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
-            - t0 * t2 * k_yx - t1 * t2 * k_yy,
+        ax: ct * unbalance_force + force_x - x - t0 * t2 * k_xx - t1 * t2 * k_xy
+            - 2.0 * damping_ratio * vx,
+        ay: st * unbalance_force + force_y - y - t0 * t2 * k_yx - t1 * t2 * k_yy
+            - 2.0 * damping_ratio * vy,
     }
 }
 /// Contact slipping in direction σ: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q) − μσN t.
@@ -2200,14 +2017,16 @@ pub fn slipping_field(
     let t1 = y - offset_y;
     let t2 = 1.0 / m::sqrt(t0 * t0 + t1 * t1);
     let t3 = 1.0 - t2;
-    let t4 = t0 * t2 * (t0 * t3 * k_xx + t1 * t3 * k_xy)
-        + t1 * t2 * (t0 * t3 * k_yx + t1 * t3 * k_yy);
+    let t4 = t0 * t3 * k_xx;
+    let t5 = t1 * t3 * k_xy;
+    let t6 = t0 * t3 * k_yx;
+    let t7 = t1 * t3 * k_yy;
+    let t8 = t0 * t2 * (t4 + t5) + t1 * t2 * (t6 + t7);
     Acceleration {
-        ax: ct * unbalance_force + force_x + t1 * t2 * sigma * t4 * friction_coefficient
-            - 2.0 * damping_ratio * vx - x - t0 * t3 * k_xx - t1 * t3 * k_xy,
-        ay: st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
-            - t0 * t3 * k_yx - t1 * t3 * k_yy
-            - t0 * t2 * sigma * t4 * friction_coefficient,
+        ax: ct * unbalance_force + force_x + t1 * t2 * sigma * friction_coefficient * t8
+            - x - t4 - t5 - 2.0 * damping_ratio * vx,
+        ay: st * unbalance_force + force_y - y - t6 - t7 - 2.0 * damping_ratio * vy
+            - t0 * t2 * sigma * friction_coefficient * t8,
     }
 }
 /// The unbalance force F (cos θ, sin θ) at the forcing phasor (cos θ, sin θ).
@@ -2223,6 +2042,38 @@ pub fn unbalance_force_at(model: &ModelParams, phasor: &Phasor) -> Force {
     Force {
         fx: ct * unbalance_force,
         fy: st * unbalance_force,
+    }
+}
+/// Outputs of [`slip_velocity`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlipVelocity {
+    /// w
+    pub w: f64,
+}
+/// The slip velocity w = q'·t + ρ_R η of the rotor's surface at the contact point.
+///
+/// Source: docs/MODEL.md §10.
+/// Derivation: the model's `slip_velocity`.
+#[inline]
+#[must_use]
+pub fn slip_velocity(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+) -> SlipVelocity {
+    let speed_ratio = model.speed_ratio;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let radius_ratio = model.radius_ratio;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let t0 = y - offset_y;
+    let t1 = x - offset_x;
+    let t2 = 1.0 / m::sqrt(t1 * t1 + t0 * t0);
+    SlipVelocity {
+        w: t1 * t2 * vy + speed_ratio * radius_ratio - t0 * t2 * vx,
     }
 }
 /// The rate w' of the slip velocity w = q'·t + ρ_R η along a motion with acceleration a (a closed form's own): w' = t·a + q'·t', t' = −(q'·t/z) n.
@@ -2252,8 +2103,8 @@ pub fn slip_velocity_rate(
     let t4 = 1.0 / t2;
     let t5 = 2.0 * t1 * vx + 2.0 * t0 * vy;
     SlipVelocityRate {
-        rate: 0.5 * t0 * t3 * t4 * vx * t5 + t1 * t3 * ay - 0.5 * t1 * t3 * t4 * vy * t5
-            - t0 * t3 * ax,
+        rate: 0.5 * t0 * t3 * t4 * vx * t5 + t1 * t3 * ay - t0 * t3 * ax
+            - 0.5 * t1 * t3 * t4 * vy * t5,
     }
 }
 /// The rate w' of the slip velocity along the field of slipping in direction σ (= λ − μσN).
@@ -2294,19 +2145,22 @@ pub fn slip_rate(
     let t4 = 1.0 / t2;
     let t5 = 2.0 * t1 * vx + 2.0 * t0 * vy;
     let t6 = 1.0 - t3;
-    let t7 = t1 * t3 * (t1 * t6 * k_xx + t0 * t6 * k_xy)
-        + t0 * t3 * (t1 * t6 * k_yx + t0 * t6 * k_yy);
+    let t7 = t1 * t6 * k_xx;
+    let t8 = t0 * t6 * k_xy;
+    let t9 = t1 * t6 * k_yx;
+    let t10 = t0 * t6 * k_yy;
+    let t11 = t1 * t3 * (t7 + t8) + t0 * t3 * (t9 + t10);
     SlipVelocityRate {
         rate: 0.5 * t0 * t3 * t4 * vx * t5
             + t1 * t3
-                * (st * unbalance_force + force_y - 2.0 * damping_ratio * vy - y
-                    - t1 * t6 * k_yx - t0 * t6 * k_yy
-                    - t1 * t3 * sigma * t7 * friction_coefficient)
+                * (st * unbalance_force + force_y - y - t9 - t10
+                    - 2.0 * damping_ratio * vy
+                    - t1 * t3 * sigma * friction_coefficient * t11)
             - 0.5 * t1 * t3 * t4 * vy * t5
             - t0 * t3
                 * (ct * unbalance_force + force_x
-                    + t0 * t3 * sigma * t7 * friction_coefficient
-                    - 2.0 * damping_ratio * vx - x - t1 * t6 * k_xx - t0 * t6 * k_xy),
+                    + t0 * t3 * sigma * friction_coefficient * t11 - x - t7 - t8
+                    - 2.0 * damping_ratio * vx),
     }
 }
 /// Outputs of [`friction_cone`].
@@ -2316,15 +2170,11 @@ pub struct FrictionCone {
     pub upper: f64,
     /// μN + λ
     pub lower: f64,
-    /// (μN − λ)'
-    pub upper_rate: f64,
-    /// (μN + λ)'
-    pub lower_rate: f64,
 }
-/// The friction cone's margins μN − λ and μN + λ of a contact state (rolling holds while both are ≥ 0) and their rates along the rolling field.
+/// The friction cone's margins μN − λ and μN + λ of a contact state: rolling holds while both are ≥ 0.
 ///
 /// Source: docs/MODEL.md §10.
-/// Derivation: the model's `normal_force`, the rolling force λ and their total time derivatives along q'' = G − λ t.
+/// Derivation: the model's `normal_force` and the rolling force λ.
 #[inline]
 #[must_use]
 pub fn friction_cone(
@@ -2333,6 +2183,66 @@ pub fn friction_cone(
     rate: &Velocity,
     phasor: &Phasor,
 ) -> FrictionCone {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = y - offset_y;
+    let t1 = x - offset_x;
+    let t2 = 1.0 / m::sqrt(t1 * t1 + t0 * t0);
+    let t3 = 1.0 - t2;
+    let t4 = t1 * t3 * k_xx;
+    let t5 = t0 * t3 * k_xy;
+    let t6 = t0 * t2
+        * (ct * unbalance_force + force_x - x - t4 - t5 - 2.0 * damping_ratio * vx);
+    let t7 = t2 * (t1 * t2 * vy - t0 * t2 * vx) * (t1 * t2 * vx + t0 * t2 * vy);
+    let t8 = t1 * t3 * k_yx;
+    let t9 = t0 * t3 * k_yy;
+    let t10 = friction_coefficient * (t1 * t2 * (t4 + t5) + t0 * t2 * (t8 + t9));
+    let t11 = t1 * t2
+        * (st * unbalance_force + force_y - y - t8 - t9 - 2.0 * damping_ratio * vy);
+    FrictionCone {
+        upper: t6 + t7 + t10 - t11,
+        lower: t11 + t10 - t6 - t7,
+    }
+}
+/// Outputs of [`friction_cone_rates`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionConeRates {
+    /// μN − λ
+    pub upper: f64,
+    /// μN + λ
+    pub lower: f64,
+    /// (μN − λ)'
+    pub upper_rate: f64,
+    /// (μN + λ)'
+    pub lower_rate: f64,
+}
+/// The friction cone's margins μN ∓ λ and their rates along the rolling field: the `slip` switch functions of rolling and their slopes.
+///
+/// Source: docs/MODEL.md §10.
+/// Derivation: the model's `normal_force`, the rolling force λ and their total time derivatives along q'' = G − λ t.
+#[inline]
+#[must_use]
+pub fn friction_cone_rates(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> FrictionConeRates {
     let speed_ratio = model.speed_ratio;
     let damping_ratio = model.damping_ratio;
     let k_xx = model.k_xx;
@@ -2356,59 +2266,75 @@ pub fn friction_cone(
     let t2 = t1 * t1 + t0 * t0;
     let t3 = 1.0 / m::sqrt(t2);
     let t4 = ct * unbalance_force;
-    let t5 = -2.0 * damping_ratio * vx;
-    let t6 = -x;
-    let t7 = 1.0 - t3;
-    let t8 = -t1 * t7 * k_xx;
-    let t9 = -t0 * t7 * k_xy;
-    let t10 = t4 + force_x + t5 + t6 + t8 + t9;
-    let t11 = t1 * t3 * vy - t0 * t3 * vx;
-    let t12 = t1 * t3 * vx + t0 * t3 * vy;
-    let t13 = t1 * t7 * k_xx + t0 * t7 * k_xy;
-    let t14 = t1 * t7 * k_yx + t0 * t7 * k_yy;
-    let t15 = (t1 * t3 * t13 + t0 * t3 * t14) * friction_coefficient;
-    let t16 = st * unbalance_force;
-    let t17 = -2.0 * damping_ratio * vy;
-    let t18 = -y;
-    let t19 = -t1 * t7 * k_yx;
-    let t20 = -t0 * t7 * k_yy;
-    let t21 = t16 + force_y + t17 + t18 + t19 + t20;
-    let t22 = -t0 * t3 * t10;
-    let t23 = t1 * t3 * t21;
-    let t24 = -t3 * t11 * t12;
-    let t25 = t22 + t23 + t24;
-    let t26 = t4 + force_x + t5 + t6 + t8 + t9 + t0 * t3 * t25;
-    let t27 = 1.0 / t2;
-    let t28 = 2.0 * t1 * vx + 2.0 * t0 * vy;
-    let t29 = -(speed_ratio * st * unbalance_force) - 2.0 * damping_ratio * t26 - vx
-        - t7 * k_xx * vx - 0.5 * t1 * t3 * t27 * k_xx * t28 - t7 * k_xy * vy
-        - 0.5 * t0 * t3 * t27 * k_xy * t28;
-    let t30 = t16 + force_y + t17 + t18 + t19 + t20 - t1 * t3 * t25;
-    let t31 = 0.5 * t0 * t3 * t27 * vx * t28 + t1 * t3 * t30 - t0 * t3 * t26
-        - 0.5 * t1 * t3 * t27 * vy * t28;
-    let t32 = t3 * vx * vx + t1 * t3 * t26 + t3 * vy * vy + t0 * t3 * t30
-        - 0.5 * t1 * t3 * t27 * vx * t28 - 0.5 * t0 * t3 * t27 * vy * t28;
-    let t33 = friction_coefficient
-        * (t3 * t13 * vx
+    let t5 = -x;
+    let t6 = 1.0 - t3;
+    let t7 = t1 * t6 * k_xx;
+    let t8 = -t1 * t6 * k_xx;
+    let t9 = t0 * t6 * k_xy;
+    let t10 = -t0 * t6 * k_xy;
+    let t11 = -2.0 * damping_ratio * vx;
+    let t12 = t4 + force_x + t5 + t8 + t10 + t11;
+    let t13 = t0 * t3 * t12;
+    let t14 = t1 * t3 * vy - t0 * t3 * vx;
+    let t15 = t1 * t3 * vx + t0 * t3 * vy;
+    let t16 = t3 * t14 * t15;
+    let t17 = t7 + t9;
+    let t18 = t1 * t6 * k_yx;
+    let t19 = t0 * t6 * k_yy;
+    let t20 = t18 + t19;
+    let t21 = friction_coefficient * (t1 * t3 * t17 + t0 * t3 * t20);
+    let t22 = st * unbalance_force;
+    let t23 = -y;
+    let t24 = -t1 * t6 * k_yx;
+    let t25 = -t0 * t6 * k_yy;
+    let t26 = -2.0 * damping_ratio * vy;
+    let t27 = t22 + force_y + t23 + t24 + t25 + t26;
+    let t28 = t1 * t3 * t27;
+    let t29 = -t0 * t3 * t12;
+    let t30 = -t3 * t14 * t15;
+    let t31 = t3 * vy * t12;
+    let t32 = 1.0 / t2;
+    let t33 = 2.0 * t1 * vx + 2.0 * t0 * vy;
+    let t34 = t6 * k_xx * vx;
+    let t35 = t6 * k_xy * vy;
+    let t36 = t29 + t28 + t30;
+    let t37 = t4 + force_x + t5 + t8 + t10 + t11 + t0 * t3 * t36;
+    let t38 = t0 * t3
+        * (-(speed_ratio * st * unbalance_force) - vx - t34
+            - 0.5 * t1 * t3 * t32 * k_xx * t33 - t35 - 0.5 * t0 * t3 * t32 * k_xy * t33
+            - 2.0 * damping_ratio * t37);
+    let t39 = t22 + force_y + t23 + t24 + t25 + t26 - t1 * t3 * t36;
+    let t40 = t3 * t15
+        * (0.5 * t0 * t3 * t32 * vx * t33 + t1 * t3 * t39
+            - 0.5 * t1 * t3 * t32 * vy * t33 - t0 * t3 * t37);
+    let t41 = t3 * t14
+        * (t3 * vx * vx + t1 * t3 * t37 + t3 * vy * vy + t0 * t3 * t39
+            - 0.5 * t1 * t3 * t32 * vx * t33 - 0.5 * t0 * t3 * t32 * vy * t33);
+    let t42 = t6 * k_yx * vx;
+    let t43 = t6 * k_yy * vy;
+    let t44 = friction_coefficient
+        * (t3 * t17 * vx
             + t1 * t3
-                * (t7 * k_xx * vx + 0.5 * t1 * t3 * t27 * k_xx * t28 + t7 * k_xy * vy
-                    + 0.5 * t0 * t3 * t27 * k_xy * t28) + t3 * t14 * vy
+                * (t34 + t35 + 0.5 * t1 * t3 * t32 * k_xx * t33
+                    + 0.5 * t0 * t3 * t32 * k_xy * t33) + t3 * t20 * vy
             + t0 * t3
-                * (t7 * k_yx * vx + 0.5 * t1 * t3 * t27 * k_yx * t28 + t7 * k_yy * vy
-                    + 0.5 * t0 * t3 * t27 * k_yy * t28) - 0.5 * t1 * t3 * t27 * t13 * t28
-            - 0.5 * t0 * t3 * t27 * t14 * t28);
-    let t34 = speed_ratio * ct * unbalance_force - 2.0 * damping_ratio * t30 - vy
-        - t7 * k_yx * vx - 0.5 * t1 * t3 * t27 * k_yx * t28 - t7 * k_yy * vy
-        - 0.5 * t0 * t3 * t27 * k_yy * t28;
-    FrictionCone {
-        upper: t0 * t3 * t10 + t3 * t11 * t12 + t15 - t1 * t3 * t21,
-        lower: t22 + t23 + t24 + t15,
-        upper_rate: t3 * vy * t10 + t0 * t3 * t29 + t3 * t12 * t31 + t3 * t11 * t32 + t33
-            + 0.5 * t1 * t3 * t27 * t21 * t28 - 0.5 * t0 * t3 * t27 * t10 * t28
-            - 0.5 * t3 * t27 * t11 * t12 * t28 - t3 * vx * t21 - t1 * t3 * t34,
-        lower_rate: 0.5 * t0 * t3 * t27 * t10 * t28 + t3 * vx * t21 + t1 * t3 * t34
-            + 0.5 * t3 * t27 * t11 * t12 * t28 + t33 - t3 * vy * t10 - t0 * t3 * t29
-            - 0.5 * t1 * t3 * t27 * t21 * t28 - t3 * t12 * t31 - t3 * t11 * t32,
+                * (t42 + 0.5 * t1 * t3 * t32 * k_yx * t33 + t43
+                    + 0.5 * t0 * t3 * t32 * k_yy * t33) - 0.5 * t1 * t3 * t32 * t17 * t33
+            - 0.5 * t0 * t3 * t32 * t20 * t33);
+    let t45 = t3 * vx * t27;
+    let t46 = t1 * t3
+        * (speed_ratio * ct * unbalance_force - vy - t42
+            - 0.5 * t1 * t3 * t32 * k_yx * t33 - t43 - 0.5 * t0 * t3 * t32 * k_yy * t33
+            - 2.0 * damping_ratio * t39);
+    FrictionConeRates {
+        upper: t13 + t16 + t21 - t28,
+        lower: t29 + t28 + t30 + t21,
+        upper_rate: t31 + t38 + t40 + t41 + t44 + 0.5 * t1 * t3 * t32 * t27 * t33
+            - 0.5 * t0 * t3 * t32 * t12 * t33 - 0.5 * t3 * t32 * t14 * t15 * t33 - t45
+            - t46,
+        lower_rate: t44 + t45 + t46 + 0.5 * t0 * t3 * t32 * t12 * t33
+            + 0.5 * t3 * t32 * t14 * t15 * t33 - t31 - t38
+            - 0.5 * t1 * t3 * t32 * t27 * t33 - t40 - t41,
     }
 }
 /// The linearized contact field under an extra force a: q'' = F(cos θ, sin θ) + u + a − 2ν q' − Kl q − Fd.
@@ -2662,11 +2588,11 @@ pub mod contact_taylor {
         Constants {
             k0: force_x,
             k1: unbalance_force,
-            k2: -2.0 * damping_ratio,
-            k3: -k_xx,
-            k4: -offset_x,
-            k5: -offset_y,
-            k6: -k_xy,
+            k2: -k_xx,
+            k3: -offset_x,
+            k4: -offset_y,
+            k5: -k_xy,
+            k6: -2.0 * damping_ratio,
             k7: force_y,
             k8: -k_yx,
             k9: -k_yy,
@@ -2679,9 +2605,9 @@ pub mod contact_taylor {
     #[inline]
     pub fn order0(k: &Constants, s: &mut ts::Series) {
         let _ = k;
-        s[6][0] = k.k4 + s[0][0];
+        s[6][0] = k.k3 + s[0][0];
         s[7][0] = s[6][0] * s[6][0];
-        s[8][0] = k.k5 + s[1][0];
+        s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
         s[11][0] = m::sqrt(s[10][0]);
@@ -2689,10 +2615,10 @@ pub mod contact_taylor {
         s[13][0] = 1.0 - s[12][0];
         s[14][0] = s[6][0] * s[13][0];
         s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
-            + k.k6 * s[15][0] - s[0][0];
-        s[17][0] = k.k7 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k8 * s[14][0]
-            + k.k9 * s[15][0] - s[1][0];
+        s[16][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
+            + k.k6 * s[2][0] - s[0][0];
+        s[17][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
+            + k.k6 * s[3][0] - s[1][0];
         s[18][0] = k.k10 * s[5][0];
         s[19][0] = k.k11 * s[4][0];
         s[20][0] = s[7][0] + s[9][0] - 1.0;
@@ -2730,11 +2656,11 @@ pub mod contact_taylor {
         ts::set(&mut s[14], N, v);
         let v = ts::product::<N>(&s[8], &s[13]);
         ts::set(&mut s[15], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
-            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N) - ts::at(&s[0], N);
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
+            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
         ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
-            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[1], N);
+        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
+            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
         ts::set(&mut s[17], N, v);
         let v = k.k10 * ts::at(&s[5], N);
         ts::set(&mut s[18], N, v);
@@ -2839,15 +2765,16 @@ pub mod slipping_taylor {
         let force_y = model.force_y;
         let unbalance_force = model.unbalance_force;
         let sigma = slip.sigma;
+        let t0 = sigma * friction_coefficient;
         Constants {
             k0: force_x,
             k1: unbalance_force,
-            k2: -2.0 * damping_ratio,
-            k3: -k_xx,
-            k4: -offset_x,
-            k5: -offset_y,
-            k6: -k_xy,
-            k7: sigma * friction_coefficient,
+            k2: -k_xx,
+            k3: -offset_x,
+            k4: -offset_y,
+            k5: -k_xy,
+            k6: -2.0 * damping_ratio,
+            k7: t0,
             k8: k_xx,
             k9: k_xy,
             k10: k_yx,
@@ -2866,9 +2793,9 @@ pub mod slipping_taylor {
     #[inline]
     pub fn order0(k: &Constants, s: &mut ts::Series) {
         let _ = k;
-        s[6][0] = k.k4 + s[0][0];
+        s[6][0] = k.k3 + s[0][0];
         s[7][0] = s[6][0] * s[6][0];
-        s[8][0] = k.k5 + s[1][0];
+        s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
         s[11][0] = m::sqrt(s[10][0]);
@@ -2884,11 +2811,11 @@ pub mod slipping_taylor {
         s[21][0] = s[16][0] * s[20][0];
         s[22][0] = s[19][0] + s[21][0];
         s[23][0] = s[16][0] * s[22][0];
-        s[24][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
-            + k.k6 * s[15][0] + k.k7 * s[23][0] - s[0][0];
+        s[24][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
+            + k.k6 * s[2][0] + k.k7 * s[23][0] - s[0][0];
         s[25][0] = s[17][0] * s[22][0];
-        s[26][0] = k.k12 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k13 * s[14][0]
-            + k.k14 * s[15][0] + k.k15 * s[25][0] - s[1][0];
+        s[26][0] = k.k12 + k.k1 * s[5][0] + k.k13 * s[14][0] + k.k14 * s[15][0]
+            + k.k6 * s[3][0] + k.k15 * s[25][0] - s[1][0];
         s[27][0] = k.k16 * s[5][0];
         s[28][0] = k.k17 * s[4][0];
         s[29][0] = s[7][0] + s[9][0] - 1.0;
@@ -2945,14 +2872,14 @@ pub mod slipping_taylor {
         ts::set(&mut s[22], N, v);
         let v = ts::product::<N>(&s[16], &s[22]);
         ts::set(&mut s[23], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
-            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N)
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
+            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N)
             + k.k7 * ts::at(&s[23], N) - ts::at(&s[0], N);
         ts::set(&mut s[24], N, v);
         let v = ts::product::<N>(&s[17], &s[22]);
         ts::set(&mut s[25], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
-            + k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N)
+        let v = k.k1 * ts::at(&s[5], N) + k.k13 * ts::at(&s[14], N)
+            + k.k14 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N)
             + k.k15 * ts::at(&s[25], N) - ts::at(&s[1], N);
         ts::set(&mut s[26], N, v);
         let v = k.k16 * ts::at(&s[5], N);
@@ -3063,11 +2990,11 @@ pub mod rolling_taylor {
         Constants {
             k0: force_x,
             k1: unbalance_force,
-            k2: -2.0 * damping_ratio,
-            k3: -k_xx,
-            k4: -offset_x,
-            k5: -offset_y,
-            k6: -k_xy,
+            k2: -k_xx,
+            k3: -offset_x,
+            k4: -offset_y,
+            k5: -k_xy,
+            k6: -2.0 * damping_ratio,
             k7: force_y,
             k8: -k_yx,
             k9: -k_yy,
@@ -3085,9 +3012,9 @@ pub mod rolling_taylor {
     #[inline]
     pub fn order0(k: &Constants, s: &mut ts::Series) {
         let _ = k;
-        s[6][0] = k.k4 + s[0][0];
+        s[6][0] = k.k3 + s[0][0];
         s[7][0] = s[6][0] * s[6][0];
-        s[8][0] = k.k5 + s[1][0];
+        s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
         s[11][0] = m::sqrt(s[10][0]);
@@ -3096,12 +3023,12 @@ pub mod rolling_taylor {
         s[14][0] = s[6][0] * s[13][0];
         s[15][0] = s[8][0] * s[13][0];
         s[16][0] = s[8][0] * s[12][0];
-        s[17][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
-            + k.k6 * s[15][0] - s[0][0];
+        s[17][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
+            + k.k6 * s[2][0] - s[0][0];
         s[18][0] = s[16][0] * s[17][0];
         s[19][0] = s[6][0] * s[12][0];
-        s[20][0] = k.k7 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k8 * s[14][0]
-            + k.k9 * s[15][0] - s[1][0];
+        s[20][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
+            + k.k6 * s[3][0] - s[1][0];
         s[21][0] = s[19][0] * s[20][0];
         s[22][0] = s[2][0] * s[16][0];
         s[23][0] = s[3][0] * s[19][0];
@@ -3113,11 +3040,11 @@ pub mod rolling_taylor {
         s[29][0] = s[25][0] * s[28][0];
         s[30][0] = s[21][0] - s[18][0] - s[29][0];
         s[31][0] = s[16][0] * s[30][0];
-        s[32][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[2][0] + k.k3 * s[14][0]
-            + k.k6 * s[15][0] + s[31][0] - s[0][0];
+        s[32][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
+            + k.k6 * s[2][0] + s[31][0] - s[0][0];
         s[33][0] = s[19][0] * s[30][0];
-        s[34][0] = k.k7 + k.k1 * s[5][0] + k.k2 * s[3][0] + k.k8 * s[14][0]
-            + k.k9 * s[15][0] - s[1][0] - s[33][0];
+        s[34][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
+            + k.k6 * s[3][0] - s[1][0] - s[33][0];
         s[35][0] = k.k10 * s[5][0];
         s[36][0] = k.k11 * s[4][0];
         s[37][0] = s[7][0] + s[9][0] - 1.0;
@@ -3164,15 +3091,15 @@ pub mod rolling_taylor {
         ts::set(&mut s[15], N, v);
         let v = ts::product::<N>(&s[8], &s[12]);
         ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
-            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N) - ts::at(&s[0], N);
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
+            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
         ts::set(&mut s[17], N, v);
         let v = ts::product::<N>(&s[16], &s[17]);
         ts::set(&mut s[18], N, v);
         let v = ts::product::<N>(&s[6], &s[12]);
         ts::set(&mut s[19], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
-            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[1], N);
+        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
+            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
         ts::set(&mut s[20], N, v);
         let v = ts::product::<N>(&s[19], &s[20]);
         ts::set(&mut s[21], N, v);
@@ -3196,14 +3123,14 @@ pub mod rolling_taylor {
         ts::set(&mut s[30], N, v);
         let v = ts::product::<N>(&s[16], &s[30]);
         ts::set(&mut s[31], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[2], N)
-            + k.k3 * ts::at(&s[14], N) + k.k6 * ts::at(&s[15], N) + ts::at(&s[31], N)
+        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
+            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) + ts::at(&s[31], N)
             - ts::at(&s[0], N);
         ts::set(&mut s[32], N, v);
         let v = ts::product::<N>(&s[19], &s[30]);
         ts::set(&mut s[33], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k2 * ts::at(&s[3], N)
-            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[1], N)
+        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
+            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N)
             - ts::at(&s[33], N);
         ts::set(&mut s[34], N, v);
         let v = k.k10 * ts::at(&s[5], N);

@@ -123,6 +123,21 @@ impl Emitter<'_> {
         }
     }
 
+    /// |c|·M for a product c·M the plan writes through its magnitude M (`Plan::negated`), when
+    /// M is bound: the term subtracted in a sum.
+    fn negated_magnitude(&mut self, t: ExprId) -> Option<TokenStream> {
+        let &(c, m) = self.plan.negated.get(&t)?;
+        let k = *self.plan.temp_index.get(&m)?;
+        let tm = temp(k);
+        if c == -1.0 {
+            Some(quote!(#tm))
+        } else {
+            self.counts.mul += 1;
+            let lit = Self::literal(-c).0;
+            Some(quote!(#lit * #tm))
+        }
+    }
+
     /// A term's sign and magnitude: `c·rest` with c < 0 is written as a subtraction of `|c|·rest`.
     fn negative_term(&self, t: ExprId) -> bool {
         if self.plan.temp_index.contains_key(&t) {
@@ -145,10 +160,14 @@ impl Emitter<'_> {
         let mut out = TokenStream::new();
         for (k, &(t, neg)) in ordered.iter().enumerate() {
             let term = if neg {
-                match self.g.node(t).clone() {
-                    Node::Const(bits) => Self::literal(-f64::from_bits(bits)).0,
-                    Node::Mul(fs) => self.product(&fs, true).0,
-                    _ => unreachable!("negative terms are constants or products"),
+                if let Some(written) = self.negated_magnitude(t) {
+                    written
+                } else {
+                    match self.g.node(t).clone() {
+                        Node::Const(bits) => Self::literal(-f64::from_bits(bits)).0,
+                        Node::Mul(fs) => self.product(&fs, true).0,
+                        _ => unreachable!("negative terms are constants or products"),
+                    }
                 }
             } else {
                 self.wrapped(t, Prec::Sum)

@@ -49,6 +49,11 @@ impl fmt::Display for OpCounts {
 pub struct Plan {
     /// Nodes bound by `let`, in evaluation order.
     pub bindings: Vec<ExprId>,
+    /// Products c·M with a power-of-two coefficient c < 0 whose magnitude M (the product of the
+    /// other factors) is itself a node: they are written as |c|·M (M shared with its other
+    /// uses, so that a force that enters one output with + and another with − is computed
+    /// once). Scaling by a power of two is exact, so the value is the same to the bit.
+    pub negated: HashMap<ExprId, (f64, ExprId)>,
     /// Binding index of each bound node.
     pub temp_index: HashMap<ExprId, usize>,
     /// Operation counts if every output were evaluated as a tree (no sharing).
@@ -61,9 +66,18 @@ pub fn plan(g: &Graph, outputs: &[ExprId]) -> Plan {
     let mut forced: BTreeSet<ExprId> = BTreeSet::new();
     let mut order = Vec::new();
     let mut visited = BTreeSet::new();
+    let mut negated = HashMap::new();
+    let mut walk = Walk {
+        g,
+        uses: &mut uses,
+        forced: &mut forced,
+        visited: &mut visited,
+        order: &mut order,
+        negated: &mut negated,
+    };
     for &o in outputs {
-        *uses.entry(o).or_insert(0) += 1;
-        visit(g, o, &mut uses, &mut forced, &mut visited, &mut order);
+        *walk.uses.entry(o).or_insert(0) += 1;
+        walk.visit(o);
     }
     let is_leaf = |id: ExprId| matches!(g.node(id), Node::Const(_) | Node::Input(_));
     let bindings: Vec<ExprId> = order
@@ -84,29 +98,65 @@ pub fn plan(g: &Graph, outputs: &[ExprId]) -> Plan {
     Plan {
         bindings,
         temp_index,
+        negated,
         before,
     }
 }
 
-fn visit(
-    g: &Graph,
-    id: ExprId,
-    uses: &mut HashMap<ExprId, usize>,
-    forced: &mut BTreeSet<ExprId>,
-    visited: &mut BTreeSet<ExprId>,
-    order: &mut Vec<ExprId>,
-) {
-    if !visited.insert(id) {
-        return;
-    }
-    for c in g.children(id) {
-        *uses.entry(c).or_insert(0) += 1;
-        if matches!(g.node(id), Node::Pow(_, n) if n.abs() >= 2) {
-            forced.insert(c);
+/// The magnitude of a product c·M (c < 0 a power of two, M the product of the other factors,
+/// at least two) when M is an interned node.
+fn magnitude(g: &Graph, id: ExprId) -> Option<(f64, ExprId)> {
+    let Node::Mul(fs) = g.node(id) else {
+        return None;
+    };
+    let mut coefficient = None;
+    let mut rest = Vec::with_capacity(fs.len());
+    for &f in fs {
+        match g.as_const(f) {
+            Some(c) => coefficient = Some(c),
+            None => rest.push(f),
         }
-        visit(g, c, uses, forced, visited, order);
     }
-    order.push(id);
+    let c = coefficient?;
+    let power_of_two = c < 0.0 && (-c).log2().fract() == 0.0;
+    if !power_of_two || rest.len() < 2 {
+        return None;
+    }
+    g.lookup(&Node::Mul(rest)).map(|m| (c, m))
+}
+
+/// The depth-first walk counting each node's uses.
+struct Walk<'a> {
+    g: &'a Graph,
+    uses: &'a mut HashMap<ExprId, usize>,
+    forced: &'a mut BTreeSet<ExprId>,
+    visited: &'a mut BTreeSet<ExprId>,
+    order: &'a mut Vec<ExprId>,
+    negated: &'a mut HashMap<ExprId, (f64, ExprId)>,
+}
+
+impl Walk<'_> {
+    fn visit(&mut self, id: ExprId) {
+        if !self.visited.insert(id) {
+            return;
+        }
+        if let Some((c, m)) = magnitude(self.g, id) {
+            // Written as |c|·M: one use of M instead of its factors.
+            self.negated.insert(id, (c, m));
+            *self.uses.entry(m).or_insert(0) += 1;
+            self.visit(m);
+            self.order.push(id);
+            return;
+        }
+        for c in self.g.children(id) {
+            *self.uses.entry(c).or_insert(0) += 1;
+            if matches!(self.g.node(id), Node::Pow(_, n) if n.abs() >= 2) {
+                self.forced.insert(c);
+            }
+            self.visit(c);
+        }
+        self.order.push(id);
+    }
 }
 
 /// Operations of `id` evaluated as a tree (no sharing), as the emitter would write it with no

@@ -146,9 +146,9 @@ pub struct StepBudget {
     pub per_time_unit: f64,
 }
 
-/// Band around z = 1, in h = z² − 1, within which a start counts as on z = 1 (64 ulps of 1; the
-/// rounding of h near z = 1 is a few ulps).
-pub const TOUCH_DEPTH: f64 = 64.0 * f64::EPSILON;
+/// Band around z = 1, in h = z² − 1, within which a start counts as on z = 1: a switch function
+/// along a method's solution ([`crate::rounding::SOLUTION`], 64 ulps of 1).
+pub const TOUCH_DEPTH: f64 = crate::rounding::SOLUTION;
 
 /// [`within_bounds`] with its common case decided without `hypot`: |x|, |y| ≤ 7000 puts the
 /// position within 7000·√2 < 9900 of the rest position, inside [`DIVERGENCE_RADIUS`] whatever

@@ -10,75 +10,51 @@
 
 use super::scheme::Interpolant;
 use crate::math;
+use crate::refine::{Knot, Refinement, refine};
 
 /// Interior sample points per step at which the switching function and its derivative are
 /// checked (the step is split into this many equal sub-intervals).
 pub const SUBDIVISIONS: usize = 8;
 
-/// Iteration cap of [`refine_crossing`] (it needs about 60 bisections at worst for `f64`).
-const MAX_REFINE_ITERATIONS: u32 = 400;
+/// Most evaluations of one refinement on the dense output (in practice a handful: Newton on the
+/// switch function, a secant for the root of its rate).
+const MAX_REFINE_STEPS: u32 = 400;
 
-/// Where `f` becomes negative between `inside` (where f ≥ 0, or treated so) and `outside`
-/// (where `f_outside` < 0), to the resolution of `f64`: a safeguarded Illinois (modified regula
-/// falsi) iteration that falls back to bisection whenever the bracket does not halve over two
-/// iterations.
-///
-/// Returns the outside end of the final bracket: a point with f < 0 (or the root itself), at most
-/// a few ulps past the crossing and strictly after `inside`.
-pub fn refine_crossing<F: FnMut(f64) -> f64>(
-    mut f: F,
-    inside: f64,
-    f_inside: f64,
-    outside: f64,
-    f_outside: f64,
+/// Where `f` (value and rate, positive inside) becomes negative between `inside` (where f ≥ 0,
+/// or treated so) and `outside` (where f < 0), to the resolution of `f64`: the one refinement
+/// ([`crate::refine`]) on −f; a point with f ≤ 0, at most a few ulps past the crossing. `rate`
+/// says whether `f`'s second component is its rate (then Newton steps; else secant steps).
+fn refine_crossing<F: Fn(f64) -> (f64, f64)>(
+    f: F,
+    (inside, at_inside): (f64, (f64, f64)),
+    (outside, at_outside): (f64, (f64, f64)),
+    rate: bool,
 ) -> f64 {
-    let (mut a, mut b) = (inside, outside);
-    // Secant weights (Illinois halves the weight of an end that is kept twice).
-    let (mut fa, mut fb) = (f_inside.max(0.0), f_outside);
-    let mut side = 0i8;
-    let mut width_before = [math::abs(b - a); 2];
-    let mut force_bisect = false;
-    for _ in 0..MAX_REFINE_ITERATIONS {
-        let mid = a + 0.5 * (b - a);
-        if mid == a || mid == b || !mid.is_finite() {
-            break;
-        }
-        let secant = b - fb * (b - a) / (fb - fa);
-        let inside_open = if a < b {
-            secant > a && secant < b
-        } else {
-            secant < a && secant > b
-        };
-        let c = if force_bisect || !inside_open {
-            mid
-        } else {
-            secant
-        };
-        let fc = f(c);
-        if fc == 0.0 {
-            return c;
-        }
-        if fc < 0.0 {
-            b = c;
-            fb = fc;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            // NaN lands here: treated as inside, the bracket still shrinks.
-            a = c;
-            fa = if fc.is_nan() { 0.0 } else { fc };
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-        let width = math::abs(b - a);
-        force_bisect = width > 0.5 * width_before[0];
-        width_before = [width_before[1], width];
-    }
-    b
+    let knot = |t: f64, (v, d): (f64, f64)| Knot {
+        s: t,
+        g: -v,
+        dg: if rate { -d } else { f64::NAN },
+        point: (),
+    };
+    let below = Knot {
+        g: knot(inside, at_inside).g.min(0.0),
+        ..knot(inside, at_inside)
+    };
+    let settings = Refinement {
+        max_steps: MAX_REFINE_STEPS,
+        residual: 0.0,
+        scale: 1.0,
+        first_guess: None,
+        close: true,
+    };
+    refine(
+        |t| knot(t, f(t)),
+        below,
+        knot(outside, at_outside),
+        &settings,
+    )
+    .at_or_past()
+    .s
 }
 
 /// The first time in `(t0, t1]` of the step described by `dense` (with exact end states `y0` at
@@ -87,8 +63,8 @@ pub fn refine_crossing<F: FnMut(f64) -> f64>(
 /// The step is split into [`SUBDIVISIONS`] sub-intervals. In each, a negative end value gives a
 /// bracket; otherwise, if the derivative goes from negative to positive, the minimum is located
 /// by root finding on the derivative and a negative value there gives a bracket (a crossing and
-/// return within the sub-interval). The bracket is then refined by [`refine_crossing`] on the
-/// dense output to the resolution of `f64`.
+/// return within the sub-interval). The bracket is then refined on the dense output to the
+/// resolution of `f64` (the one refinement, [`crate::refine`]).
 pub fn first_crossing<const N: usize, D, G>(
     dense: &D,
     y0: &[f64; N],
@@ -121,7 +97,7 @@ where
     let subdivisions = subdivisions.max(1);
     let t0 = dense.start();
     let t1 = dense.end();
-    let value = |t: f64| g(t, &dense.eval(t)).0;
+    let at = |t: f64| g(t, &dense.eval(t));
     let (s0, mut ra) = g(t0, y0);
     // The start is inside by definition.
     let mut sa = s0.max(0.0);
@@ -136,14 +112,19 @@ where
         };
         let (sb, rb) = g(tb, &yb);
         if sb < 0.0 {
-            return Some(refine_crossing(value, ta, sa, tb, sb));
+            return Some(refine_crossing(at, (ta, (sa, ra)), (tb, (sb, rb)), true));
         }
         if ra < 0.0 && rb > 0.0 {
-            // A minimum of s inside (ta, tb): find it from the derivative.
-            let tm = refine_crossing(|t| -g(t, &dense.eval(t)).1, ta, -ra, tb, -rb);
-            let sm = value(tm);
+            // A minimum of s inside (ta, tb): find it from the derivative (secant steps: its
+            // rate, s'', is not at hand).
+            let rate = |t: f64| {
+                let (_, r) = at(t);
+                (-r, 0.0)
+            };
+            let tm = refine_crossing(rate, (ta, (-ra, 0.0)), (tb, (-rb, 0.0)), false);
+            let (sm, rm) = at(tm);
             if sm < 0.0 {
-                return Some(refine_crossing(value, ta, sa, tm, sm));
+                return Some(refine_crossing(at, (ta, (sa, ra)), (tm, (sm, rm)), true));
             }
         }
         ta = tb;

@@ -44,9 +44,7 @@ mod tableau_dop853;
 mod tableau_rk45;
 
 pub use dop853::{Dop853, Dop853Dense, Dop853Step};
-pub use events::{
-    SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch, refine_crossing,
-};
+pub use events::{SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch};
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;
 pub use propagator::{

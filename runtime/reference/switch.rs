@@ -122,7 +122,7 @@ impl Switches {
         let phasor = phasor(&self.model, t, y);
         match f {
             Function::SlipVelocity => {
-                let w = field::friction_with_phasor(&self.model, &phasor, &state).slip_velocity;
+                let w = field::slip_velocity(&self.model, &state);
                 let rate = field::slip_rate(&self.model, &phasor, &state, self.slip);
                 (self.slip * w - self.offset, self.slip * rate)
             }

@@ -11,6 +11,7 @@ use crate::geometry;
 use crate::math;
 use crate::params::State;
 use crate::propagate::Regime;
+use crate::refine::{Knot, Refinement, refine};
 
 /// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
 macro_rules! orders {
@@ -208,25 +209,56 @@ impl Expansion {
         self.order
     }
 
-    /// Put the crossing of z = 1 near local time `s` onto the surface of the step's polynomial
-    /// state: Newton steps on the switching function h = z² − 1 of the polynomial state
-    /// ([`geometry::point`]; two suffice from the switch polynomial's root, which differs from it
-    /// by truncation only).
-    pub fn polish_boundary(&self, model: &ModelParams, mut s: f64, h: f64) -> f64 {
-        for _ in 0..3 {
-            let (x, vx) = self.eval_d(0, s);
-            let (y, vy) = self.eval_d(1, s);
+    /// Put the exit through z = 1 near local time `s` (the switch polynomial's root, which
+    /// differs from it by truncation only) onto the surface of the step's polynomial state: the
+    /// switching function h = z² − 1 of the polynomial state ([`geometry::point`]) bracketed
+    /// about `s` within [0, `h`] and refined by the one refinement ([`crate::refine`]); `s`
+    /// itself when no bracket is found.
+    pub fn polish_boundary(&self, model: &ModelParams, s: f64, h: f64) -> f64 {
+        // The exit: g = −h rises through 0.
+        let knot = |t: f64| {
+            let (x, vx) = self.eval_d(0, t);
+            let (y, vy) = self.eval_d(1, t);
             let p = geometry::point(model, State::new(x, y, vx, vy));
-            if p.dh == 0.0 || !p.h.is_finite() {
-                break;
+            Knot {
+                s: t,
+                g: -p.h,
+                dg: -p.dh,
+                point: (),
             }
-            let next = s - p.h / p.dh;
-            if !(next >= 0.0 && next <= h) || next == s {
-                break;
-            }
-            s = next;
+        };
+        let at = knot(s);
+        if !(at.g.is_finite() && at.dg.is_finite()) || at.g == 0.0 {
+            return s;
         }
-        s
+        // The other end: past the Newton step from `s` (twice it, then wider), inside [0, h].
+        let toward = if at.g > 0.0 { -1.0 } else { 1.0 };
+        let mut width = 2.0 * math::abs(at.g / at.dg);
+        let mut other = None;
+        for _ in 0..8 {
+            let t = (s + toward * width).clamp(0.0, h);
+            let k = knot(t);
+            if (k.g > 0.0) != (at.g > 0.0) {
+                other = Some(k);
+                break;
+            }
+            if t == 0.0 || t == h {
+                break;
+            }
+            width *= 4.0;
+        }
+        let Some(other) = other else {
+            return s;
+        };
+        let (below, above) = if at.g > 0.0 { (other, at) } else { (at, other) };
+        let settings = Refinement {
+            max_steps: 40,
+            residual: 0.0,
+            scale: 1.0,
+            first_guess: None,
+            close: false,
+        };
+        refine(knot, below, above, &settings).best.s
     }
 
     /// Series `i`'s polynomial at local time `s`.

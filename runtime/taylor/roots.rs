@@ -15,13 +15,16 @@
 
 use super::kernels::{self, CAPACITY};
 use crate::math;
+use crate::refine::{Knot, Refinement, refine};
+use crate::rounding;
 
-/// Rounding band of a switch function's start value, relative to its scale (64 ulps).
-const START_BAND: f64 = 64.0 * f64::EPSILON;
+/// Rounding band of a switch function's start value, relative to its scale
+/// ([`rounding::SOLUTION`]: a Taylor polynomial of the step carries ~64 ulps).
+const START_BAND: f64 = rounding::SOLUTION;
 
 /// Narrowest isolating interval examined (relative to the step): below it two roots are a
-/// touch (no sign change) or one crossing.
-const MIN_WIDTH: f64 = 4.0 * f64::EPSILON;
+/// touch (no sign change) or one crossing ([`rounding::BRACKET`]).
+const MIN_WIDTH: f64 = rounding::BRACKET;
 
 /// Deepest bisection (2⁻⁵² of the step; the stack holds one pending interval per level).
 const MAX_DEPTH: usize = 56;
@@ -232,35 +235,35 @@ fn isolate(p: &Poly) -> Option<(f64, f64)> {
     None
 }
 
-/// The root in [a, b] (p(a) > 0 ≥ p(b)) to full precision: Newton steps kept inside the
-/// shrinking bracket, bisection where Newton leaves it.
-fn polish(p: &Poly, mut a: f64, mut b: f64) -> f64 {
+/// The root in [a, b] (p(a) > 0 ≥ p(b)) to full precision: the one refinement
+/// ([`crate::refine`]) on −p with Newton steps on the polynomial; the first point at or past the
+/// crossing.
+fn polish(p: &Poly, a: f64, b: f64) -> f64 {
     if a == b {
         return a;
     }
-    let mut t = 0.5 * (a + b);
-    for _ in 0..100 {
+    let knot = |t: f64| {
         let (f, df) = p.eval_with_derivative(t);
-        if f > 0.0 {
-            a = t;
-        } else {
-            b = t;
+        Knot {
+            s: t,
+            g: -f,
+            dg: -df,
+            point: (),
         }
-        if f == 0.0 || b - a <= 2.0 * f64::EPSILON * b.abs().max(f64::MIN_POSITIVE) {
-            break;
-        }
-        let newton = t - f / df;
-        t = if df != 0.0 && newton > a && newton < b {
-            newton
-        } else {
-            0.5 * (a + b)
-        };
-        if t == a || t == b {
-            break;
-        }
+    };
+    let (below, above) = (knot(a), knot(b));
+    if above.g <= 0.0 {
+        // p(b) = 0: b is the root.
+        return b;
     }
-    // The first point at or past the crossing.
-    if p.eval(t) > 0.0 { b } else { t }
+    let settings = Refinement {
+        max_steps: 100,
+        residual: 0.0,
+        scale: 0.0,
+        first_guess: Some(0.5 * (a + b)),
+        close: true,
+    };
+    refine(knot, below, above, &settings).at_or_past().s
 }
 
 #[cfg(test)]

@@ -124,8 +124,7 @@ fn close(a: f64, b: f64, scale: f64, tol: f64) -> bool {
 proptest! {
     #![proptest_config(config(256))]
 
-    /// The slipping contact force, N, w, λ and the rolling field are the hand ones, and the
-    /// runtime's fields use them.
+    /// N, w, λ and the slipping and rolling fields are the hand ones.
     #[test]
     fn friction_formulas_match_hand_law(s in any_situation()) {
         let (q, v) = (s.q, s.v);
@@ -134,10 +133,7 @@ proptest! {
         let rate = Velocity { vx: v.x, vy: v.y };
         let phasor = Phasor { ct: s.theta.cos(), st: s.theta.sin() };
         let (_, t, _) = s.frame(q);
-        let want = s.elastic(q) + t * (s.mu * s.sigma * s.normal(q));
         let scale = s.case.ks().norm() * q.norm() + v.norm();
-        let f = coef::slipping_contact_force(&model, &at, &Slip { sigma: s.sigma });
-        prop_assert!(close(f.fx, want.x, scale, 1e-13) && close(f.fy, want.y, scale, 1e-13));
         let fs = coef::friction_state(&model, &at, &rate, &phasor);
         prop_assert!(close(fs.normal, s.normal(q), scale, 1e-13));
         prop_assert!(close(fs.slip_velocity, s.slip_velocity(q, v), s.rho * s.case.eta + scale, 1e-13));
@@ -248,7 +244,7 @@ proptest! {
             field::friction_with_phasor(&ModelParams::of(&p), &Phasor { ct: th.cos(), st: th.sin() }, &st2)
         };
         let (plus, minus) = (at(1.0), at(-1.0));
-        let cone = coef::friction_cone(
+        let cone = coef::friction_cone_rates(
             &ModelParams::of(&p),
             &Position { x: q.x, y: q.y },
             &Velocity { vx: v.x, vy: v.y },

@@ -2,8 +2,9 @@
 
 use rotor_rub::reference::{
     Dop853, Dop853Propagator, Integrator, Interpolant, Rk45Propagator, RotorSystem, Tolerance,
-    first_crossing, refine_crossing,
+    first_crossing,
 };
+use rotor_rub::refine::{Knot, Refinement, refine};
 use rotor_rub::{Event, EventKind, Params, Problem, Propagate, Regime, State, advance_to};
 
 use crate::common::{paper, run_events};
@@ -28,7 +29,24 @@ fn first_free_maximum(p: &Problem, end: f64) -> Option<(f64, f64)> {
         let step = integ.step(&sys, end).ok()?;
         let (d0, d1) = (h(&step.y0).1, h(&step.y1).1);
         if d0 > 0.0 && d1 <= 0.0 {
-            let t = refine_crossing(|t| h(&step.dense.eval(t)).1, step.t0, d0, step.t1, d1);
+            // The root of h' (falling through 0): the one refinement on −h', secant steps.
+            let knot = |t: f64, d: f64| Knot {
+                s: t,
+                g: -d,
+                dg: f64::NAN,
+                point: (),
+            };
+            let settings = Refinement {
+                max_steps: 400,
+                residual: 0.0,
+                scale: 1.0,
+                first_guess: None,
+                close: false,
+            };
+            let eval = |t: f64| knot(t, h(&step.dense.eval(t)).1);
+            let t = refine(eval, knot(step.t0, d0), knot(step.t1, d1), &settings)
+                .best
+                .s;
             let z = (h(&step.dense.eval(t)).0 + 1.0).sqrt();
             return Some((t, z));
         }

@@ -157,6 +157,11 @@ impl Graph {
         self.as_const(id) == Some(value)
     }
 
+    /// The id of `node` if it is interned (without interning it).
+    pub fn lookup(&self, node: &Node) -> Option<ExprId> {
+        self.index.get(node).copied()
+    }
+
     pub(crate) fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;

@@ -8,9 +8,6 @@
 use super::{Model, Rates, Vec2};
 
 pub(super) fn derive(m: &mut Model) {
-    contact_force(m);
-    accelerations(m);
-    input_acceleration(m);
     contact_remainder(m);
     linear_acceleration(m);
     shifted_stiffness(m);
@@ -18,60 +15,6 @@ pub(super) fn derive(m: &mut Model) {
 
 fn position(m: &mut Model) -> Vec2 {
     [m.var("lx"), m.var("ly")]
-}
-
-/// The contact force at a position: the sum of the model's contact pieces (today the elastic
-/// K_s·g(q); friction will be one more term of `Model::contact_pieces`).
-fn contact_force(m: &mut Model) {
-    let q = position(m);
-    let f = m.contact_pieces(q, None);
-    m.add_formula(
-        "contact_force",
-        "The elastic contact force K_s·g(q), g = (1 − 1/z)(x − ε̂x, y − ε̂y), at a position (restoring sign).",
-        "docs/MODEL.md §1",
-        "the model's `elastic_contact` piece.",
-        "Force",
-        vec![
-            ("fx", "(K_s g)_x", f[0]),
-            ("fy", "(K_s g)_y", f[1]),
-        ],
-    );
-}
-
-/// q'' of free flight. In contact the runtime subtracts [`contact_force`] (the sum of the contact
-/// pieces): the regime decides which forces act, the model states each force once.
-fn accelerations(m: &mut Model) {
-    let q = position(m);
-    let v = [m.var("vx"), m.var("vy")];
-    let phasor = [m.var("ct"), m.var("st")];
-    let forcing = m.unbalance(phasor);
-    let stiffness = m.stiffness(q, None);
-    let a = m.acceleration(v, stiffness, forcing);
-    m.add_formula(
-        "free_acceleration",
-        "Acceleration of free flight: q'' = F(cos θ, sin θ) − 2ν q' − q (in contact, minus `contact_force`).",
-        "docs/MODEL.md §1",
-        "the model's pieces: unbalance − damping − restoring.",
-        "Acceleration",
-        vec![("ax", "x''", a[0]), ("ay", "y''", a[1])],
-    );
-}
-
-/// The input force's share of q'' (`docs/MODEL.md` §15): the numerical fields add it to
-/// `free_acceleration` (and to the contact field) when an input force acts, so the
-/// frictionless formulas stay the bits they were.
-fn input_acceleration(m: &mut Model) {
-    let zero = m.graph.constant(0.0);
-    let forcing = m.input_force();
-    let a = m.acceleration([zero, zero], [zero, zero], forcing);
-    m.add_formula(
-        "input_acceleration",
-        "The acceleration the input force u adds to every regime's field: q'' += u.",
-        "docs/MODEL.md §15",
-        "the model's acceleration with the input force as its only piece.",
-        "Acceleration",
-        vec![("ax", "x''", a[0]), ("ay", "y''", a[1])],
-    );
 }
 
 /// n(q) = Kl q + Fd − q − K_s g(q).

@@ -5,36 +5,19 @@
 //! velocity w at 0. The frictionless formulas of `field.rs` and `linearization.rs` are left
 //! untouched: μ = 0 runs them, bit for bit.
 
-use super::{Model, Rates, Vec2};
-use crate::derive::{derivative, partial};
+use super::{Model, Vec2};
+use crate::derive::partial;
 use crate::expr::ExprId;
 
 pub(super) fn derive(m: &mut Model) {
-    slipping_contact_force(m);
     slipping_linearized_stiffness(m);
     slipping_remainder(m);
     friction_state(m);
     rolling_acceleration(m);
-    rolling_rates(m);
 }
 
 fn position(m: &mut Model) -> Vec2 {
     [m.var("lx"), m.var("ly")]
-}
-
-/// The contact pieces while slipping in direction σ: K_s g + μσN t.
-fn slipping_contact_force(m: &mut Model) {
-    let q = position(m);
-    let sigma = m.var("sigma");
-    let f = m.contact_pieces(q, Some(sigma));
-    m.add_formula(
-        "slipping_contact_force",
-        "The contact force while slipping in direction σ: K_s·g(q) + μσN t (restoring sign).",
-        "docs/MODEL.md §10",
-        "the model's `elastic_contact` and `friction` pieces.",
-        "Force",
-        vec![("fx", "x component", f[0]), ("fy", "y component", f[1])],
-    );
 }
 
 /// Kl = I + ∂G_σ/∂q and Fd = G_σ(q0) − (∂G_σ/∂q) q0 at q0, G_σ = K_s g + μσN t: the Taylor
@@ -158,38 +141,5 @@ fn rolling_acceleration(m: &mut Model) {
         "the frictionless contact field and λ of `friction_state`.",
         "Acceleration",
         vec![("ax", "x''", a[0]), ("ay", "y''", a[1])],
-    );
-}
-
-/// N' and λ' along the rolling field: what the `slip` switch (|λ| reaching μN) is located with.
-fn rolling_rates(m: &mut Model) {
-    let (q, v, acc) = frictionless_contact_acceleration(m);
-    let normal = m.normal_force(q);
-    let (lambda, _, t) = rolling_force(m, q, v, acc);
-    let a = {
-        let g = &mut m.graph;
-        [0, 1].map(|i| {
-            let f = g.mul(lambda, t[i]);
-            g.sub(acc[i], f)
-        })
-    };
-    let mut rates = Rates::new();
-    m.forcing_phasor(&mut rates);
-    for (name, r) in [("lx", v[0]), ("ly", v[1]), ("vx", a[0]), ("vy", a[1])] {
-        let s = m.graph.symbol(name);
-        rates.insert(s, r);
-    }
-    let normal_rate = derivative(&mut m.graph, normal, &rates);
-    let lambda_rate = derivative(&mut m.graph, lambda, &rates);
-    m.add_formula(
-        "rolling_rates",
-        "The rates N' and λ' of the normal force and the rolling force along the rolling field (q'' = G − λ t, θ' = η): the slope of the `slip` switch function μN − |λ|.",
-        "docs/MODEL.md §10",
-        "total time derivatives of `friction_state`'s N and λ with the rolling acceleration and the forcing phasor's rates.",
-        "FrictionRates",
-        vec![
-            ("normal_rate", "N' = dN/dτ", normal_rate),
-            ("lambda_rate", "λ' = dλ/dτ", lambda_rate),
-        ],
     );
 }

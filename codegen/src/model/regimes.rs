@@ -20,6 +20,7 @@ pub(super) fn derive(m: &mut Model) {
     position_at_offset(m);
     regime_fields(m);
     unbalance_force_at(m);
+    slip_velocity(m);
     slip_velocity_rate(m);
     slip_rate(m);
     cone_rates(m);
@@ -268,16 +269,39 @@ fn cone_rates(m: &mut Model) {
     let lower_rate = derivative(&mut m.graph, lower, &rates);
     m.add_formula(
         "friction_cone",
-        "The friction cone's margins μN − λ and μN + λ of a contact state (rolling holds while both are ≥ 0) and their rates along the rolling field.",
+        "The friction cone's margins μN − λ and μN + λ of a contact state: rolling holds while both are ≥ 0.",
+        "docs/MODEL.md §10",
+        "the model's `normal_force` and the rolling force λ.",
+        "FrictionCone",
+        vec![("upper", "μN − λ", upper), ("lower", "μN + λ", lower)],
+    );
+    m.add_formula(
+        "friction_cone_rates",
+        "The friction cone's margins μN ∓ λ and their rates along the rolling field: the `slip` switch functions of rolling and their slopes.",
         "docs/MODEL.md §10",
         "the model's `normal_force`, the rolling force λ and their total time derivatives along q'' = G − λ t.",
-        "FrictionCone",
+        "FrictionConeRates",
         vec![
             ("upper", "μN − λ", upper),
             ("lower", "μN + λ", lower),
             ("upper_rate", "(μN − λ)'", upper_rate),
             ("lower_rate", "(μN + λ)'", lower_rate),
         ],
+    );
+}
+
+/// The slip velocity w = q'·t + ρ_R η of a state.
+fn slip_velocity(m: &mut Model) {
+    let q = position(m);
+    let v = velocity(m);
+    let w = m.slip_velocity(q, v);
+    m.add_formula(
+        "slip_velocity",
+        "The slip velocity w = q'·t + ρ_R η of the rotor's surface at the contact point.",
+        "docs/MODEL.md §10",
+        "the model's `slip_velocity`.",
+        "SlipVelocity",
+        vec![("w", "w", w)],
     );
 }
 

@@ -6,40 +6,34 @@
 //! Newton and secant steps from an end. Used where a caller opts in (`Budget::hermite_start`):
 //! the refined switch is the same to rounding, not to the bit.
 
+use crate::refine::{Knot, Refinement, refine};
+
 /// The root in (0, 1) of the cubic Hermite interpolant with values `g0` ≤ 0 < `g1` and
-/// (scaled) slopes `d0`, `d1` at 0 and 1, by safeguarded Newton on the cubic (bisection when a
-/// step leaves the bracket); `None` when the data are not finite.
+/// (scaled) slopes `d0`, `d1` at 0 and 1, by the one refinement ([`crate::refine`]) on the
+/// cubic; `None` when the data are not finite.
 pub(super) fn root(g0: f64, d0: f64, g1: f64, d1: f64) -> Option<f64> {
     if !(g0.is_finite() && d0.is_finite() && g1.is_finite() && d1.is_finite()) || g0 > 0.0 {
+        return None;
+    }
+    if g1 <= 0.0 {
         return None;
     }
     // p(τ) = g0 + d0 τ + c2 τ² + c3 τ³.
     let c2 = 3.0 * (g1 - g0) - 2.0 * d0 - d1;
     let c3 = 2.0 * (g0 - g1) + d0 + d1;
-    let p = |t: f64| g0 + t * (d0 + t * (c2 + t * c3));
-    let dp = |t: f64| d0 + t * (2.0 * c2 + t * 3.0 * c3);
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let mut t = -g0 / (g1 - g0);
-    for _ in 0..40 {
-        let v = p(t);
-        if v > 0.0 {
-            hi = t;
-        } else {
-            lo = t;
-        }
-        if hi - lo <= 4.0 * f64::EPSILON {
-            break;
-        }
-        let d = dp(t);
-        let next = t - v / d;
-        t = if d != 0.0 && next > lo && next < hi {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - t).abs() <= f64::EPSILON && v.abs() <= f64::EPSILON * (g1 - g0) {
-            break;
-        }
-    }
+    let knot = |t: f64| Knot {
+        s: t,
+        g: g0 + t * (d0 + t * (c2 + t * c3)),
+        dg: d0 + t * (2.0 * c2 + t * 3.0 * c3),
+        point: (),
+    };
+    let settings = Refinement {
+        max_steps: 40,
+        residual: f64::EPSILON * (g1 - g0),
+        scale: 1.0,
+        first_guess: Some(-g0 / (g1 - g0)),
+        close: false,
+    };
+    let t = refine(knot, knot(0.0), knot(1.0), &settings).best.s;
     (t > 0.0 && t < 1.0).then_some(t)
 }

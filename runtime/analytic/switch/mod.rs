@@ -39,7 +39,6 @@
 mod boundary;
 mod certificate;
 mod hermite;
-mod refine;
 mod slip;
 
 pub use boundary::{
@@ -49,7 +48,7 @@ pub use certificate::{no_crossing, no_crossing_likely};
 pub use slip::{MAX_TOUCHES, SlipPoint, SlipVelocity, first_slip_switch};
 
 use crate::math;
-use refine::refine;
+use crate::refine::{Knot, Refinement, refine};
 
 /// An event function along a closed-form piece, in local time s: g ≤ 0 in the current regime,
 /// the switch is where g crosses 0 upward.
@@ -65,9 +64,9 @@ pub trait EventFunction {
     fn curvature(&self, lo: f64, at_lo: &Self::Point, hi: f64) -> f64;
 }
 
-/// g must exceed this to count as a crossing when an interval is discarded: h = z² − 1 is only
-/// known to ~4ε near z = 1, so a touch below 8ε (penetration z − 1 < 1e-15) is not a switch.
-pub const TOUCH: f64 = 8.0 * f64::EPSILON;
+/// g must exceed this to count as a crossing when an interval is discarded
+/// ([`crate::rounding::TOUCH`]: a penetration z − 1 below 1e-15 is not a switch).
+pub use crate::rounding::TOUCH;
 /// Deepest interval split (the search's recursion). Below [`Budget::min_interval`] = 1e-13 relative
 /// a chunk of length ≤ 1 is never split deeper than 44 levels.
 pub const MAX_DEPTH: usize = 48;
@@ -103,7 +102,7 @@ impl Budget {
     /// The fixed-step stepper's: hard caps for a bounded step time.
     pub const CAPPED: Budget = Budget {
         tests: 32,
-        min_interval: 4.0 * f64::EPSILON,
+        min_interval: crate::rounding::BRACKET,
         refine: 40,
         hermite_start: false,
     };
@@ -147,20 +146,37 @@ impl<P> Search<P> {
     }
 }
 
-/// A point with its time and (clamped) g, g'.
-#[derive(Clone, Copy)]
-struct Knot<P> {
-    s: f64,
-    g: f64,
-    dg: f64,
-    p: P,
+/// The knot of `f` at local time `s` with the point `p` there.
+#[inline]
+fn knot<F: EventFunction>(f: &F, s: f64, p: F::Point) -> Knot<F::Point> {
+    let (g, dg) = f.value(&p);
+    Knot { s, g, dg, point: p }
 }
 
-impl<P: Copy> Knot<P> {
-    fn at<F: EventFunction<Point = P>>(f: &F, s: f64, p: P) -> Self {
-        let (g, dg) = f.value(&p);
-        Knot { s, g, dg, p }
-    }
+/// The switch in the bracket [a, b] (g(a) ≤ 0 < g(b)) refined to rounding by the one refinement
+/// ([`crate::refine`]) on the closed form, within the budget's steps (from the bracket's Hermite
+/// root with `hermite_start`): the point with the smallest |g| and whether it converged.
+fn refine_switch<F: EventFunction>(
+    f: &F,
+    a: Knot<F::Point>,
+    b: Knot<F::Point>,
+    budget: &Budget,
+) -> (Knot<F::Point>, bool) {
+    let first_guess = if budget.hermite_start {
+        let w = b.s - a.s;
+        hermite::root(a.g, a.dg * w, b.g, b.dg * w).map(|tau| a.s + tau * w)
+    } else {
+        None
+    };
+    let settings = Refinement {
+        max_steps: budget.refine,
+        residual: CONVERGED,
+        scale: 1.0,
+        first_guess,
+        close: false,
+    };
+    let r = refine(|t| knot(f, t, f.point(t)), a, b, &settings);
+    (r.best, r.converged)
 }
 
 /// The first crossing on (lo, hi], given the point at `lo` (inside the current regime whatever
@@ -194,7 +210,7 @@ pub(crate) fn locate_knowing<F: EventFunction>(
     if lo >= hi || lo.is_nan() || hi.is_nan() {
         return Search::None;
     }
-    let mut a = Knot::at(f, lo, start);
+    let mut a = knot(f, lo, start);
     a.g = a.g.min(0.0);
     let mut work = Work {
         tests: budget.tests,
@@ -203,7 +219,7 @@ pub(crate) fn locate_knowing<F: EventFunction>(
     };
     if let Some(end) = end.filter(|_| hi - lo > chunk) {
         // The whole span at once: one bound test, no evaluation.
-        let b = Knot::at(f, hi, end);
+        let b = knot(f, hi, end);
         if b.g <= TOUCH && work.proves_free(f, &a, &b) {
             return Search::None;
         }
@@ -219,7 +235,7 @@ pub(crate) fn locate_knowing<F: EventFunction>(
             Some(end) if s == hi => end,
             _ => f.point(s),
         };
-        let b = Knot::at(f, s, p);
+        let b = knot(f, s, p);
         match search_chunk(f, a, b, budget, &mut work) {
             Search::None => {
                 a = Knot {
@@ -257,7 +273,7 @@ impl Work {
         {
             return m2;
         }
-        let m2 = f.curvature(x.s, &x.p, hi);
+        let m2 = f.curvature(x.s, &x.point, hi);
         self.bound = Some((x.s, hi, m2));
         m2
     }
@@ -287,7 +303,7 @@ fn search_chunk<F: EventFunction>(
         // precedes it (the common case: one transversal switch in the chunk). Not from a start
         // within rounding of g = 0 (just after a switch): the secant would be drawn to the
         // rounding noise there; the interval search proves the start's neighbourhood first.
-        let (x, converged) = refine(f, a, b, budget);
+        let (x, converged) = refine_switch(f, a, b, budget);
         if x.s > a.s {
             if work.proves_free(f, &a, &x) {
                 return found(x, converged && !work.capped);
@@ -336,7 +352,7 @@ fn interval_search<F: EventFunction>(
         };
         if y.g > TOUCH && (short || spent || x.dg > m2 * len) {
             // g(x) ≤ 0 < g(y): one crossing (g increases throughout), or no more splitting.
-            let (r, converged) = refine(f, *x, y, budget);
+            let (r, converged) = refine_switch(f, *x, y, budget);
             return Some(found(r, converged && !spent && !work.capped));
         }
         if y.g <= TOUCH && (short || spent || no_crossing(x.g, x.dg, y.g, y.dg, m2, len, TOUCH)) {
@@ -350,7 +366,7 @@ fn interval_search<F: EventFunction>(
             return None;
         }
         let mid = x.s + 0.5 * len;
-        let m = Knot::at(f, mid, f.point(mid));
+        let m = knot(f, mid, f.point(mid));
         if let Some(end) = interval_search(f, x, m, depth + 1, budget, work) {
             return Some(end);
         }
@@ -360,7 +376,7 @@ fn interval_search<F: EventFunction>(
 fn found<P>(k: Knot<P>, certain: bool) -> Search<P> {
     Search::Found {
         s: k.s,
-        point: k.p,
+        point: k.point,
         certain,
     }
 }

@@ -90,8 +90,7 @@ impl EventFunction for SlipVelocity<'_> {
     fn value(&self, p: &SlipPoint) -> (f64, f64) {
         let model = self.segment.linearization().model();
         let st = &p.state;
-        let phasor = field::phasor(model, self.t0 + p.s);
-        let w = coef::friction_state(model, &position(st), &velocity(st), &phasor).slip_velocity;
+        let w = field::slip_velocity(model, st);
         let (ax, ay) = self.segment.acceleration(p.s, st);
         let rate = coef::slip_velocity_rate(
             model,
