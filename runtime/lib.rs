@@ -22,6 +22,7 @@ pub mod compare;
 pub mod driver;
 pub mod field;
 pub mod hybrid;
+pub mod linalg;
 pub mod math;
 pub mod method;
 pub mod params;
