@@ -10,7 +10,7 @@
 //! entry larger than [`MAX_COUPLING`] (or is not finite) the two clusters it couples are merged
 //! and the decoupling is redone from the Schur form. The transformation Y (unit block upper
 //! triangular, its off-diagonal blocks the Z's) then has entries ≤ [`MAX_COUPLING`], which
-//! bounds the rounding its use adds: e^{As}y loses at most ~‖Z‖·ε relative, so ≤ 1e2·ε.
+//! bounds the rounding its use adds: e^{As}y loses at most ~‖Z‖·ε relative, so ≤ 10·ε.
 //! At most m − 1 merges happen (one block at worst), each costing one O(m³) decoupling.
 
 use super::complex::Complex;
@@ -20,7 +20,7 @@ use super::schur::swap_diagonal;
 /// Eigenvalues closer than this times ‖T‖_max start in one cluster.
 pub const MERGE_DISTANCE: f64 = 1e-6;
 /// The largest entry a Sylvester solution may have before its two clusters are merged.
-pub const MAX_COUPLING: f64 = 100.0;
+pub const MAX_COUPLING: f64 = 10.0;
 
 /// A partition of 0..m into sets (union–find over the Schur form's diagonal positions).
 #[derive(Clone, Debug)]
