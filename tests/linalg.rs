@@ -1,7 +1,7 @@
 //! The linear algebra for matrix models (`rotor_rub::linalg`) against independent references:
-//! nalgebra's matrix exponential (Al-Mohy & Higham's scaling and squaring), eigenvalues, LU and
-//! complex solves. Accuracy is measured as ‖ours − reference‖₂ / ‖reference‖₂ of the state
-//! e^{As} y0.
+//! closed forms of every degenerate case, nalgebra's matrix exponential (Al-Mohy & Higham's
+//! scaling and squaring), eigenvalues, LU and complex solves. Accuracy is measured as
+//! ‖ours − reference‖₂ / ‖reference‖₂ of the state e^{As} y0.
 
 #[path = "linalg/common.rs"]
 mod common;

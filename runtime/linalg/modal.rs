@@ -10,7 +10,7 @@
 //! balancing, Q the Schur vectors and Y the decoupling: S = D Q Y, S⁻¹ = Y⁻¹ Q^H D⁻¹.
 //!
 //! **Accuracy** (`docs/MODEL.md`, "Linear algebra for matrix models"). Every step is backward
-//! stable except the decoupling, whose transformation has entries ≤ 100 by the clustering rule;
+//! stable except the decoupling, whose transformation has entries ≤ 10 by the clustering rule;
 //! the error of y(s) is ~ c·m·ε·cond(S) relative to ‖e^{As}‖·‖y0‖ plus the conditioning of
 //! the problem itself (a perturbation δA of A moves e^{As} by ~ s‖δA‖ relative: over long
 //! spans the eigenvalues' rounding, ~ε‖A‖, becomes s‖A‖ε — any method in f64 has it).

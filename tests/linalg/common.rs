@@ -131,3 +131,83 @@ pub fn two_disk_rotor() -> Rotor {
         k: from_na(&k),
     }
 }
+
+/// A small deterministic generator (xorshift) for random matrices and states.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+
+    pub fn matrix(&mut self, m: usize) -> RealMatrix<CAP> {
+        RealMatrix::from_fn(m, m, |_, _| self.uniform()).unwrap()
+    }
+
+    pub fn vector(&mut self, m: usize) -> Vec<f64> {
+        (0..m).map(|_| self.uniform()).collect()
+    }
+}
+
+/// The spectral radius max |λ| (nalgebra's eigenvalues).
+pub fn spectral_radius<const C: usize>(a: &RealMatrix<C>) -> f64 {
+    to_na(a)
+        .complex_eigenvalues()
+        .iter()
+        .map(|z| z.norm())
+        .fold(0.0, f64::max)
+}
+
+/// ‖e^{As}‖₂ (nalgebra).
+pub fn exp_norm<const C: usize>(a: &RealMatrix<C>, s: f64) -> f64 {
+    (to_na(a) * s).exp().singular_values().max()
+}
+
+/// The relative condition number of e^{As} (Van Loan 1977's bound, which the Fréchet
+/// derivative attains within a small factor): κ = ‖A‖ s · mean_t ‖e^{A(s−t)}‖‖e^{At}‖ / ‖e^{As}‖,
+/// the mean over t ∈ [0, s] by the trapezoid rule on 33 points. For a normal A it is ‖A‖s; for
+/// a Jordan block of size k it grows like s^k: a perturbation of A by ε‖A‖ (which any f64
+/// method's rounding is) moves e^{As} by κε relative.
+pub fn exp_condition<const C: usize>(a: &RealMatrix<C>, s: f64) -> f64 {
+    let an = to_na(a);
+    let norm_a = an.clone().singular_values().max();
+    let k = 32;
+    let norms: Vec<f64> = (0..=k)
+        .map(|i| {
+            (&an * (s * i as f64 / k as f64))
+                .exp()
+                .singular_values()
+                .max()
+        })
+        .collect();
+    let mean = (0..=k)
+        .map(|i| {
+            let w = if i == 0 || i == k { 0.5 } else { 1.0 };
+            w * norms[i] * norms[k - i]
+        })
+        .sum::<f64>()
+        / k as f64;
+    norm_a * s * mean / norms[k]
+}
+
+/// The accuracy every exponential test holds ours to, normwise, ‖Δy‖₂ / (‖e^{As}‖₂‖y0‖₂):
+/// 1e-13, or 4ε times the problem's own condition number where that is larger (long spans,
+/// defective eigenvalues: no f64 method does better, nalgebra's `exp` included).
+pub fn tolerance<const C: usize>(a: &RealMatrix<C>, s: f64) -> f64 {
+    1e-13f64.max(4.0 * f64::EPSILON * exp_condition(a, s))
+}
+
+/// ‖ours − reference‖₂ / (‖e^{As}‖₂ ‖y0‖₂).
+pub fn normwise_error<const C: usize>(
+    a: &RealMatrix<C>,
+    s: f64,
+    y0: &[f64],
+    ours: &[f64],
+    reference: &[f64],
+) -> f64 {
+    let diff: Vec<f64> = ours.iter().zip(reference).map(|(a, b)| a - b).collect();
+    norm(&diff) / (exp_norm(a, s) * norm(y0))
+}

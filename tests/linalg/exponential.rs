@@ -1,87 +1,223 @@
-//! e^{As} y0 against nalgebra's `exp`: random matrices and every degenerate case.
+//! e^{As} y0: every degenerate case against its closed form, rotors (gyroscopic, non-symmetric
+//! bearings) and random matrices against nalgebra's `exp`, spans 1e-3 … 1e3.
 
 use super::common::*;
 use rotor_rub::linalg::{ModalExponential, RealMatrix};
 
 const SPANS: [f64; 6] = [1e-3, 0.1, 1.0, 10.0, 100.0, 1e3];
 
-fn worst(a: &RealMatrix<CAP>, spans: &[f64]) -> (f64, f64) {
+/// x'' + 2νx' + x = 0 in closed form: (x(s), x'(s)) from (x0, v0), any ν (EC/ES of
+/// `docs/MODEL.md` §4 with their power series near β = 0).
+fn oscillator(nu: f64, s: f64, x0: f64, v0: f64) -> [f64; 2] {
+    let b2 = (1.0 - nu) * (1.0 + nu);
+    // EC = e^{−νs} cos βs, ES = e^{−νs} sin(βs)/β (cosh/sinh for β² < 0, as sums of the two
+    // real exponentials so nothing overflows; series in β²s² near β = 0).
+    let (ec, es) = if b2.abs() * s * s < 1e-6 {
+        let z = b2 * s * s;
+        let x = (-nu * s).exp();
+        (
+            x * (1.0 - z / 2.0 + z * z / 24.0),
+            x * s * (1.0 - z / 6.0 + z * z / 120.0),
+        )
+    } else if b2 > 0.0 {
+        let b = b2.sqrt();
+        let x = (-nu * s).exp();
+        (x * (b * s).cos(), x * (b * s).sin() / b)
+    } else if (-b2).sqrt() * s < 20.0 {
+        let b = (-b2).sqrt();
+        let x = (-nu * s).exp();
+        (x * (b * s).cosh(), x * (b * s).sinh() / b)
+    } else {
+        let b = (-b2).sqrt();
+        let (up, down) = (((b - nu) * s).exp(), (-(b + nu) * s).exp());
+        (0.5 * (up + down), 0.5 * (up - down) / b)
+    };
+    [ec * x0 + es * (v0 + nu * x0), ec * v0 - es * (x0 + nu * v0)]
+}
+
+/// The worst relative error over the spans and a few states, and whether each met `tol`.
+fn check_against(a: &RealMatrix<CAP>, exact: impl Fn(f64, &[f64]) -> Vec<f64>, name: &str) -> f64 {
     let e = ModalExponential::new(a).unwrap();
-    let m = a.rows();
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     let mut worst: f64 = 0.0;
-    for k in 0..3 {
-        let y0: Vec<f64> = (0..m).map(|i| ((i * 7 + k * 3) % 5) as f64 - 1.7).collect();
-        for &s in spans {
-            let r = reference(a, s, &y0);
-            if !r.iter().all(|x| x.is_finite()) || norm(&r) < 1e-290 || norm(&r) > 1e290 {
-                continue;
-            }
-            let err = relative_error(&ours(&e, s, &y0), &r);
+    for s in SPANS {
+        let size = exp_norm(a, s);
+        if !(1e-280..1e280).contains(&size) {
+            continue;
+        }
+        let tol = tolerance(a, s);
+        for _ in 0..4 {
+            let y0 = rng.vector(a.rows());
+            let r = exact(s, &y0);
+            let err = normwise_error(a, s, &y0, &ours(&e, s, &y0), &r);
+            assert!(err <= tol, "{name}: s = {s:e}: error {err:.2e} > {tol:.1e}");
             worst = worst.max(err);
         }
+        if std::env::var("LINALG_REPORT").is_ok() {
+            eprintln!("{name:32} s = {s:7.0e}: worst {worst:.1e}, tolerance {tol:.1e}");
+        }
     }
-    (worst, e.condition())
+    worst
 }
 
+/// Each coordinate of an isotropic rotor M = I, C = 2νI, K = I (n = 2: every eigenvalue twice,
+/// diagonalizable; ν = 1 two Jordan blocks of size 2 on one eigenvalue) follows the scalar
+/// oscillator.
 #[test]
-fn measure() {
-    let cases: Vec<(&str, RealMatrix<CAP>)> = vec![
-        ("critical", RealMatrix::from_rows(&[&[0.0, 1.0], &[-1.0, -2.0]]).unwrap()),
-        ("jeffcott nu=0.1", Rotor::jeffcott(0.1).first_order(0.0)),
-        ("jeffcott nu=0", Rotor::jeffcott(0.0).first_order(0.0)),
-        ("jeffcott nu=1", Rotor::jeffcott(1.0).first_order(0.0)),
-        ("jeffcott nu=1-1e-8", Rotor::jeffcott(1.0 - 1e-8).first_order(0.0)),
-        ("jeffcott nu=1-1e-4", Rotor::jeffcott(1.0 - 1e-4).first_order(0.0)),
-        ("jeffcott nu=2", Rotor::jeffcott(2.0).first_order(0.0)),
-        ("jeffcott nu=-0.05", Rotor::jeffcott(-0.05).first_order(0.0)),
-        ("two-disk eta=0.7", two_disk_rotor().first_order(0.7)),
-        ("free mass", RealMatrix::from_rows(&[&[0.0, 1.0], &[0.0, 0.0]]).unwrap()),
-        ("free mass damped", RealMatrix::from_rows(&[&[0.0, 1.0], &[0.0, -0.1]]).unwrap()),
-    ];
-    for (name, a) in &cases {
-        let (w, cond) = worst(a, &SPANS);
-        let per: Vec<String> = SPANS.iter().map(|&s| format!("{:.1e}", worst(a, &[s]).0)).collect();
-        eprintln!("{name:24} worst {w:.2e} cond {cond:.2e} per span {per:?}");
-    }
-}
-
-#[test]
-fn measure_exact() {
-    let rot = RealMatrix::<CAP>::from_rows(&[&[0.0, 1.0], &[-1.0, 0.0]]).unwrap();
-    let crit = RealMatrix::<CAP>::from_rows(&[&[0.0, 1.0], &[-1.0, -2.0]]).unwrap();
-    let er = ModalExponential::new(&rot).unwrap();
-    let ec = ModalExponential::new(&crit).unwrap();
-    for s in SPANS {
-        let y0 = [0.3, -1.1];
-        let (sn, cs) = (s as f64).sin_cos();
-        let exact = [cs * y0[0] + sn * y0[1], -sn * y0[0] + cs * y0[1]];
-        let e1 = relative_error(&ours(&er, s, &y0), &exact);
-        let n1 = relative_error(&reference(&rot, s, &y0), &exact);
-        let x = (-s as f64).exp();
-        let exact = [x * ((1.0 + s) * y0[0] + s * y0[1]), x * (-s * y0[0] + (1.0 - s) * y0[1])];
-        let e2 = relative_error(&ours(&ec, s, &y0), &exact);
-        let n2 = relative_error(&reference(&crit, s, &y0), &exact);
-        eprintln!("s={s:e}: rotation ours {e1:.1e} nalgebra {n1:.1e}; critical ours {e2:.1e} nalgebra {n2:.1e}");
+fn isotropic_rotors_match_the_closed_form_for_every_damping() {
+    for nu in [
+        0.0,
+        0.1,
+        0.5,
+        1.0 - 1e-4,
+        1.0 - 1e-8,
+        1.0,
+        1.0 + 1e-6,
+        2.0,
+        -0.05,
+    ] {
+        let a = Rotor::jeffcott(nu).first_order(0.0);
+        check_against(
+            &a,
+            |s, y| {
+                let [x, vx] = oscillator(nu, s, y[0], y[2]);
+                let [z, vz] = oscillator(nu, s, y[1], y[3]);
+                vec![x, z, vx, vz]
+            },
+            &format!("isotropic ν = {nu}"),
+        );
     }
 }
 
+/// The single oscillator, including critical damping (a defective eigenvalue −1) and the
+/// near-defective ν = 1 ± 1e-8.
 #[test]
-fn measure_near_critical() {
-    for nu in [1.0 - 1e-4, 1.0 - 1e-8, 0.1] {
-        let a1 = RealMatrix::<CAP>::from_rows(&[&[0.0, 1.0], &[-1.0, -2.0 * nu]]).unwrap();
-        let e = ModalExponential::new(&a1).unwrap();
-        for s in [1.0, 10.0, 100.0, 1e3] {
-            let y0 = [0.3, -1.1];
-            let beta = ((1.0 - nu) * (1.0 + nu)).sqrt();
-            let (sn, cs) = (beta * s).sin_cos();
-            let x = (-nu * s).exp();
-            let es = x * sn / beta;
-            let ec = x * cs;
-            // x(s) = EC x0 + ES (v0 + ν x0); v(s) = EC v0 − ES (x0 + ν v0)
-            let exact = [ec * y0[0] + es * (y0[1] + nu * y0[0]), ec * y0[1] - es * (y0[0] + nu * y0[1])];
-            let e1 = relative_error(&ours(&e, s, &y0), &exact);
-            let n1 = relative_error(&reference(&a1, s, &y0), &exact);
-            eprintln!("nu={nu} s={s:e}: ours {e1:.1e} nalgebra {n1:.1e}");
+fn one_oscillator_matches_the_closed_form() {
+    for nu in [0.0, 0.01, 1.0 - 1e-8, 1.0, 1.0 + 1e-8, 3.0, -0.02] {
+        let a = RealMatrix::<CAP>::from_rows(&[&[0.0, 1.0], &[-1.0, -2.0 * nu]]).unwrap();
+        check_against(
+            &a,
+            |s, y| oscillator(nu, s, y[0], y[1]).to_vec(),
+            &format!("oscillator ν = {nu}"),
+        );
+    }
+}
+
+/// Zero eigenvalues: a free mass (a defective 0: x = x0 + v0 s) and a damped rigid-body mode
+/// (0 and −c: x = x0 + v0 (1 − e^{−cs})/c), exactly.
+#[test]
+fn rigid_body_modes_match_the_closed_form() {
+    let free = RealMatrix::<CAP>::from_rows(&[&[0.0, 1.0], &[0.0, 0.0]]).unwrap();
+    check_against(&free, |s, y| vec![y[0] + y[1] * s, y[1]], "free mass");
+    let c = 0.1;
+    let damped = RealMatrix::<CAP>::from_rows(&[&[0.0, 1.0], &[0.0, -c]]).unwrap();
+    check_against(
+        &damped,
+        |s, y| vec![y[0] + y[1] * -(-c * s).exp_m1() / c, y[1] * (-c * s).exp()],
+        "damped rigid body",
+    );
+}
+
+/// A two-disk rotor with gyroscopic disks and cross-coupled (non-symmetric) bearing K and C,
+/// at several speeds (G scaled by η splits the whirl pairs), against nalgebra's `exp`.
+#[test]
+fn gyroscopic_rotor_on_non_symmetric_bearings_matches_nalgebra() {
+    let rotor = two_disk_rotor();
+    for eta in [0.0, 0.7, 3.0] {
+        let a = rotor.first_order(eta);
+        check_against(
+            &a,
+            |s, y| reference(&a, s, y),
+            &format!("two-disk η = {eta}"),
+        );
+    }
+}
+
+/// Random dense matrices (entries uniform in [−1, 1], m = 2 … 16: complex pairs, real
+/// eigenvalues, growing and decaying modes, non-normal) against nalgebra's `exp`, spans up to
+/// 10 (longer spans of random growing modes overflow).
+#[test]
+fn random_matrices_match_nalgebra() {
+    let mut rng = Rng(12345);
+    let mut worst: f64 = 0.0;
+    for m in 2..=16 {
+        for _ in 0..6 {
+            let a = rng.matrix(m);
+            let e = ModalExponential::new(&a).unwrap();
+            for s in [1e-3, 0.1, 1.0, 10.0] {
+                let y0 = rng.vector(m);
+                let r = reference(&a, s, &y0);
+                let err = normwise_error(&a, s, &y0, &ours(&e, s, &y0), &r);
+                assert!(
+                    err <= tolerance(&a, s),
+                    "m = {m}, s = {s}: {err:.2e} (cond S {:.1e})",
+                    e.condition()
+                );
+                worst = worst.max(err);
+            }
+        }
+    }
+    eprintln!("random matrices: worst relative error {worst:.2e}");
+}
+
+/// A repeated defective eigenvalue of multiplicity 3 (a Jordan block of size 3 plus rounding):
+/// A = −I + N (N the shift) against its closed form e^{−s}(I + Ns + N²s²/2), after a similarity
+/// by a non-orthogonal matrix so the Schur form is not given away.
+#[test]
+fn a_jordan_block_of_size_three_is_exact() {
+    let jordan =
+        RealMatrix::<CAP>::from_rows(&[&[-1.0, 1.0, 0.0], &[0.0, -1.0, 1.0], &[0.0, 0.0, -1.0]])
+            .unwrap();
+    let p =
+        nalgebra::DMatrix::from_row_slice(3, 3, &[1.0, 0.5, 0.0, 0.0, 1.0, -0.25, 0.5, 0.0, 1.0]);
+    let pinv = p.clone().try_inverse().unwrap();
+    let a: RealMatrix<CAP> = from_na(&(&p * to_na(&jordan) * &pinv));
+    check_against(
+        &a,
+        |s, y| {
+            let j = to_na(&jordan);
+            let n = &j + nalgebra::DMatrix::identity(3, 3);
+            let ej =
+                (nalgebra::DMatrix::identity(3, 3) + &n * s + &n * &n * (s * s / 2.0)) * (-s).exp();
+            let v = &p * ej * &pinv * nalgebra::DVector::from_column_slice(y);
+            v.iter().copied().collect()
+        },
+        "Jordan block of size 3",
+    );
+}
+
+/// y' = A y at every s (the rate from the modal form against A times the state).
+#[test]
+fn the_rate_is_a_times_the_state() {
+    let a = two_disk_rotor().first_order(0.7);
+    let e = ModalExponential::new(&a).unwrap();
+    let y0: Vec<f64> = (0..a.rows()).map(|i| (i as f64 * 0.37).sin()).collect();
+    let c = e.modal_coordinates(&y0).unwrap();
+    for s in [0.0, 0.5, 7.0, 60.0] {
+        let (mut y, mut dy) = (vec![0.0; a.rows()], vec![0.0; a.rows()]);
+        e.state_and_rate(&c, s, &mut y, &mut dy);
+        let ay: Vec<f64> = (to_na(&a) * nalgebra::DVector::from_column_slice(&y))
+            .iter()
+            .copied()
+            .collect();
+        assert!(relative_error(&dy, &ay) < 1e-13, "s = {s}");
+    }
+}
+
+/// Long spans do not overflow: a decaying rotor over s = 1e4 underflows to exactly 0, an
+/// undamped one stays bounded, a growing mode grows as it should.
+#[test]
+fn long_spans_neither_overflow_nor_produce_nan() {
+    for (nu, expect_zero) in [(0.1, true), (1.0, true), (0.0, false)] {
+        let a = Rotor::jeffcott(nu).first_order(0.0);
+        let e = ModalExponential::new(&a).unwrap();
+        let y = ours(&e, 1e4, &[1.0, -0.5, 0.2, 0.3]);
+        assert!(y.iter().all(|v| v.is_finite()));
+        if expect_zero {
+            assert!(y.iter().all(|&v| v == 0.0), "ν = {nu}: {y:?}");
+        } else {
+            let exact = oscillator(0.0, 1e4, 1.0, 0.2);
+            assert!((y[0] - exact[0]).abs() < 4e-12, "{y:?} vs {exact:?}");
         }
     }
 }
