@@ -8,3 +8,6 @@ mod common;
 
 #[path = "linalg/exponential.rs"]
 mod exponential;
+
+#[path = "linalg/projected.rs"]
+mod projected;
