@@ -11,3 +11,9 @@ mod exponential;
 
 #[path = "linalg/projected.rs"]
 mod projected;
+
+#[path = "linalg/solves.rs"]
+mod solves;
+
+#[path = "linalg/no_alloc.rs"]
+mod no_alloc;
