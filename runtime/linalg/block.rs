@@ -56,10 +56,15 @@ impl BlockShift {
 
     /// The number of substeps n for a span s.
     pub(crate) fn substeps(&self, s: f64) -> usize {
-        let n = libm::ceil(self.spread * s / THETA);
-        if n >= 1.0 {
-            // Saturates for absurd spans; the loop count stays finite.
-            n.min(usize::MAX as f64) as usize
+        let x = self.spread * s / THETA;
+        if x >= 1.0 {
+            // ⌈x⌉, saturating for absurd spans (the loop count stays finite); NaN gives 1.
+            let n = x.min(usize::MAX as f64) as usize;
+            if (n as f64) < x {
+                n.saturating_add(1)
+            } else {
+                n
+            }
         } else {
             1
         }

@@ -152,15 +152,6 @@ impl Rng {
     }
 }
 
-/// The spectral radius max |λ| (nalgebra's eigenvalues).
-pub fn spectral_radius<const C: usize>(a: &RealMatrix<C>) -> f64 {
-    to_na(a)
-        .complex_eigenvalues()
-        .iter()
-        .map(|z| z.norm())
-        .fold(0.0, f64::max)
-}
-
 /// ‖e^{As}‖₂ (nalgebra).
 pub fn exp_norm<const C: usize>(a: &RealMatrix<C>, s: f64) -> f64 {
     (to_na(a) * s).exp().singular_values().max()
