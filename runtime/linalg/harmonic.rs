@@ -13,7 +13,7 @@
 //! at a DOF pair (i, j) is F_i = η² m_e e^{i(θ0 + φ)}, F_j = −i η² m_e e^{i(θ0 + φ)}.
 
 use super::complex::Complex;
-use super::dense::{ComplexMatrix, RealMatrix};
+use super::dense::ComplexMatrix;
 use super::error::LinalgError;
 use super::first_order::SecondOrder;
 use super::lu::Lu;
@@ -240,7 +240,3 @@ impl ProjectedHarmonic {
         }
     }
 }
-
-/// Unused-import guard for the doc example's types.
-#[allow(dead_code)]
-type _Real<const CAP: usize> = RealMatrix<CAP>;

@@ -19,13 +19,14 @@
 //!   and bounds over an interval whose proof is in `projected.rs`.
 //! - [`HarmonicResponse`]: the particular solution for harmonic and constant forcing
 //!   (`harmonic.rs`), and its projection [`ProjectedHarmonic`].
-//! - [`eigenvalues`]: the eigenvalues of any real matrix, sorted by modulus (Floquet
+//! - [`eigenvalues`] (`eigen.rs`): the eigenvalues of any real matrix, sorted by modulus (Floquet
 //!   multipliers of a monodromy matrix).
 
 mod block;
 mod cluster;
 mod complex;
 mod dense;
+mod eigen;
 mod error;
 mod first_order;
 mod harmonic;
@@ -38,10 +39,10 @@ mod schur;
 pub use cluster::{MAX_COUPLING, MERGE_DISTANCE};
 pub use complex::Complex;
 pub use dense::{ComplexMatrix, Matrix, RealMatrix, Scalar};
+pub use eigen::eigenvalues;
 pub use error::LinalgError;
 pub use first_order::SecondOrder;
 pub use harmonic::{HarmonicResponse, ProjectedHarmonic};
 pub use lu::Lu;
 pub use modal::{ModalExponential, ModalVector};
 pub use projected::{BOUND_MARGIN, ProjectedBound, ProjectedMotion, ProjectedPoint};
-pub use schur::eigenvalues;

@@ -45,7 +45,8 @@ impl<const CAP: usize> ModalVector<CAP> {
 /// evaluate at any s.
 ///
 /// Storage: five complex CAP × CAP matrices (80·CAP² bytes: 5 KiB at CAP = 8, 1.3 MiB at
-/// CAP = 128 — box it; building uses another 2·8·CAP² bytes of stack).
+/// CAP = 128 — box it; building uses about 32·CAP² bytes of stack for work matrices,
+/// 512 KiB at CAP = 128).
 #[derive(Clone, Debug)]
 pub struct ModalExponential<const CAP: usize> {
     m: usize,
