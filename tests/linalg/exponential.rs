@@ -221,3 +221,16 @@ fn long_spans_neither_overflow_nor_produce_nan() {
         }
     }
 }
+
+/// A larger random matrix (m = 40, its own capacity) against nalgebra's `exp`.
+#[test]
+fn a_forty_by_forty_matrix_matches_nalgebra() {
+    let mut rng = Rng(99);
+    let a = RealMatrix::<40>::from_fn(40, 40, |_, _| rng.uniform() / 3.0).unwrap();
+    let e = Box::new(ModalExponential::new(&a).unwrap());
+    for s in [0.01, 1.0, 5.0] {
+        let y0 = rng.vector(40);
+        let err = normwise_error(&a, s, &y0, &ours(&e, s, &y0), &reference(&a, s, &y0));
+        assert!(err <= tolerance(&a, s), "s = {s}: {err:.2e}");
+    }
+}
