@@ -23,6 +23,7 @@ pub mod driver;
 pub mod field;
 pub mod geometry;
 pub mod hybrid;
+pub mod linalg;
 pub mod math;
 pub mod method;
 pub mod params;

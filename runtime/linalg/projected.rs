@@ -1,0 +1,356 @@
+//! The projected fast path: d(s) = B e^{As} y0 for a fixed 2 × m matrix B (the rub station's
+//! relative displacement), with d'(s), d''(s), and rigorous bounds of |d|, |d'|, |d''| over an
+//! interval — what a switch search needs, at O(m) per evaluation.
+//!
+//! With W = B S (2 × m, once per B) and c = S⁻¹ y0 (once per state),
+//! d(s) = Re Σ_k W_k e^{J_k s} c_k. A 1 × 1 block contributes Re(u_k e^{λ_k s}) with the
+//! 2-vector u_k = W_k c_k precomputed, so an evaluation costs one complex exponential per
+//! block and O(m) products; a larger block (a cluster) applies its exponential to c_k
+//! (`block.rs`) and projects it. The derivatives multiply by J (λ_k for a 1 × 1 block).
+//!
+//! # Why the bounds hold (the proof the switch search rests on)
+//! Let T = Λ + U be one upper triangular block (Λ its diagonal, U the strictly upper part),
+//! α = max_i Re λ_i. **Claim:** entrywise |e^{Ts}| ≤ e^{αs} e^{|U|s} for s ≥ 0.
+//! *Proof:* e^{Ts} = lim_{n→∞} (I + Ts/n)^n. Entrywise |I + Ts/n| ≤ |I + Λs/n| + |U|s/n and
+//! |1 + λ_i s/n| ≤ 1 + αs/n + |λ_i|²s²/n² for n large, so |I + Ts/n| ≤ (1 + αs/n + c/n²) I +
+//! |U| s/n with every entry ≥ 0. Products of nonnegative matrices are monotone in their
+//! factors, so |(I + Ts/n)^n| ≤ ((1 + αs/n + c/n²) I + |U|s/n)^n = (1 + αs/n + c/n²)^n
+//! (I + |U|s/(n + αs + c/n))^n (the identity commutes), whose limit is e^{αs} e^{|U|s}. ∎
+//! Since |U| is nilpotent (strictly upper, size p), e^{|U|s} = Σ_{i<p} |U|^i s^i/i!.
+//!
+//! The j-th derivative of block k's part is W_k e^{J_k s} J_k^j c_k, so componentwise
+//! |d^{(j)}_k(s)| ≤ |W_k| e^{α_k s} e^{|U_k| s} |J_k|^j |c_k| (|Re z| ≤ |z|, |Pv| ≤ |P||v|),
+//! and by the triangle inequality for the Euclidean norm of nonnegative 2-vectors
+//!
+//! ```text
+//! |d^{(j)}(s)| ≤ Σ_k e^{α_k s} Σ_{i<p_k} b_{k,j,i} s^i/i!,   b_{k,j,i} = ‖ |W_k| |U_k|^i |J_k|^j |c_k| ‖₂.
+//! ```
+//!
+//! Over s ∈ [lo, hi] (0 ≤ lo ≤ hi < ∞) the bound is Σ_k Σ_i b_{k,j,i} max_s e^{α_k s} s^i/i!,
+//! each maximum in closed form (at an end, or at s = i/(−α_k) when α_k < 0 and that lies
+//! inside: [`peak`]). For a 1 × 1 block it is |u_k||λ_k|^j max(e^{Re λ_k lo}, e^{Re λ_k hi}):
+//! the mode's exact amplitude.
+//!
+//! **Rounding.** Every quantity in the bound is computed from the stored W, J, c with
+//! nonnegative operands only (absolute values, products, sums, libm's `exp` within 1 ulp), so
+//! its computed value is within a relative γ_K = Kε/(1 − Kε) of the exact one, K ≤ 4m + 40
+//! operations along any path; the result is multiplied by 1 + [`BOUND_MARGIN`] = 1 + 1e-12,
+//! which covers K up to 9000 (m ≤ 2000). The bound is of the function the evaluations compute
+//! (the stored modal form, exact to rounding as `modal.rs` states), so a search that
+//! evaluates d and bounds it on the same data never misses a sign change for want of rigor.
+//! Invalid intervals (lo > hi, NaN, hi infinite) give an infinite bound, never NaN.
+
+use super::block::scale_by_exp;
+use super::complex::Complex;
+use super::error::LinalgError;
+use super::modal::{ModalExponential, ModalVector, span};
+use crate::math;
+
+/// Relative margin the bounds carry for rounding (module docs).
+pub const BOUND_MARGIN: f64 = 1e-12;
+
+/// d(s), d'(s), d''(s) at one s.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ProjectedPoint {
+    /// d = B y(s).
+    pub value: [f64; 2],
+    /// d' = B y'(s).
+    pub rate: [f64; 2],
+    /// d'' = B y''(s).
+    pub acceleration: [f64; 2],
+}
+
+/// Upper bounds of |d|, |d'|, |d''| (Euclidean norms) valid at every s of an interval.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ProjectedBound {
+    /// ≥ |d(s)|.
+    pub value: f64,
+    /// ≥ |d'(s)|.
+    pub rate: f64,
+    /// ≥ |d''(s)|.
+    pub acceleration: f64,
+}
+
+/// The projection W = B S of a fixed 2 × m matrix B, and one state's modal data: evaluates
+/// d(s) = B e^{As} y0 and its bounds with the [`ModalExponential`] it was made from (passed to
+/// each call, so this stays small plain data: 2·16·CAP + 16·CAP + 32·CAP + 32·CAP bytes).
+#[derive(Clone, Debug)]
+pub struct ProjectedMotion<const CAP: usize> {
+    m: usize,
+    /// W = B S, rows x and y.
+    w: [[Complex; CAP]; 2],
+    /// c = S⁻¹ y0.
+    c: ModalVector<CAP>,
+    /// Per position p of a 1 × 1 block: u = W_p c_p; unused in larger blocks.
+    u: [[Complex; 2]; CAP],
+    /// Per position: the bound coefficients b_{k,j,i} for j = 0..3, stored at position
+    /// start_k + i of block k.
+    coefficients: [[f64; 3]; CAP],
+}
+
+impl<const CAP: usize> ProjectedMotion<CAP> {
+    /// The projection of B = [`bx`; `by`] (each m entries, finite) for `modal`, at the zero
+    /// state (set one with [`Self::set_state`]).
+    pub fn new(modal: &ModalExponential<CAP>, bx: &[f64], by: &[f64]) -> Result<Self, LinalgError> {
+        let m = modal.dim();
+        let mut w = [[Complex::ZERO; CAP]; 2];
+        for (row, b) in w.iter_mut().zip([bx, by]) {
+            if b.len() != m {
+                return Err(LinalgError::Shape {
+                    what: "projection row",
+                    got: b.len(),
+                    expected: m,
+                });
+            }
+            if let Some(i) = b.iter().position(|v| !v.is_finite()) {
+                return Err(LinalgError::NonFinite {
+                    what: "projection row",
+                    row: i,
+                    col: 0,
+                });
+            }
+            for (p, wp) in row.iter_mut().enumerate().take(m) {
+                *wp = b.iter().enumerate().fold(Complex::ZERO, |acc, (i, &bi)| {
+                    acc + modal.s.get(i, p).scale(bi)
+                });
+            }
+        }
+        Ok(ProjectedMotion {
+            m,
+            w,
+            c: ModalVector {
+                c: [Complex::ZERO; CAP],
+                m,
+            },
+            u: [[Complex::ZERO; 2]; CAP],
+            coefficients: [[0.0; 3]; CAP],
+        })
+    }
+
+    /// Start from the state y0 (m entries, finite): c = S⁻¹ y0, the 1 × 1 blocks' amplitudes
+    /// and the bound coefficients. O(m²) (O(p³) more per cluster of size p).
+    pub fn set_state(
+        &mut self,
+        modal: &ModalExponential<CAP>,
+        y0: &[f64],
+    ) -> Result<(), LinalgError> {
+        if modal.dim() != self.m {
+            return Err(LinalgError::Shape {
+                what: "modal exponential",
+                got: modal.dim(),
+                expected: self.m,
+            });
+        }
+        self.c = modal.modal_coordinates(y0)?;
+        self.prepare(modal);
+        Ok(())
+    }
+
+    /// The modal coordinates of the current state.
+    pub fn modal_coordinates(&self) -> &ModalVector<CAP> {
+        &self.c
+    }
+
+    fn prepare(&mut self, modal: &ModalExponential<CAP>) {
+        let [wx, wy] = &self.w;
+        for k in 0..modal.blocks.count {
+            let range = modal.blocks.range(k);
+            let start = range.start;
+            if range.len() == 1 {
+                let c = self.c.c.get(start).copied().unwrap_or_default();
+                let (x, y) = (
+                    wx.get(start).copied().unwrap_or_default(),
+                    wy.get(start).copied().unwrap_or_default(),
+                );
+                if let Some(u) = self.u.get_mut(start) {
+                    *u = [x * c, y * c];
+                }
+                let lambda = modal.j.get(start, start).abs();
+                let b0 = math::hypot(x.abs(), y.abs()) * c.abs();
+                if let Some(b) = self.coefficients.get_mut(start) {
+                    *b = [b0, b0 * lambda, b0 * lambda * lambda];
+                }
+                continue;
+            }
+            // v_j = |J|^j |c| (j = 0, 1, 2), then |U|^i v_j projected by |W|.
+            let p = range.len();
+            let mut v = [[0.0f64; CAP]; 3];
+            for (a, va) in v[0].iter_mut().enumerate().take(p) {
+                *va = self.c.c.get(start + a).map_or(0.0, |z| z.abs());
+            }
+            for jd in 1..3 {
+                let (prev, next) = v.split_at_mut(jd);
+                let (Some(prev), Some(next)) = (prev.last(), next.first_mut()) else {
+                    continue;
+                };
+                for (a, na) in next.iter_mut().enumerate().take(p) {
+                    *na = (a..p)
+                        .map(|b| {
+                            modal.j.get(start + a, start + b).abs()
+                                * prev.get(b).copied().unwrap_or(0.0)
+                        })
+                        .sum();
+                }
+            }
+            for i in 0..p {
+                let mut b = [0.0; 3];
+                for (jd, vj) in v.iter_mut().enumerate() {
+                    let (mut sx, mut sy) = (0.0, 0.0);
+                    for (a, &va) in vj.iter().enumerate().take(p) {
+                        sx += wx.get(start + a).map_or(0.0, |z| z.abs()) * va;
+                        sy += wy.get(start + a).map_or(0.0, |z| z.abs()) * va;
+                    }
+                    if let Some(bj) = b.get_mut(jd) {
+                        *bj = math::hypot(sx, sy);
+                    }
+                    // vj ← |U| vj for the next power.
+                    let mut next = [0.0f64; CAP];
+                    for (a, na) in next.iter_mut().enumerate().take(p) {
+                        *na = (a + 1..p)
+                            .map(|bb| {
+                                modal.j.get(start + a, start + bb).abs()
+                                    * vj.get(bb).copied().unwrap_or(0.0)
+                            })
+                            .sum();
+                    }
+                    *vj = next;
+                }
+                if let Some(slot) = self.coefficients.get_mut(start + i) {
+                    *slot = b;
+                }
+            }
+        }
+    }
+
+    /// d, d', d'' at s ≥ 0 (a negative or NaN s counts as 0; s must be finite for a finite
+    /// answer).
+    pub fn at(&self, modal: &ModalExponential<CAP>, s: f64) -> ProjectedPoint {
+        let s = span(s);
+        let mut out = [[Complex::ZERO; 2]; 3];
+        let [wx, wy] = &self.w;
+        for k in 0..modal.blocks.count {
+            let range = modal.blocks.range(k);
+            if range.len() == 1 {
+                let p = range.start;
+                let lambda = modal.j.get(p, p);
+                let e = scale_by_exp(Complex::ONE, lambda.scale(s));
+                let [ux, uy] = self.u.get(p).copied().unwrap_or_default();
+                let (vx, vy) = (ux * e, uy * e);
+                let (dx, dy) = (vx * lambda, vy * lambda);
+                let (ax, ay) = (dx * lambda, dy * lambda);
+                for (o, (x, y)) in out.iter_mut().zip([(vx, vy), (dx, dy), (ax, ay)]) {
+                    o[0] += x;
+                    o[1] += y;
+                }
+                continue;
+            }
+            let mut x = [Complex::ZERO; CAP];
+            let mut work = [Complex::ZERO; CAP];
+            for (xa, &ca) in x
+                .iter_mut()
+                .zip(self.c.c.iter().skip(range.start))
+                .take(range.len())
+            {
+                *xa = ca;
+            }
+            let shift = modal.shifts.get(k).copied().unwrap_or_default();
+            super::block::apply_block_exp(&modal.j, range.clone(), shift, s, &mut x, &mut work);
+            // x, Jx, J²x on the block, each projected.
+            let mut cur = x;
+            for o in out.iter_mut() {
+                let mut px = Complex::ZERO;
+                let mut py = Complex::ZERO;
+                for (a, &ca) in cur.iter().enumerate().take(range.len()) {
+                    px += wx.get(range.start + a).copied().unwrap_or_default() * ca;
+                    py += wy.get(range.start + a).copied().unwrap_or_default() * ca;
+                }
+                o[0] += px;
+                o[1] += py;
+                let mut next = [Complex::ZERO; CAP];
+                for (a, na) in next.iter_mut().enumerate().take(range.len()) {
+                    *na = (a..range.len()).fold(Complex::ZERO, |acc, b| {
+                        acc + modal.j.get(range.start + a, range.start + b)
+                            * cur.get(b).copied().unwrap_or_default()
+                    });
+                }
+                cur = next;
+            }
+        }
+        let re = |z: [Complex; 2]| [z[0].re, z[1].re];
+        ProjectedPoint {
+            value: re(out[0]),
+            rate: re(out[1]),
+            acceleration: re(out[2]),
+        }
+    }
+
+    /// Upper bounds of |d|, |d'|, |d''| valid for every s in [lo, hi] (module docs: the proof).
+    pub fn bound(&self, modal: &ModalExponential<CAP>, lo: f64, hi: f64) -> ProjectedBound {
+        let inf = ProjectedBound {
+            value: f64::INFINITY,
+            rate: f64::INFINITY,
+            acceleration: f64::INFINITY,
+        };
+        if !(0.0 <= lo && lo <= hi && hi < f64::INFINITY) {
+            return inf;
+        }
+        let mut sum = [0.0f64; 3];
+        for k in 0..modal.blocks.count {
+            let range = modal.blocks.range(k);
+            let alpha = range
+                .clone()
+                .map(|p| modal.j.get(p, p).re)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let mut poly = [0.0f64; 3];
+            for (i, p) in range.enumerate() {
+                let b = self
+                    .coefficients
+                    .get(p)
+                    .copied()
+                    .unwrap_or([f64::INFINITY; 3]);
+                let weight = peak(alpha, i, lo, hi);
+                for (acc, bj) in poly.iter_mut().zip(b) {
+                    *acc += bj * weight;
+                }
+            }
+            for (acc, pj) in sum.iter_mut().zip(poly) {
+                // NaN (0·∞ from an overflowing weight) becomes ∞.
+                *acc += if pj.is_nan() { f64::INFINITY } else { pj };
+            }
+        }
+        let up = |x: f64| x * (1.0 + BOUND_MARGIN);
+        ProjectedBound {
+            value: up(sum[0]),
+            rate: up(sum[1]),
+            acceleration: up(sum[2]),
+        }
+    }
+}
+
+/// max over s ∈ [lo, hi] of e^{αs} s^i / i! (0 ≤ lo ≤ hi < ∞): for i = 0 at an end; for i ≥ 1
+/// the function rises while s < i/(−α) and falls after, so its maximum is at that point clamped
+/// into [lo, hi] (at hi when α ≥ 0). Computed with one `exp` and i nonnegative factors; the
+/// rounding of the peak's location changes the value only to second order (relative
+/// i·(δs/s)² ≤ i·ε²).
+fn peak(alpha: f64, i: usize, lo: f64, hi: f64) -> f64 {
+    if i == 0 {
+        return math::exp(alpha * lo).max(math::exp(alpha * hi));
+    }
+    let at = if alpha < 0.0 {
+        let top = i as f64 / -alpha;
+        if top < lo {
+            lo
+        } else if top > hi {
+            hi
+        } else {
+            top
+        }
+    } else {
+        hi
+    };
+    let mut v = math::exp(alpha * at);
+    for k in 1..=i {
+        v *= at / k as f64;
+    }
+    v
+}
