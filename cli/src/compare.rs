@@ -11,10 +11,11 @@ use crate::limits::{LimitArgs, fits_memory};
 use crate::options::{
     SchemeArgs, TimeArgs, describe, parse_positive, parse_reference, reference_help,
 };
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_dir, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_dir};
 use crate::plot::orbit::{Orbit, OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, ENTER, EXIT, LegendMark, REFERENCE};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory::{self, dense_count, dense_times};
 
 /// Compare the analytic method with a numerical reference: switch table, largest differences,
@@ -223,5 +224,5 @@ pub fn run(args: &Args) -> Result<()> {
         svg_path.display(),
         png_path.display()
     );
-    print(&report)
+    stdio::out(&report)
 }

@@ -16,10 +16,11 @@ use crate::compare::{legend, orbit};
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{SchemeArgs, describe, parse_positive, parse_reference, reference_help};
-use crate::output::{check_distinct, ensure_dir, print};
+use crate::output::{check_distinct, ensure_dir};
 use crate::plot::orbit::{OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, REFERENCE};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory::{self, dense_times, period_times};
 
 /// Options of the main job. The defaults reproduce Fig. 2; smaller values give a quick check.
@@ -351,5 +352,5 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }

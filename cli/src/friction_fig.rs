@@ -11,9 +11,10 @@ use rotor_rub::{Event, EventKind, Options, Preset, Problem, Sample};
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs};
 use crate::options::{MethodArgs, Survey, describe};
-use crate::output::{check_distinct, ensure_dir, print};
+use crate::output::{check_distinct, ensure_dir};
 use crate::plot::orbit::{Mark, OrbitFigure, Panel, Shape};
 use crate::plot::{self, ANALYTIC, ENTER, EXIT, LegendMark, REFERENCE};
+use crate::stdio;
 use crate::trajectory;
 
 /// Marker colour of slip reversals.
@@ -188,5 +189,5 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }

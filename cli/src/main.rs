@@ -6,10 +6,10 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use rotor_rub_cli::error::{CliError, EXIT_INPUT, short_numbers};
+use rotor_rub_cli::error::{CliError, EXIT_INPUT};
 use rotor_rub_cli::{
     compare, fig2, friction_fig, merge, output, params, poincare, presets, runup, simulate,
-    spectrum, sweep,
+    spectrum, stdio, sweep,
 };
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
@@ -116,22 +116,9 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Friction(args)) => friction_fig::run(&args),
         Some(Command::Runup(args)) => runup::run(&args),
-        Some(Command::Presets) => {
-            presets::run();
-            Ok(())
-        }
-        Some(Command::Params) => {
-            params::run();
-            Ok(())
-        }
+        Some(Command::Presets) => presets::run(),
+        Some(Command::Params) => params::run(),
     }
-}
-
-/// An error line on stderr; a stderr that cannot be written changes nothing (the exit code says
-/// it all).
-fn report_error(message: &str) {
-    use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "error: {}", short_numbers(message));
 }
 
 fn main() -> ExitCode {
@@ -142,11 +129,10 @@ fn main() -> ExitCode {
             ErrorKind::DisplayHelp
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-                let _ = e.print();
-                return ExitCode::from(e.exit_code() as u8);
+                return ExitCode::from(stdio::clap_message(&e));
             }
             _ => {
-                report_error(&one_line(&e));
+                stdio::error(&one_line(&e));
                 return ExitCode::from(EXIT_INPUT);
             }
         },
@@ -155,7 +141,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             if !e.message.is_empty() {
-                report_error(&e.to_string());
+                stdio::error(&e.to_string());
             }
             ExitCode::from(e.code)
         }

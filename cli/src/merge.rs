@@ -5,9 +5,10 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{CliError, Result};
 use crate::limits::fits_memory;
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot;
 use crate::shard::{ShardInfo, checksum};
+use crate::stdio;
 use crate::sweep::{HEADER, Row, plot_rows, sort_rows};
 
 /// Join the shard files of a sharded sweep into one file, byte for byte what the unsharded sweep
@@ -213,5 +214,5 @@ pub fn run(args: &Args) -> Result<()> {
     if !args.no_plot {
         report += &format!("plot written to {} and {}\n", svg.display(), png.display());
     }
-    print(&report)
+    stdio::out(&report)
 }

@@ -11,9 +11,10 @@ use crate::analysis::lyapunov::largest_exponent;
 use crate::error::{Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe};
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::SectionFigure};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory;
 
 /// Poincaré section: the state at τ = k·2π/η for the kept forcing periods k.
@@ -112,7 +113,7 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }
 
 /// A Poincaré section and what it says.

@@ -8,8 +8,9 @@ use rotor_rub::{EventKind, Params, Regime, State};
 use crate::error::{CliError, Result, num};
 use crate::limits::LimitArgs;
 use crate::options::{MethodArgs, SingleRun, TimeArgs, describe};
-use crate::output::{CsvOut, check_distinct, commit_all, print};
+use crate::output::{CsvOut, check_distinct, commit_all};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory::{self, uniform_times};
 
 /// Header of the events file.
@@ -206,7 +207,7 @@ pub fn run(args: &Args) -> Result<()> {
             let _ = writeln!(report, "wrote {what}: {}", p.display());
         }
     }
-    print(&report)
+    stdio::out(&report)
 }
 
 /// The mean whirl rate dφ/dτ of the rotor's angle φ about the stator centre, from states at

@@ -10,10 +10,11 @@ use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe, parse_positive};
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
 use crate::plot::{self, ANALYTIC};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory;
 
 /// Amplitude spectrum from uniform samples over an integer number of forcing periods after a
@@ -167,7 +168,7 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }
 
 /// The number of samples of `periods` forcing periods at `per_period` samples each, refused when

@@ -1,20 +1,20 @@
 //! `rotor-rub sweep`: a bifurcation diagram, Poincaré points over a range of one parameter, in
 //! parallel, optionally one shard of it.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use rotor_rub::{Options, Parameter, Problem, State};
 
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
-use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent, print, warn};
+use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::BifurcationFigure};
 use crate::problem::{ProblemArgs, parse_parameter};
 use crate::shard::{ShardInfo, checksum};
+use crate::stdio;
 use crate::trajectory::{self, uniform_at};
 
 /// Header of sweep files.
@@ -151,22 +151,6 @@ pub fn sort_rows<T>(rows: &mut [T], key: impl Fn(&T) -> (f64, u64)) {
     });
 }
 
-/// A progress bar on stderr, hidden when stderr is not a terminal.
-fn progress(len: usize) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len as u64), target);
-    if let Ok(style) =
-        ProgressStyle::with_template("{bar:40} {pos}/{len} values, {elapsed} elapsed, ETA {eta}")
-    {
-        bar.set_style(style);
-    }
-    bar
-}
-
 /// Draw the bifurcation diagram of `rows` next to `csv` (uncommitted).
 pub fn plot_rows(
     rows: &[Row],
@@ -248,7 +232,10 @@ pub fn run(args: &Args) -> Result<()> {
     ensure_parent(&args.out)?;
     let mut file = AtomicFile::create(&args.out)?;
 
-    let bar = progress(problems.len());
+    let bar = stdio::progress(
+        problems.len() as u64,
+        "{bar:40} {pos}/{len} values, {elapsed} elapsed, ETA {eta}",
+    );
     let results = sections(
         &problems,
         &options,
@@ -271,7 +258,7 @@ pub fn run(args: &Args) -> Result<()> {
             ),
             // A refused run (over --max-work) stops the sweep even with --skip-errors.
             Err(e) if args.skip_errors && e.code != crate::error::EXIT_INPUT => {
-                warn(&format!("skipped {e}"));
+                stdio::warn(&format!("skipped {e}"));
             }
             Err(e) => return Err(e),
         }
@@ -319,7 +306,7 @@ pub fn run(args: &Args) -> Result<()> {
     if plot {
         report += &format!("plot written to {} and {}\n", svg.display(), png.display());
     }
-    print(&report)
+    stdio::out(&report)
 }
 
 /// The CSV text of a sweep file: header, then `rows`.

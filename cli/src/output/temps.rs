@@ -32,14 +32,8 @@ pub fn install_handler() {
         for path in live.iter() {
             let _ = std::fs::remove_file(path);
         }
-        eprintln_quiet("interrupted: unfinished output files removed");
+        crate::stdio::note("interrupted: unfinished output files removed");
         // Exit with the lock held, so no other thread creates or renames a file meanwhile.
         std::process::exit(EXIT_INTERRUPTED);
     });
-}
-
-/// A message on stderr that never fails (a closed stderr is not an error here).
-fn eprintln_quiet(message: &str) {
-    use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "{message}");
 }

@@ -12,11 +12,9 @@ mod program;
 mod report;
 
 use std::fmt::Write as _;
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rotor_rub::Method;
 use rotor_rub::speed::{RunupPreset, SpeedProfile};
 use rotor_rub::variable_speed::{
@@ -30,9 +28,10 @@ use self::program::{SpeedArgs, parse_program, program_help};
 use crate::error::{CliError, Result};
 use crate::limits::{LimitArgs, fits_memory};
 use crate::options::{MethodArgs, Survey, at_least, describe};
-use crate::output::{check_distinct, commit_all, ensure_parent, print};
+use crate::output::{check_distinct, commit_all, ensure_parent};
 use crate::plot;
 use crate::problem::ProblemArgs;
+use crate::stdio;
 
 /// Run-up and coast-down through resonance.
 #[derive(clap::Args, Debug)]
@@ -77,22 +76,6 @@ pub struct Args {
     /// Do not draw the plot
     #[arg(long)]
     pub no_plot: bool,
-}
-
-/// A progress bar on stderr, hidden when stderr is not a terminal.
-fn progress(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} forcing periods, η = {msg}, {elapsed} elapsed, ETA {eta}",
-    ) {
-        bar.set_style(style);
-    }
-    bar
 }
 
 /// The error of a run that cannot start: the runtime's message, exit 2 (bad input) unless the
@@ -173,7 +156,10 @@ pub fn run(args: &Args) -> Result<()> {
     let mut tracker = budget.run(profile.start(), profile.end());
 
     let started = Instant::now();
-    let bar = progress(count);
+    let bar = stdio::progress(
+        count,
+        "{bar:40} {pos}/{len} forcing periods, η = {msg}, {elapsed} elapsed, ETA {eta}",
+    );
     let mut rows = Vec::new();
     let mut events = Vec::new();
     let mut cursor = profile.first_piece(problem.params.phase);
@@ -239,5 +225,5 @@ pub fn run(args: &Args) -> Result<()> {
             png.display()
         );
     }
-    print(&report)
+    stdio::out(&report)
 }
