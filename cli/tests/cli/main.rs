@@ -9,5 +9,6 @@ mod pipes;
 mod reliability;
 mod resonance;
 mod runup;
+mod signals;
 mod simulate;
 mod sweep;
