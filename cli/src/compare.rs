@@ -119,7 +119,7 @@ pub fn run(args: &Args) -> Result<()> {
             ("--out-dir", svg_path.as_path()),
             ("--out-dir", png_path.as_path()),
         ],
-        &[],
+        &args.problem.input_files(),
     )?;
     let pa = trajectory::start(&problem, &analytic)?;
     let pr = trajectory::start(&problem, &reference)?;

@@ -272,7 +272,10 @@ pub fn run(args: &Args) -> Result<()> {
     )?;
     let svg = args.out_dir.join("fig2.svg");
     let png = args.out_dir.join("fig2.png");
-    check_distinct(&[("--out-dir", &svg), ("--out-dir", &png)], &[])?;
+    check_distinct(
+        &[("--out-dir", &svg), ("--out-dir", &png)],
+        &args.problem.input_files(),
+    )?;
     let base = args.problem.build()?;
     let analytic = args.scheme.options(Method::Analytic)?;
     let reference = Options {

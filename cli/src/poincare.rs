@@ -63,7 +63,7 @@ pub fn run(args: &Args) -> Result<()> {
             ("the plot", svg.as_path()),
             ("the plot", png.as_path()),
         ],
-        &[],
+        &args.problem.input_files(),
     )?;
     ensure_parent(&args.out)?;
     let mut out = CsvOut::create(&args.out, &["period", "x", "y", "vx", "vy"])?;

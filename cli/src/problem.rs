@@ -177,6 +177,15 @@ enum Source {
 }
 
 impl ProblemArgs {
+    /// The files the problem is read from (the config), with the flag naming each: no output may
+    /// be one of them ([`crate::output::check_distinct`]).
+    pub fn input_files(&self) -> Vec<(&'static str, &Path)> {
+        self.config
+            .iter()
+            .map(|path| ("--config", path.as_path()))
+            .collect()
+    }
+
     /// The problem with every layer applied, validated.
     pub fn build(&self) -> Result<Problem> {
         self.build_with(&[])

@@ -60,7 +60,7 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(p) = &args.samples {
         outputs.push(("--samples", p.as_path()));
     }
-    check_distinct(&outputs, &[])?;
+    check_distinct(&outputs, &args.problem.input_files())?;
     let count = if args.samples.is_some() {
         args.sample_count.unwrap_or(1001)
     } else {

@@ -74,7 +74,7 @@ pub fn run(args: &Args) -> Result<()> {
             ("the plot", svg.as_path()),
             ("the plot", png.as_path()),
         ],
-        &[],
+        &args.problem.input_files(),
     )?;
     ensure_parent(&args.out)?;
     let header: &[&str] = if args.whirl {

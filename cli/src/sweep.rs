@@ -216,7 +216,7 @@ pub fn run(args: &Args) -> Result<()> {
     if plot {
         outputs.extend([("the plot", svg.as_path()), ("the plot", png.as_path())]);
     }
-    check_distinct(&outputs, &[])?;
+    check_distinct(&outputs, &args.problem.input_files())?;
     // Check every value before anything runs or any file is created.
     let problems = (0..count)
         .map(|k| {

@@ -131,7 +131,11 @@ pub fn run(args: &Args) -> Result<()> {
     if !args.no_plot {
         outputs.extend([("the plot", svg.as_path()), ("the plot", png.as_path())]);
     }
-    check_distinct(&outputs, &[])?;
+    let mut inputs = args.problem.input_files();
+    if let Some(profile) = &args.speed.profile {
+        inputs.push(("--profile", profile.as_path()));
+    }
+    check_distinct(&outputs, &inputs)?;
 
     let mut propagator =
         VariableSpeedPropagator::new(&problem, profile, &options).map_err(cannot_start)?;

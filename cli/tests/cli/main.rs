@@ -5,6 +5,7 @@ mod common;
 mod errors;
 mod fig2;
 mod friction;
+mod inputs;
 mod pipes;
 mod reliability;
 mod resonance;
