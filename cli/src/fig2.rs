@@ -48,11 +48,11 @@ pub struct Args {
     pub speeds: Vec<f64>,
 
     /// First forcing period plotted (the transient before it is not shown)
-    #[arg(long, value_name = "P", default_value_t = 200)]
+    #[arg(long, value_name = "P", default_value_t = 200, value_parser = crate::options::at_least(0))]
     pub plot_from: u64,
 
     /// Last forcing period plotted
-    #[arg(long, value_name = "P", default_value_t = 260)]
+    #[arg(long, value_name = "P", default_value_t = 260, value_parser = crate::options::at_least(0))]
     pub plot_to: u64,
 
     /// Poincaré section length in forcing periods, from --plot-from on (classifies the response)
@@ -65,7 +65,7 @@ pub struct Args {
 
     /// Switch times are compared over the first this many forcing periods (before chaos
     /// separates the two runs)
-    #[arg(long, value_name = "P", default_value_t = 20)]
+    #[arg(long, value_name = "P", default_value_t = 20, value_parser = crate::options::at_least(0))]
     pub match_periods: u64,
 
     /// Directory for fig2.svg and fig2.png

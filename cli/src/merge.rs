@@ -1,10 +1,11 @@
 //! `rotor-rub merge`: join sweep shards into the file the unsharded sweep writes.
 
 use std::fs;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use crate::error::{CliError, Result};
-use crate::limits::fits_memory;
+use crate::limits::{fits_memory, reserve};
 use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot;
 use crate::shard::{ShardInfo, checksum};
@@ -50,7 +51,15 @@ fn read_shard(path: &Path) -> Result<Shard> {
         .map_err(|e| fail(format!("cannot read: {e}")))?
         .len();
     fits_memory("shard file size in bytes", size, 3)?;
-    let bytes = fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let mut bytes = Vec::new();
+    reserve(
+        &mut bytes,
+        usize::try_from(size).unwrap_or(usize::MAX),
+        "shard file size in bytes",
+    )?;
+    fs::File::open(path)
+        .and_then(|mut file| file.read_to_end(&mut bytes))
+        .map_err(|e| fail(format!("cannot read: {e}")))?;
     let split = bytes
         .iter()
         .position(|&b| b == b'\n')
@@ -96,6 +105,7 @@ fn read_shard(path: &Path) -> Result<Shard> {
             number(4)?,
             number(5)?,
         );
+        reserve(&mut rows, 1, "rows")?;
         rows.push((record, row));
     }
     if rows.len() as u64 != info.rows {

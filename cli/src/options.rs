@@ -33,15 +33,30 @@ pub fn parse_finite(text: &str) -> Result<f64, String> {
     }
 }
 
-/// An integer >= `min`, as a clap value parser.
+/// An integer >= `min`, as a clap value parser; also in exponent form (`1e8`), as `--max-work`.
 pub fn at_least(min: u64) -> impl Fn(&str) -> Result<u64, String> + Clone + Send + Sync + 'static {
-    move |text: &str| match text.trim().parse::<u64>() {
-        Ok(n) if n >= min => Ok(n),
-        Ok(n) => Err(format!(
-            "{n} is out of range: it must be an integer >= {min}"
-        )),
-        Err(_) => Err(format!("'{text}' is not an integer >= {min}")),
+    move |text: &str| {
+        let n = count(text).ok_or_else(|| format!("'{text}' is not an integer >= {min}"))?;
+        if n >= min {
+            Ok(n)
+        } else {
+            Err(format!(
+                "{n} is out of range: it must be an integer >= {min}"
+            ))
+        }
     }
+}
+
+/// A count: a non-negative integer, written out or in exponent form (`1e8`, `2.5e3`), up to
+/// u64::MAX.
+fn count(text: &str) -> Option<u64> {
+    let text = text.trim();
+    if let Ok(n) = text.parse::<u64>() {
+        return Some(n);
+    }
+    let x: f64 = text.parse().ok()?;
+    // 2^64 is the first float past u64::MAX; integral floats below it convert exactly.
+    (x >= 0.0 && x.fract() == 0.0 && x < 18_446_744_073_709_551_616.0).then_some(x as u64)
 }
 
 /// A method by name.
@@ -315,6 +330,19 @@ mod tests {
                 .unwrap_err();
             assert_eq!(e.code, crate::error::EXIT_INPUT);
             assert!(e.message.contains(&format!("{step:e}")), "{}", e.message);
+        }
+    }
+
+    #[test]
+    fn counts_take_exponent_form() {
+        let parse = at_least(2);
+        assert_eq!(parse("1e8"), Ok(100_000_000));
+        assert_eq!(parse("2.5e3"), Ok(2500));
+        assert_eq!(parse(" 7 "), Ok(7));
+        assert_eq!(parse("18446744073709551615"), Ok(u64::MAX));
+        assert!(parse("1").unwrap_err().contains("1 is out of range"));
+        for bad in ["1.5", "-1", "1e20", "nan", "inf", "", "two"] {
+            assert!(parse(bad).is_err(), "{bad}");
         }
     }
 

@@ -30,7 +30,7 @@ pub struct Args {
     pub limits: LimitArgs,
 
     /// Forcing periods skipped as transient
-    #[arg(long, value_name = "P", default_value_t = 200)]
+    #[arg(long, value_name = "P", default_value_t = 200, value_parser = crate::options::at_least(0))]
     pub transient: u64,
 
     /// Forcing periods kept (section points), >= 1

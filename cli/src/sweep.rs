@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use rotor_rub::{Options, Parameter, Problem, State};
 
 use crate::error::{CliError, Result, num};
-use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory, reserve};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
 use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::BifurcationFigure};
@@ -68,7 +68,7 @@ pub struct Args {
     pub steps: u64,
 
     /// Forcing periods skipped as transient before the Poincaré points are kept
-    #[arg(long, value_name = "P", default_value_t = 200)]
+    #[arg(long, value_name = "P", default_value_t = 200, value_parser = crate::options::at_least(0))]
     pub transient: u64,
 
     /// Forcing periods kept: Poincaré points per value
@@ -218,16 +218,17 @@ pub fn run(args: &Args) -> Result<()> {
     }
     check_distinct(&outputs, &args.problem.input_files())?;
     // Check every value before anything runs or any file is created.
-    let problems = (0..count)
-        .map(|k| {
-            let v = uniform_at(args.from, args.to, args.steps, shard + k * shards);
-            let mut p = base;
-            args.param.set(&mut p, v);
-            p.validate().map(|()| (v, p)).map_err(|e| {
-                CliError::input(format!("--param {} = {} (swept): {e}", args.param, num(v)))
-            })
-        })
-        .collect::<Result<Vec<(f64, Problem)>>>()?;
+    let mut problems: Vec<(f64, Problem)> = Vec::new();
+    reserve(&mut problems, count as usize, "--steps (values run here)")?;
+    for k in 0..count {
+        let v = uniform_at(args.from, args.to, args.steps, shard + k * shards);
+        let mut p = base;
+        args.param.set(&mut p, v);
+        p.validate().map_err(|e| {
+            CliError::input(format!("--param {} = {} (swept): {e}", args.param, num(v)))
+        })?;
+        problems.push((v, p));
+    }
     trajectory::start(&base, &options)?;
     ensure_parent(&args.out)?;
     let mut file = AtomicFile::create(&args.out)?;
@@ -248,6 +249,7 @@ pub fn run(args: &Args) -> Result<()> {
     bar.finish_and_clear();
 
     let mut rows = Vec::new();
+    reserve(&mut rows, rows_planned as usize, "--steps × --keep (rows)")?;
     for ((v, _), r) in problems.iter().zip(results) {
         match r {
             Ok(points) => rows.extend(

@@ -26,7 +26,7 @@ use self::analysis::Branch;
 use self::files::{RunEvent, events_beside, events_file, rows_file};
 use self::program::{SpeedArgs, parse_program, program_help};
 use crate::error::{CliError, Result};
-use crate::limits::{LimitArgs, fits_memory};
+use crate::limits::{LimitArgs, fits_memory, reserve};
 use crate::options::{MethodArgs, Survey, at_least, describe};
 use crate::output::{check_distinct, commit_all, ensure_parent};
 use crate::plot;
@@ -173,6 +173,7 @@ pub fn run(args: &Args) -> Result<()> {
         for event in pending.drain(..) {
             tracker.switch(event.time)?;
             cursor = profile.piece_holding(cursor, event.time);
+            reserve(&mut events, 1, "switches kept")?;
             events.push(RunEvent {
                 event,
                 speed_ratio: cursor.speed_at(event.time),
@@ -182,6 +183,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         bar.set_message(format!("{:.3}", row.speed_ratio));
         bar.inc(1);
+        reserve(&mut rows, 1, "forcing periods")?;
         rows.push(row);
     }
     bar.finish_and_clear();

@@ -6,6 +6,7 @@ mod errors;
 mod fig2;
 mod friction;
 mod inputs;
+mod memory;
 mod pipes;
 mod reliability;
 mod resonance;
