@@ -15,7 +15,9 @@ use crate::analysis::switches::Matching;
 use crate::compare::{legend, orbit};
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
-use crate::options::{SchemeArgs, describe, parse_positive, parse_reference, reference_help};
+use crate::options::{
+    SchemeArgs, describe, parse_positive, parse_reference, reference_help, reference_options,
+};
 use crate::output::{check_distinct, ensure_dir};
 use crate::plot::orbit::{OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, REFERENCE};
@@ -248,7 +250,15 @@ pub fn run(args: &Args) -> Result<()> {
             args.plot_to, args.plot_from
         )));
     }
-    add_counts(("--plot-from", args.plot_from), ("--section", args.section))?;
+    let end_period =
+        add_counts(("--plot-from", args.plot_from), ("--section", args.section))?.max(args.plot_to);
+    if args.match_periods > end_period {
+        return Err(CliError::input(format!(
+            "--match-periods {} is past the end of the runs ({end_period} forcing periods): it \
+             must be at most {end_period}",
+            args.match_periods
+        )));
+    }
     add_counts(
         ("--plot-from", args.plot_from),
         ("--lyapunov", args.lyapunov),
@@ -277,11 +287,8 @@ pub fn run(args: &Args) -> Result<()> {
         &args.problem.input_files(),
     )?;
     let base = args.problem.build()?;
-    let analytic = args.scheme.options(Method::Analytic)?;
-    let reference = Options {
-        tol: args.reference_tol,
-        ..Options::with_method(args.reference)
-    };
+    let analytic = args.scheme.cli_options(Method::Analytic)?;
+    let reference = reference_options(args.reference, args.reference_tol)?;
     let options = [&analytic, &reference];
     let problems = args
         .speeds

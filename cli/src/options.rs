@@ -2,7 +2,40 @@
 
 use crate::error::CliError;
 use clap::Args;
-use rotor_rub::{ContactScheme, Method, Options, Params};
+use rotor_rub::{ContactScheme, Method, Options, Params, PropagationError};
+
+/// The command line's flags for the method options the runtime names (`tol`, `step`).
+pub const FLAGS: &[(&str, &str)] = &[("tol", "--tol"), ("step", "--step")];
+
+/// A method option out of range (the runtime's [`PropagationError::InvalidOption`]) as an input
+/// error led by the flag that set it, from `flags` (option name, flag):
+/// `--reference-tol: tol = 5e-1 is out of range for dop853: it must be in [1e-14, 1e-3]`.
+pub fn flagged(e: PropagationError, flags: &[(&str, &str)]) -> CliError {
+    let flag = match e {
+        PropagationError::InvalidOption { what, .. } => flags
+            .iter()
+            .find(|(option, _)| *option == what)
+            .map(|(_, flag)| *flag),
+        _ => None,
+    };
+    match flag {
+        Some(flag) => CliError::input(format!("{flag}: {e}")),
+        None => CliError::input(e.to_string()),
+    }
+}
+
+/// The reference method's options (`--reference`, `--reference-tol`), validated: a tolerance out
+/// of the method's range is an input error naming `--reference-tol`.
+pub fn reference_options(method: Method, tol: Option<f64>) -> Result<Options, CliError> {
+    let options = Options {
+        tol,
+        ..Options::with_method(method)
+    };
+    options
+        .validate()
+        .map_err(|e| flagged(e, &[("tol", "--reference-tol")]))?;
+    Ok(options)
+}
 
 /// A finite number > 0.
 pub fn parse_positive(text: &str) -> Result<f64, String> {
@@ -168,10 +201,28 @@ pub struct SchemeArgs {
 
 impl SchemeArgs {
     /// Library options for `method` with these settings, validated (a tolerance or step out of
-    /// its range is an input error naming the value and the range). `--contact-scheme` and
-    /// `--step` belong to methods with a contact scheme: given with another method they are an
-    /// input error, not ignored.
+    /// its range is an input error naming the option as the runtime does, `tol = …`, the value
+    /// and the range: the Python keywords' message). `--contact-scheme` and `--step` belong to
+    /// methods with a contact scheme: given with another method they are an input error, not
+    /// ignored.
     pub fn options(&self, method: Method) -> Result<Options, CliError> {
+        let options = self.unchecked(method)?;
+        options
+            .validate()
+            .map_err(|e| CliError::input(e.to_string()))?;
+        Ok(options)
+    }
+
+    /// [`SchemeArgs::options`] with a value out of range named by its flag ([`FLAGS`]), as the
+    /// command line reports it.
+    pub fn cli_options(&self, method: Method) -> Result<Options, CliError> {
+        let options = self.unchecked(method)?;
+        options.validate().map_err(|e| flagged(e, FLAGS))?;
+        Ok(options)
+    }
+
+    /// The options, with only the method mismatch checked.
+    fn unchecked(&self, method: Method) -> Result<Options, CliError> {
         if !method.info().contact_scheme {
             let flag = match (self.contact_scheme, self.step) {
                 (Some(_), _) => Some("--contact-scheme"),
@@ -185,16 +236,12 @@ impl SchemeArgs {
                 )));
             }
         }
-        let options = Options {
+        Ok(Options {
             method,
             tol: self.tol,
             contact_scheme: self.contact_scheme.unwrap_or(ContactScheme::Exprb43),
             step: self.step,
-        };
-        options
-            .validate()
-            .map_err(|e| CliError::input(e.to_string()))?;
-        Ok(options)
+        })
     }
 }
 
@@ -240,9 +287,9 @@ pub struct MethodArgs<D: DefaultMethod> {
 
 impl<D: DefaultMethod> MethodArgs<D> {
     /// The library options (an input error for analytic-only flags with another method, or for
-    /// a tolerance or step out of range).
+    /// a tolerance or step out of range, naming its flag).
     pub fn options(&self) -> Result<Options, CliError> {
-        self.scheme.options(self.method)
+        self.scheme.cli_options(self.method)
     }
 }
 
@@ -323,7 +370,18 @@ mod tests {
             assert!(e.message.contains("1e1"), "{}", e.message);
             assert!(e.message.contains(&range.to_string()), "{}", e.message);
             assert!(args(Some(range.max), None).options(m).is_ok());
+            // The command line names the flag, the library call the option.
+            let e = args(Some(10.0), None).cli_options(m).unwrap_err();
+            assert!(e.message.starts_with("--tol: tol = 1e1"), "{}", e.message);
         }
+        let e = reference_options(Method::Dop853, Some(0.5)).unwrap_err();
+        assert!(
+            e.message
+                .starts_with("--reference-tol: tol = 5e-1 is out of range for dop853"),
+            "{}",
+            e.message
+        );
+        assert!(reference_options(Method::Rk45, Some(1e-4)).is_ok());
         for step in [1e-300, 1e300] {
             let e = args(None, Some(step))
                 .options(Method::Analytic)

@@ -89,15 +89,25 @@ pub struct Config {
     pub values: Vec<(Parameter, f64)>,
 }
 
-/// Parse a config file's text; the message says what is wrong and on which line.
+/// Parse a config file's text; the message says what is wrong and on which line (a duplicate
+/// key: which key, on the line of its second definition).
 pub fn parse_config(text: &str) -> Result<Config, String> {
     let table: toml::Table = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| {
-            text.get(..s.start.min(text.len()))
-                .map_or(1, |head| head.lines().count().max(1))
+        let span = e.span();
+        // The line holding the span's start: one more than the line breaks before it.
+        let line = span.as_ref().map(|s| {
+            let head = text.get(..s.start.min(text.len())).unwrap_or("");
+            head.matches('\n').count() + 1
         });
         let at = line.map(|l| format!(" (line {l})")).unwrap_or_default();
-        format!("not valid TOML{at}: {}", e.message().trim())
+        let message = e.message().trim();
+        let key = span
+            .and_then(|s| text.get(s))
+            .filter(|key| message == "duplicate key" && !key.is_empty() && !key.contains('\n'));
+        match key {
+            Some(key) => format!("not valid TOML{at}: {message} `{}`", key.trim()),
+            None => format!("not valid TOML{at}: {message}"),
+        }
     })?;
     let mut config = Config {
         preset: None,

@@ -15,19 +15,19 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use rotor_rub::Method;
 use rotor_rub::speed::{RunupPreset, SpeedProfile};
 use rotor_rub::variable_speed::{
-    DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SpeedDirection, VariableSpeedError,
-    VariableSpeedOptions, VariableSpeedPropagator,
+    DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SPEED_HOLDS_RANGE, SpeedDirection,
+    VariableSpeedError, VariableSpeedOptions, VariableSpeedPropagator,
 };
+use rotor_rub::{Method, Propagate, PropagationError};
 
 use self::analysis::Branch;
 use self::files::{RunEvent, events_beside, events_file, rows_file};
 use self::program::{SpeedArgs, parse_program, program_help};
 use crate::error::{CliError, Result};
 use crate::limits::{LimitArgs, fits_memory, reserve};
-use crate::options::{MethodArgs, Survey, at_least, describe};
+use crate::options::{MethodArgs, Survey, at_least, describe, flagged};
 use crate::output::{check_distinct, commit_all, ensure_parent};
 use crate::plot;
 use crate::problem::ProblemArgs;
@@ -68,8 +68,9 @@ pub struct Args {
     #[arg(long, value_name = "FILE.csv", default_value = "out/runup.csv")]
     pub out: PathBuf,
 
-    /// Every switch: time, speed_ratio, period, direction, kind, x, y, vx, vy [default:
-    /// <out's stem>-events.csv next to --out]
+    /// Every switch of the run: time, speed_ratio, period, direction, kind, x, y, vx, vy (those
+    /// after the last whole forcing period carry the next period's number, which --out has no
+    /// row for) [default: <out's stem>-events.csv next to --out]
     #[arg(long, value_name = "FILE.csv")]
     pub events: Option<PathBuf>,
 
@@ -87,7 +88,8 @@ fn cannot_start(e: VariableSpeedError) -> CliError {
     }
 }
 
-/// The held-speed steps per period (an input error for another method or out of range).
+/// The held-speed steps per period (an input error for another method or out of range, naming
+/// `--speed-holds`).
 fn speed_holds(args: &Args) -> Result<u32> {
     match args.speed_holds {
         None => Ok(DEFAULT_SPEED_HOLDS),
@@ -95,12 +97,16 @@ fn speed_holds(args: &Args) -> Result<u32> {
             "--speed-holds applies only to --method analytic, not to --method {}",
             args.method.method.name()
         ))),
-        Some(n) => u32::try_from(n).map_err(|_| {
-            CliError::input(format!(
-                "--speed-holds {n} is out of range: it must be in {}",
-                rotor_rub::variable_speed::SPEED_HOLDS_RANGE
-            ))
-        }),
+        Some(n) if SPEED_HOLDS_RANGE.contains(n as f64) => Ok(n as u32),
+        Some(n) => Err(flagged(
+            PropagationError::InvalidOption {
+                method: Method::Analytic.name(),
+                what: "speed_holds",
+                value: n as f64,
+                valid: SPEED_HOLDS_RANGE,
+            },
+            &[("speed_holds", "--speed-holds")],
+        )),
     }
 }
 
@@ -187,6 +193,36 @@ pub fn run(args: &Args) -> Result<()> {
         rows.push(row);
     }
     bar.finish_and_clear();
+    // The switches after the last whole forcing period, in the partial one the per-period file
+    // has no row for: the events file holds every switch of the run. A remainder within
+    // rounding of a whole turn (less than 1e-9 turns) was counted as that turn by `Revolutions`.
+    let start = propagator.time();
+    let phase_at = |t: f64| profile.piece_holding(cursor, t).phase_at(t);
+    if phase_at(profile.end()) - phase_at(start) > 1e-9 * std::f64::consts::TAU {
+        let speed_at = |t: f64| profile.piece_holding(cursor, t).speed_at(t);
+        let change = speed_at(profile.end()) - speed_at(start);
+        let direction = if change > 0.0 {
+            SpeedDirection::Up
+        } else if change < 0.0 {
+            SpeedDirection::Down
+        } else {
+            SpeedDirection::Hold
+        };
+        while let Some(event) = propagator
+            .advance(profile.end())
+            .map_err(|e| CliError::propagation("", e))?
+        {
+            tracker.switch(event.time)?;
+            cursor = profile.piece_holding(cursor, event.time);
+            reserve(&mut events, 1, "switches kept")?;
+            events.push(RunEvent {
+                event,
+                speed_ratio: cursor.speed_at(event.time),
+                period: count,
+                direction,
+            });
+        }
+    }
     let elapsed = started.elapsed();
 
     let up = Branch::of(&rows, SpeedDirection::Up);
