@@ -28,12 +28,14 @@ numerical orbits for η = 1 … 3.5 with the paper preset, out/fig2.svg and out/
 table of switches, response class, Lyapunov exponent and run time per η.
 
 Invalid input exits with code 2, a failed propagation or I/O error with code 1; no output file \
-is created or changed by a failed run.";
+is created or changed by a failed run. A closed pipe on stdout ends a command quietly with code \
+141; SIGINT, SIGTERM and SIGHUP with 130, 143 and 129, unfinished output files removed.";
 
 /// Shown under every subcommand's help.
 const UNITS: &str = "Units (dimensionless, as in the paper): lengths in radial clearances, time τ = ω_n t, \
 speed ratio η = Ω/ω_n, forcing period 2π/η, stiffnesses relative to the rotor stiffness. \
-Exit codes: 2 invalid input, 1 failed run; a failed run leaves no output file.";
+Exit codes: 2 invalid input, 1 failed run, 141 closed stdout pipe, 128 + N signal N; a failed or \
+interrupted run leaves no output file.";
 
 #[derive(Parser, Debug)]
 #[command(name = "rotor-rub", version, about = ABOUT, long_about = LONG_ABOUT)]
