@@ -165,7 +165,7 @@ fn every_command_ends_quietly_on_a_closed_stdout() {
         assert!(stderr.is_empty(), "{args:?}: {stderr}");
         // The reader leaves after a few bytes, racing the writer (the issue's `head -c 10`).
         let cheap = matches!(args[0], "presets" | "params");
-        for _ in 0..if cheap { 30 } else { 3 } {
+        for _ in 0..if cheap { 30 } else { 5 } {
             let (code, stderr) = closed_stdout(dir.path(), args, Some(10));
             no_panic(args, code, &stderr);
         }
