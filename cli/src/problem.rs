@@ -114,28 +114,50 @@ pub fn parse_config(text: &str) -> Result<Config, String> {
         values: Vec::new(),
     };
     for (key, value) in &table {
+        // A message about one key says on which line it is set.
+        let at = |m: String| match key_line(text, key) {
+            Some(line) => format!("line {line}: {m}"),
+            None => m,
+        };
         if key == "preset" {
             let name = value
                 .as_str()
-                .ok_or("preset must be a string naming a preset")?;
-            config.preset = Some(parse_preset(name)?);
+                .ok_or_else(|| at("preset must be a string naming a preset".into()))?;
+            config.preset = Some(parse_preset(name).map_err(at)?);
             continue;
         }
-        let parameter = parse_parameter(key)?;
+        let parameter = parse_parameter(key).map_err(at)?;
         let number = match value {
             toml::Value::Float(x) => *x,
             // Exact up to 2^53; larger integers are far outside every range anyway.
             toml::Value::Integer(i) => *i as f64,
             other => {
-                return Err(format!(
+                return Err(at(format!(
                     "{parameter} must be a number, not the {} {other}",
                     other.type_str()
-                ));
+                )));
             }
         };
         config.values.push((parameter, number));
     }
     Ok(config)
+}
+
+/// The line (from 1) of a config text where the top-level `key` is set (`key = …`, `"key" = …`,
+/// `'key' = …`): top-level keys come before any table, so the first such line is the one.
+fn key_line(text: &str, key: &str) -> Option<usize> {
+    let sets_key = |line: &str| {
+        let Some((left, _)) = line.split_once('=') else {
+            return false;
+        };
+        let left = left.trim();
+        let unquoted = ['"', '\'']
+            .iter()
+            .find_map(|q| left.strip_prefix(*q).and_then(|l| l.strip_suffix(*q)))
+            .unwrap_or(left);
+        unquoted == key
+    };
+    text.split('\n').position(sets_key).map(|i| i + 1)
 }
 
 /// Read an input file (a `kind`, e.g. `config`, written as `format`, e.g. `TOML`): a regular
