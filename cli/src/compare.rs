@@ -6,15 +6,17 @@ use std::path::PathBuf;
 use rotor_rub::{Event, EventKind, Method, Options};
 
 use crate::analysis::switches::{MATCH_GAP, Matching};
-use crate::error::{Result, num};
+use crate::error::{CliError, Result, num};
 use crate::limits::{LimitArgs, fits_memory};
 use crate::options::{
     SchemeArgs, TimeArgs, describe, parse_positive, parse_reference, reference_help,
+    reference_options,
 };
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_dir, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_dir};
 use crate::plot::orbit::{Orbit, OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, ENTER, EXIT, LegendMark, REFERENCE};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory::{self, dense_count, dense_times};
 
 /// Compare the analytic method with a numerical reference: switch table, largest differences,
@@ -44,7 +46,8 @@ pub struct Args {
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out_dir: PathBuf,
 
-    /// Plot the orbits from this forcing period on (0 = from the start)
+    /// Plot the orbits from this forcing period on (0 = from the start), inside the run: in
+    /// [0, the run's length in forcing periods)
     #[arg(long, value_name = "P", default_value_t = 0.0, value_parser = crate::options::parse_finite, allow_hyphen_values = true)]
     pub plot_from: f64,
 }
@@ -94,13 +97,18 @@ fn fmt_opt(x: Option<f64>) -> String {
 pub fn run(args: &Args) -> Result<()> {
     let problem = args.problem.build()?;
     let end = args.time.end_time(&problem.params);
-    let analytic = args.scheme.options(Method::Analytic)?;
-    let reference = Options {
-        tol: args.reference_tol,
-        ..Options::with_method(args.reference)
-    };
+    let analytic = args.scheme.cli_options(Method::Analytic)?;
+    let reference = reference_options(args.reference, args.reference_tol)?;
     let period = problem.params.forcing_period();
-    let from = (args.plot_from * period).clamp(0.0, end);
+    let periods = (end - problem.start_time) / period;
+    if !(0.0..periods).contains(&args.plot_from) {
+        return Err(CliError::input(format!(
+            "--plot-from {} is outside the run: it must be in [0, {}) (forcing periods)",
+            num(args.plot_from),
+            num(periods)
+        )));
+    }
+    let from = problem.start_time + args.plot_from * period;
     let orbit_samples = dense_count(from, end, period, 100);
     // Both runs keep their orbit samples; the plot holds them again.
     fits_memory(
@@ -118,7 +126,7 @@ pub fn run(args: &Args) -> Result<()> {
             ("--out-dir", svg_path.as_path()),
             ("--out-dir", png_path.as_path()),
         ],
-        &[],
+        &args.problem.input_files(),
     )?;
     let pa = trajectory::start(&problem, &analytic)?;
     let pr = trajectory::start(&problem, &reference)?;
@@ -223,5 +231,5 @@ pub fn run(args: &Args) -> Result<()> {
         svg_path.display(),
         png_path.display()
     );
-    print(&report)
+    stdio::out(&report)
 }

@@ -15,11 +15,14 @@ use crate::analysis::switches::Matching;
 use crate::compare::{legend, orbit};
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
-use crate::options::{SchemeArgs, describe, parse_positive, parse_reference, reference_help};
-use crate::output::{check_distinct, ensure_dir, print};
+use crate::options::{
+    SchemeArgs, describe, parse_positive, parse_reference, reference_help, reference_options,
+};
+use crate::output::{check_distinct, ensure_dir};
 use crate::plot::orbit::{OrbitFigure, Panel};
 use crate::plot::{self, ANALYTIC, REFERENCE};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory::{self, dense_times, period_times};
 
 /// Options of the main job. The defaults reproduce Fig. 2; smaller values give a quick check.
@@ -47,11 +50,11 @@ pub struct Args {
     pub speeds: Vec<f64>,
 
     /// First forcing period plotted (the transient before it is not shown)
-    #[arg(long, value_name = "P", default_value_t = 200)]
+    #[arg(long, value_name = "P", default_value_t = 200, value_parser = crate::options::at_least(0))]
     pub plot_from: u64,
 
     /// Last forcing period plotted
-    #[arg(long, value_name = "P", default_value_t = 260)]
+    #[arg(long, value_name = "P", default_value_t = 260, value_parser = crate::options::at_least(0))]
     pub plot_to: u64,
 
     /// Poincaré section length in forcing periods, from --plot-from on (classifies the response)
@@ -64,7 +67,7 @@ pub struct Args {
 
     /// Switch times are compared over the first this many forcing periods (before chaos
     /// separates the two runs)
-    #[arg(long, value_name = "P", default_value_t = 20)]
+    #[arg(long, value_name = "P", default_value_t = 20, value_parser = crate::options::at_least(0))]
     pub match_periods: u64,
 
     /// Directory for fig2.svg and fig2.png
@@ -247,7 +250,15 @@ pub fn run(args: &Args) -> Result<()> {
             args.plot_to, args.plot_from
         )));
     }
-    add_counts(("--plot-from", args.plot_from), ("--section", args.section))?;
+    let end_period =
+        add_counts(("--plot-from", args.plot_from), ("--section", args.section))?.max(args.plot_to);
+    if args.match_periods > end_period {
+        return Err(CliError::input(format!(
+            "--match-periods {} is past the end of the runs ({end_period} forcing periods): it \
+             must be at most {end_period}",
+            args.match_periods
+        )));
+    }
     add_counts(
         ("--plot-from", args.plot_from),
         ("--lyapunov", args.lyapunov),
@@ -271,13 +282,13 @@ pub fn run(args: &Args) -> Result<()> {
     )?;
     let svg = args.out_dir.join("fig2.svg");
     let png = args.out_dir.join("fig2.png");
-    check_distinct(&[("--out-dir", &svg), ("--out-dir", &png)], &[])?;
+    check_distinct(
+        &[("--out-dir", &svg), ("--out-dir", &png)],
+        &args.problem.input_files(),
+    )?;
     let base = args.problem.build()?;
-    let analytic = args.scheme.options(Method::Analytic)?;
-    let reference = Options {
-        tol: args.reference_tol,
-        ..Options::with_method(args.reference)
-    };
+    let analytic = args.scheme.cli_options(Method::Analytic)?;
+    let reference = reference_options(args.reference, args.reference_tol)?;
     let options = [&analytic, &reference];
     let problems = args
         .speeds
@@ -351,5 +362,5 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }

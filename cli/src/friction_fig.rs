@@ -9,11 +9,12 @@ use plotters::style::RGBColor;
 use rotor_rub::{Event, EventKind, Options, Preset, Problem, Sample};
 
 use crate::error::{CliError, Result, num};
-use crate::limits::{Budget, LimitArgs};
+use crate::limits::{Budget, LimitArgs, fits_memory};
 use crate::options::{MethodArgs, Survey, describe};
-use crate::output::{check_distinct, ensure_dir, print};
+use crate::output::{check_distinct, ensure_dir};
 use crate::plot::orbit::{Mark, OrbitFigure, Panel, Shape};
 use crate::plot::{self, ANALYTIC, ENTER, EXIT, LegendMark, REFERENCE};
+use crate::stdio;
 use crate::trajectory;
 
 /// Marker colour of slip reversals.
@@ -43,11 +44,11 @@ pub struct Args {
     pub limits: LimitArgs,
 
     /// First forcing period plotted (0: from the start, where dry whip sets in)
-    #[arg(long, value_name = "P", default_value_t = 0)]
+    #[arg(long, value_name = "P", default_value_t = 0, value_parser = crate::options::at_least(0))]
     pub plot_from: u64,
 
     /// Last forcing period plotted
-    #[arg(long, value_name = "P", default_value_t = 25)]
+    #[arg(long, value_name = "P", default_value_t = 25, value_parser = crate::options::at_least(0))]
     pub plot_to: u64,
 
     /// Directory for friction.svg and friction.png
@@ -77,16 +78,20 @@ pub fn friction_marks(events: &[Event], window: &std::ops::RangeInclusive<f64>) 
     .collect()
 }
 
-/// One run's orbit samples and events over the plotted window.
+/// Orbit samples per plotted forcing period.
+const SAMPLES_PER_PERIOD: u64 = 200;
+
+/// The orbit samples of one run over the plotted window, `n` + 1 of them (`n` =
+/// [`SAMPLES_PER_PERIOD`] × the plotted periods, checked by the caller), and its events.
 fn run_one(
     problem: &Problem,
     options: &Options,
     args: &Args,
+    n: u64,
     budget: &Budget,
 ) -> Result<(Vec<Sample>, Vec<Event>)> {
     let period = problem.params.forcing_period();
     let (from, to) = (args.plot_from as f64 * period, args.plot_to as f64 * period);
-    let n = ((args.plot_to - args.plot_from) * 200).max(2);
     budget.plan("orbit samples", n)?;
     let times = (0..=n).map(|k| from + (to - from) * k as f64 / n as f64);
     let propagator = trajectory::start(problem, options)?;
@@ -103,6 +108,23 @@ pub fn run(args: &Args) -> Result<()> {
             args.plot_to, args.plot_from
         )));
     }
+    let periods = args.plot_to - args.plot_from;
+    let n = periods
+        .checked_mul(SAMPLES_PER_PERIOD)
+        .filter(|n| *n < u64::MAX)
+        .ok_or_else(|| {
+            CliError::input(format!(
+                "--plot-from {} to --plot-to {} is {periods} forcing periods, more than can be \
+                 sampled at {SAMPLES_PER_PERIOD} per period; plot fewer",
+                args.plot_from, args.plot_to
+            ))
+        })?;
+    // Every run's samples and events are kept until the figure is drawn.
+    fits_memory(
+        "orbit samples (200 per plotted forcing period, two runs per preset)",
+        (n + 1).saturating_mul(2 * args.presets.len() as u64),
+        std::mem::size_of::<Sample>() + 16,
+    )?;
     let options = args.method.options()?;
     let svg = args.out_dir.join("friction.svg");
     let png = args.out_dir.join("friction.png");
@@ -135,7 +157,7 @@ pub fn run(args: &Args) -> Result<()> {
             (&with, ANALYTIC, false, "with friction"),
         ] {
             let (samples, events) =
-                run_one(problem, &options, args, &budget).map_err(|e| e.context(name))?;
+                run_one(problem, &options, args, n, &budget).map_err(|e| e.context(name))?;
             let count = |k: EventKind| events.iter().filter(|e| e.kind == k).count();
             let _ = writeln!(
                 report,
@@ -188,5 +210,5 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }

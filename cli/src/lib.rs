@@ -22,5 +22,6 @@ pub mod runup;
 pub mod shard;
 pub mod simulate;
 pub mod spectrum;
+pub mod stdio;
 pub mod sweep;
 pub mod trajectory;

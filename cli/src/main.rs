@@ -6,10 +6,10 @@ use std::process::ExitCode;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
-use rotor_rub_cli::error::{CliError, EXIT_INPUT, short_numbers};
+use rotor_rub_cli::error::{CliError, EXIT_INPUT};
 use rotor_rub_cli::{
     compare, fig2, friction_fig, merge, output, params, poincare, presets, runup, simulate,
-    spectrum, sweep,
+    spectrum, stdio, sweep,
 };
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
@@ -28,12 +28,14 @@ numerical orbits for η = 1 … 3.5 with the paper preset, out/fig2.svg and out/
 table of switches, response class, Lyapunov exponent and run time per η.
 
 Invalid input exits with code 2, a failed propagation or I/O error with code 1; no output file \
-is created or changed by a failed run.";
+is created or changed by a failed run. A closed pipe on stdout ends a command quietly with code \
+141; SIGINT, SIGTERM and SIGHUP with 130, 143 and 129, unfinished output files removed.";
 
 /// Shown under every subcommand's help.
 const UNITS: &str = "Units (dimensionless, as in the paper): lengths in radial clearances, time τ = ω_n t, \
 speed ratio η = Ω/ω_n, forcing period 2π/η, stiffnesses relative to the rotor stiffness. \
-Exit codes: 2 invalid input, 1 failed run; a failed run leaves no output file.";
+Exit codes: 2 invalid input, 1 failed run, 141 closed stdout pipe, 128 + N signal N; a failed or \
+interrupted run leaves no output file.";
 
 #[derive(Parser, Debug)]
 #[command(name = "rotor-rub", version, about = ABOUT, long_about = LONG_ABOUT)]
@@ -116,22 +118,9 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Friction(args)) => friction_fig::run(&args),
         Some(Command::Runup(args)) => runup::run(&args),
-        Some(Command::Presets) => {
-            presets::run();
-            Ok(())
-        }
-        Some(Command::Params) => {
-            params::run();
-            Ok(())
-        }
+        Some(Command::Presets) => presets::run(),
+        Some(Command::Params) => params::run(),
     }
-}
-
-/// An error line on stderr; a stderr that cannot be written changes nothing (the exit code says
-/// it all).
-fn report_error(message: &str) {
-    use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "error: {}", short_numbers(message));
 }
 
 fn main() -> ExitCode {
@@ -142,11 +131,10 @@ fn main() -> ExitCode {
             ErrorKind::DisplayHelp
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-                let _ = e.print();
-                return ExitCode::from(e.exit_code() as u8);
+                return ExitCode::from(stdio::clap_message(&e));
             }
             _ => {
-                report_error(&one_line(&e));
+                stdio::error(&one_line(&e));
                 return ExitCode::from(EXIT_INPUT);
             }
         },
@@ -155,7 +143,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             if !e.message.is_empty() {
-                report_error(&e.to_string());
+                stdio::error(&e.to_string());
             }
             ExitCode::from(e.code)
         }

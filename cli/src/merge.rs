@@ -1,13 +1,15 @@
 //! `rotor-rub merge`: join sweep shards into the file the unsharded sweep writes.
 
 use std::fs;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use crate::error::{CliError, Result};
-use crate::limits::fits_memory;
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
+use crate::limits::{fits_memory, reserve};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot;
 use crate::shard::{ShardInfo, checksum};
+use crate::stdio;
 use crate::sweep::{HEADER, Row, plot_rows, sort_rows};
 
 /// Join the shard files of a sharded sweep into one file, byte for byte what the unsharded sweep
@@ -49,7 +51,15 @@ fn read_shard(path: &Path) -> Result<Shard> {
         .map_err(|e| fail(format!("cannot read: {e}")))?
         .len();
     fits_memory("shard file size in bytes", size, 3)?;
-    let bytes = fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let mut bytes = Vec::new();
+    reserve(
+        &mut bytes,
+        usize::try_from(size).unwrap_or(usize::MAX),
+        "shard file size in bytes",
+    )?;
+    fs::File::open(path)
+        .and_then(|mut file| file.read_to_end(&mut bytes))
+        .map_err(|e| fail(format!("cannot read: {e}")))?;
     let split = bytes
         .iter()
         .position(|&b| b == b'\n')
@@ -95,6 +105,7 @@ fn read_shard(path: &Path) -> Result<Shard> {
             number(4)?,
             number(5)?,
         );
+        reserve(&mut rows, 1, "rows")?;
         rows.push((record, row));
     }
     if rows.len() as u64 != info.rows {
@@ -213,5 +224,5 @@ pub fn run(args: &Args) -> Result<()> {
     if !args.no_plot {
         report += &format!("plot written to {} and {}\n", svg.display(), png.display());
     }
-    print(&report)
+    stdio::out(&report)
 }

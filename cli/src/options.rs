@@ -2,7 +2,40 @@
 
 use crate::error::CliError;
 use clap::Args;
-use rotor_rub::{ContactScheme, Method, Options, Params};
+use rotor_rub::{ContactScheme, Method, Options, Params, PropagationError};
+
+/// The command line's flags for the method options the runtime names (`tol`, `step`).
+pub const FLAGS: &[(&str, &str)] = &[("tol", "--tol"), ("step", "--step")];
+
+/// A method option out of range (the runtime's [`PropagationError::InvalidOption`]) as an input
+/// error led by the flag that set it, from `flags` (option name, flag):
+/// `--reference-tol: tol = 5e-1 is out of range for dop853: it must be in [1e-14, 1e-3]`.
+pub fn flagged(e: PropagationError, flags: &[(&str, &str)]) -> CliError {
+    let flag = match e {
+        PropagationError::InvalidOption { what, .. } => flags
+            .iter()
+            .find(|(option, _)| *option == what)
+            .map(|(_, flag)| *flag),
+        _ => None,
+    };
+    match flag {
+        Some(flag) => CliError::input(format!("{flag}: {e}")),
+        None => CliError::input(e.to_string()),
+    }
+}
+
+/// The reference method's options (`--reference`, `--reference-tol`), validated: a tolerance out
+/// of the method's range is an input error naming `--reference-tol`.
+pub fn reference_options(method: Method, tol: Option<f64>) -> Result<Options, CliError> {
+    let options = Options {
+        tol,
+        ..Options::with_method(method)
+    };
+    options
+        .validate()
+        .map_err(|e| flagged(e, &[("tol", "--reference-tol")]))?;
+    Ok(options)
+}
 
 /// A finite number > 0.
 pub fn parse_positive(text: &str) -> Result<f64, String> {
@@ -33,15 +66,30 @@ pub fn parse_finite(text: &str) -> Result<f64, String> {
     }
 }
 
-/// An integer >= `min`, as a clap value parser.
+/// An integer >= `min`, as a clap value parser; also in exponent form (`1e8`), as `--max-work`.
 pub fn at_least(min: u64) -> impl Fn(&str) -> Result<u64, String> + Clone + Send + Sync + 'static {
-    move |text: &str| match text.trim().parse::<u64>() {
-        Ok(n) if n >= min => Ok(n),
-        Ok(n) => Err(format!(
-            "{n} is out of range: it must be an integer >= {min}"
-        )),
-        Err(_) => Err(format!("'{text}' is not an integer >= {min}")),
+    move |text: &str| {
+        let n = count(text).ok_or_else(|| format!("'{text}' is not an integer >= {min}"))?;
+        if n >= min {
+            Ok(n)
+        } else {
+            Err(format!(
+                "{n} is out of range: it must be an integer >= {min}"
+            ))
+        }
     }
+}
+
+/// A count: a non-negative integer, written out or in exponent form (`1e8`, `2.5e3`), up to
+/// u64::MAX.
+fn count(text: &str) -> Option<u64> {
+    let text = text.trim();
+    if let Ok(n) = text.parse::<u64>() {
+        return Some(n);
+    }
+    let x: f64 = text.parse().ok()?;
+    // 2^64 is the first float past u64::MAX; integral floats below it convert exactly.
+    (x >= 0.0 && x.fract() == 0.0 && x < 18_446_744_073_709_551_616.0).then_some(x as u64)
 }
 
 /// A method by name.
@@ -153,10 +201,28 @@ pub struct SchemeArgs {
 
 impl SchemeArgs {
     /// Library options for `method` with these settings, validated (a tolerance or step out of
-    /// its range is an input error naming the value and the range). `--contact-scheme` and
-    /// `--step` belong to methods with a contact scheme: given with another method they are an
-    /// input error, not ignored.
+    /// its range is an input error naming the option as the runtime does, `tol = …`, the value
+    /// and the range: the Python keywords' message). `--contact-scheme` and `--step` belong to
+    /// methods with a contact scheme: given with another method they are an input error, not
+    /// ignored.
     pub fn options(&self, method: Method) -> Result<Options, CliError> {
+        let options = self.unchecked(method)?;
+        options
+            .validate()
+            .map_err(|e| CliError::input(e.to_string()))?;
+        Ok(options)
+    }
+
+    /// [`SchemeArgs::options`] with a value out of range named by its flag ([`FLAGS`]), as the
+    /// command line reports it.
+    pub fn cli_options(&self, method: Method) -> Result<Options, CliError> {
+        let options = self.unchecked(method)?;
+        options.validate().map_err(|e| flagged(e, FLAGS))?;
+        Ok(options)
+    }
+
+    /// The options, with only the method mismatch checked.
+    fn unchecked(&self, method: Method) -> Result<Options, CliError> {
         if !method.info().contact_scheme {
             let flag = match (self.contact_scheme, self.step) {
                 (Some(_), _) => Some("--contact-scheme"),
@@ -170,16 +236,12 @@ impl SchemeArgs {
                 )));
             }
         }
-        let options = Options {
+        Ok(Options {
             method,
             tol: self.tol,
             contact_scheme: self.contact_scheme.unwrap_or(ContactScheme::Exprb43),
             step: self.step,
-        };
-        options
-            .validate()
-            .map_err(|e| CliError::input(e.to_string()))?;
-        Ok(options)
+        })
     }
 }
 
@@ -225,9 +287,9 @@ pub struct MethodArgs<D: DefaultMethod> {
 
 impl<D: DefaultMethod> MethodArgs<D> {
     /// The library options (an input error for analytic-only flags with another method, or for
-    /// a tolerance or step out of range).
+    /// a tolerance or step out of range, naming its flag).
     pub fn options(&self) -> Result<Options, CliError> {
-        self.scheme.options(self.method)
+        self.scheme.cli_options(self.method)
     }
 }
 
@@ -308,13 +370,37 @@ mod tests {
             assert!(e.message.contains("1e1"), "{}", e.message);
             assert!(e.message.contains(&range.to_string()), "{}", e.message);
             assert!(args(Some(range.max), None).options(m).is_ok());
+            // The command line names the flag, the library call the option.
+            let e = args(Some(10.0), None).cli_options(m).unwrap_err();
+            assert!(e.message.starts_with("--tol: tol = 1e1"), "{}", e.message);
         }
+        let e = reference_options(Method::Dop853, Some(0.5)).unwrap_err();
+        assert!(
+            e.message
+                .starts_with("--reference-tol: tol = 5e-1 is out of range for dop853"),
+            "{}",
+            e.message
+        );
+        assert!(reference_options(Method::Rk45, Some(1e-4)).is_ok());
         for step in [1e-300, 1e300] {
             let e = args(None, Some(step))
                 .options(Method::Analytic)
                 .unwrap_err();
             assert_eq!(e.code, crate::error::EXIT_INPUT);
             assert!(e.message.contains(&format!("{step:e}")), "{}", e.message);
+        }
+    }
+
+    #[test]
+    fn counts_take_exponent_form() {
+        let parse = at_least(2);
+        assert_eq!(parse("1e8"), Ok(100_000_000));
+        assert_eq!(parse("2.5e3"), Ok(2500));
+        assert_eq!(parse(" 7 "), Ok(7));
+        assert_eq!(parse("18446744073709551615"), Ok(u64::MAX));
+        assert!(parse("1").unwrap_err().contains("1 is out of range"));
+        for bad in ["1.5", "-1", "1e20", "nan", "inf", "", "two"] {
+            assert!(parse(bad).is_err(), "{bad}");
         }
     }
 

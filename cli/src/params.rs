@@ -3,7 +3,9 @@
 
 use rotor_rub::params::Number;
 
+use crate::error::Result;
 use crate::problem::settable;
+use crate::stdio;
 
 /// The listing, one line per parameter (also what `run` prints).
 pub fn listing() -> String {
@@ -29,8 +31,8 @@ pub fn listing() -> String {
 }
 
 /// Print the listing.
-pub fn run() {
-    print!("{}", listing());
+pub fn run() -> Result<()> {
+    stdio::out(&listing())
 }
 
 #[cfg(test)]

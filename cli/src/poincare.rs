@@ -11,9 +11,10 @@ use crate::analysis::lyapunov::largest_exponent;
 use crate::error::{Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe};
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::SectionFigure};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory;
 
 /// Poincaré section: the state at τ = k·2π/η for the kept forcing periods k.
@@ -29,7 +30,7 @@ pub struct Args {
     pub limits: LimitArgs,
 
     /// Forcing periods skipped as transient
-    #[arg(long, value_name = "P", default_value_t = 200)]
+    #[arg(long, value_name = "P", default_value_t = 200, value_parser = crate::options::at_least(0))]
     pub transient: u64,
 
     /// Forcing periods kept (section points), >= 1
@@ -62,7 +63,7 @@ pub fn run(args: &Args) -> Result<()> {
             ("the plot", svg.as_path()),
             ("the plot", png.as_path()),
         ],
-        &[],
+        &args.problem.input_files(),
     )?;
     ensure_parent(&args.out)?;
     let mut out = CsvOut::create(&args.out, &["period", "x", "y", "vx", "vy"])?;
@@ -112,7 +113,7 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }
 
 /// A Poincaré section and what it says.

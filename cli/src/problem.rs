@@ -89,43 +89,75 @@ pub struct Config {
     pub values: Vec<(Parameter, f64)>,
 }
 
-/// Parse a config file's text; the message says what is wrong and on which line.
+/// Parse a config file's text; the message says what is wrong and on which line (a duplicate
+/// key: which key, on the line of its second definition).
 pub fn parse_config(text: &str) -> Result<Config, String> {
     let table: toml::Table = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| {
-            text.get(..s.start.min(text.len()))
-                .map_or(1, |head| head.lines().count().max(1))
+        let span = e.span();
+        // The line holding the span's start: one more than the line breaks before it.
+        let line = span.as_ref().map(|s| {
+            let head = text.get(..s.start.min(text.len())).unwrap_or("");
+            head.matches('\n').count() + 1
         });
         let at = line.map(|l| format!(" (line {l})")).unwrap_or_default();
-        format!("not valid TOML{at}: {}", e.message().trim())
+        let message = e.message().trim();
+        let key = span
+            .and_then(|s| text.get(s))
+            .filter(|key| message == "duplicate key" && !key.is_empty() && !key.contains('\n'));
+        match key {
+            Some(key) => format!("not valid TOML{at}: {message} `{}`", key.trim()),
+            None => format!("not valid TOML{at}: {message}"),
+        }
     })?;
     let mut config = Config {
         preset: None,
         values: Vec::new(),
     };
     for (key, value) in &table {
+        // A message about one key says on which line it is set.
+        let at = |m: String| match key_line(text, key) {
+            Some(line) => format!("line {line}: {m}"),
+            None => m,
+        };
         if key == "preset" {
             let name = value
                 .as_str()
-                .ok_or("preset must be a string naming a preset")?;
-            config.preset = Some(parse_preset(name)?);
+                .ok_or_else(|| at("preset must be a string naming a preset".into()))?;
+            config.preset = Some(parse_preset(name).map_err(at)?);
             continue;
         }
-        let parameter = parse_parameter(key)?;
+        let parameter = parse_parameter(key).map_err(at)?;
         let number = match value {
             toml::Value::Float(x) => *x,
             // Exact up to 2^53; larger integers are far outside every range anyway.
             toml::Value::Integer(i) => *i as f64,
             other => {
-                return Err(format!(
+                return Err(at(format!(
                     "{parameter} must be a number, not the {} {other}",
                     other.type_str()
-                ));
+                )));
             }
         };
         config.values.push((parameter, number));
     }
     Ok(config)
+}
+
+/// The line (from 1) of a config text where the top-level `key` is set (`key = …`, `"key" = …`,
+/// `'key' = …`): top-level keys come before any table, so the first such line is the one.
+fn key_line(text: &str, key: &str) -> Option<usize> {
+    let sets_key = |line: &str| {
+        let Some((left, _)) = line.split_once('=') else {
+            return false;
+        };
+        let left = left.trim();
+        let unquoted = ['"', '\'']
+            .iter()
+            .find_map(|q| left.strip_prefix(*q).and_then(|l| l.strip_suffix(*q)))
+            .unwrap_or(left);
+        unquoted == key
+    };
+    text.split('\n').position(sets_key).map(|i| i + 1)
 }
 
 /// Read an input file (a `kind`, e.g. `config`, written as `format`, e.g. `TOML`): a regular
@@ -177,6 +209,15 @@ enum Source {
 }
 
 impl ProblemArgs {
+    /// The files the problem is read from (the config), with the flag naming each: no output may
+    /// be one of them ([`crate::output::check_distinct`]).
+    pub fn input_files(&self) -> Vec<(&'static str, &Path)> {
+        self.config
+            .iter()
+            .map(|path| ("--config", path.as_path()))
+            .collect()
+    }
+
     /// The problem with every layer applied, validated.
     pub fn build(&self) -> Result<Problem> {
         self.build_with(&[])

@@ -19,6 +19,17 @@ fn set_parses_and_rejects() {
 }
 
 #[test]
+fn config_errors_name_the_line_of_their_key() {
+    let message = |text: &str| parse_config(text).unwrap_err();
+    assert!(
+        message("# c\nspeed_ratio = 2\n\nomega = 1\n").starts_with("line 4: unknown parameter")
+    );
+    assert!(message("k_xx = 1\n\"k_yy\" = 'x'\n").starts_with("line 2: k_yy must be a number"));
+    assert!(message("preset = 'nope'\n").starts_with("line 1: unknown preset"));
+    assert!(message("[table]\nx = 1\n").starts_with("unknown parameter 'table'"));
+}
+
+#[test]
 fn parameter_indices_match_table_order() {
     for (i, p) in Parameter::ALL.into_iter().enumerate() {
         assert_eq!(p as usize, i);

@@ -1,5 +1,6 @@
 //! `rotor-rub simulate`: one run, its switches and uniform samples as CSV, a summary on stdout.
 
+use std::cell::Cell;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -8,8 +9,9 @@ use rotor_rub::{EventKind, Params, Regime, State};
 use crate::error::{CliError, Result, num};
 use crate::limits::LimitArgs;
 use crate::options::{MethodArgs, SingleRun, TimeArgs, describe};
-use crate::output::{CsvOut, check_distinct, commit_all, print};
+use crate::output::{CsvOut, check_distinct, commit_all};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory::{self, uniform_times};
 
 /// Header of the events file.
@@ -59,7 +61,7 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(p) = &args.samples {
         outputs.push(("--samples", p.as_path()));
     }
-    check_distinct(&outputs, &[])?;
+    check_distinct(&outputs, &args.problem.input_files())?;
     let count = if args.samples.is_some() {
         args.sample_count.unwrap_or(1001)
     } else {
@@ -83,24 +85,29 @@ pub fn run(args: &Args) -> Result<()> {
     let mut tracker = budget.run(problem.start_time, end);
     // Under friction the whirl rate is measured on a grid of its own (64 points per forcing
     // period and per natural period), merged with the requested samples: sampling never changes
-    // a run, and only the requested ones are written.
+    // a run, and only the requested ones are written. Both are streamed: no count needs memory.
     let friction = problem.params.friction_coefficient > 0.0;
-    let user: Vec<f64> = uniform_times(problem.start_time, end, count).collect();
-    let mut times: Vec<(f64, bool)> = user.iter().map(|t| (*t, true)).collect();
-    if friction {
-        let dt = problem.params.forcing_period().min(std::f64::consts::TAU) / 64.0;
-        let n = ((end - problem.start_time) / dt).floor();
-        budget.plan("whirl samples", n as u64)?;
-        let grid = (1..=n as u64).map(|k| (problem.start_time + k as f64 * dt, false));
-        times.extend(grid);
-        times.sort_by(|a, b| a.0.total_cmp(&b.0));
-    }
+    let grid_step = problem.params.forcing_period().min(std::f64::consts::TAU) / 64.0;
+    let grid_count = if friction {
+        let n = ((end - problem.start_time) / grid_step).floor() as u64;
+        budget.plan("whirl samples", n)?;
+        n
+    } else {
+        0
+    };
+    let grid = (1..=grid_count).map(|k| problem.start_time + k as f64 * grid_step);
+    let times = merged(uniform_times(problem.start_time, end, count), grid);
+    // Whether the sample being handed over was requested (set as its time is drawn, which
+    // `trajectory::run` does just before it hands over that sample).
+    let requested = Cell::new(false);
     let mut whirl = Whirl::new(&problem.params, problem.start_time, &problem.initial, end);
-    let mut kinds = times.iter().map(|(_, user)| *user);
     let pass = trajectory::run(
         propagator,
         end,
-        times.iter().map(|(t, _)| *t),
+        times.map(|(t, user)| {
+            requested.set(user);
+            t
+        }),
         &mut tracker,
         false,
         |e| match &mut events_out {
@@ -112,8 +119,8 @@ pub fn run(args: &Args) -> Result<()> {
         },
         |sample| {
             whirl.add(sample.time, &sample.state);
-            match (&mut samples_out, kinds.next()) {
-                (Some(out), Some(true)) => {
+            match &mut samples_out {
+                Some(out) if requested.get() => {
                     let s = sample.state;
                     let contact = u8::from(sample.regime.in_contact());
                     let regime = sample.regime.name();
@@ -206,7 +213,21 @@ pub fn run(args: &Args) -> Result<()> {
             let _ = writeln!(report, "wrote {what}: {}", p.display());
         }
     }
-    print(&report)
+    stdio::out(&report)
+}
+
+/// The requested sample times (`true`) and the whirl grid (`false`), both increasing, merged in
+/// time order (a requested time first where both fall on one instant).
+fn merged(
+    user: impl Iterator<Item = f64>,
+    grid: impl Iterator<Item = f64>,
+) -> impl Iterator<Item = (f64, bool)> {
+    let (mut user, mut grid) = (user.peekable(), grid.peekable());
+    std::iter::from_fn(move || match (user.peek(), grid.peek()) {
+        (Some(&u), Some(&g)) if g.total_cmp(&u).is_lt() => grid.next().map(|g| (g, false)),
+        (Some(_), _) => user.next().map(|u| (u, true)),
+        (None, _) => grid.next().map(|g| (g, false)),
+    })
 }
 
 /// The mean whirl rate dφ/dτ of the rotor's angle φ about the stator centre, from states at
@@ -266,5 +287,31 @@ impl Whirl {
     fn second_half_rate(&self) -> f64 {
         let from = self.second_half_from.unwrap_or(self.half);
         self.second_half / (self.time - from)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_times_merge_with_the_whirl_grid_in_order() {
+        let user = [0.0, 0.5, 1.0, 1.5];
+        let grid = [0.25, 0.5, 0.75, 1.75, 2.0];
+        let all: Vec<(f64, bool)> = merged(user.into_iter(), grid.into_iter()).collect();
+        assert_eq!(
+            all,
+            [
+                (0.0, true),
+                (0.25, false),
+                (0.5, true),
+                (0.5, false),
+                (0.75, false),
+                (1.0, true),
+                (1.5, true),
+                (1.75, false),
+                (2.0, false)
+            ]
+        );
     }
 }

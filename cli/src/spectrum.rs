@@ -8,12 +8,13 @@ use rotor_rub::{Options, Problem};
 
 use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
 use crate::error::{CliError, Result, num};
-use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory, reserve};
 use crate::options::{MethodArgs, Survey, describe, parse_positive};
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent, print};
+use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
 use crate::plot::{self, ANALYTIC};
 use crate::problem::ProblemArgs;
+use crate::stdio;
 use crate::trajectory;
 
 /// Amplitude spectrum from uniform samples over an integer number of forcing periods after a
@@ -31,7 +32,7 @@ pub struct Args {
     pub limits: LimitArgs,
 
     /// Forcing periods skipped as transient
-    #[arg(long, value_name = "P", default_value_t = 100)]
+    #[arg(long, value_name = "P", default_value_t = 100, value_parser = crate::options::at_least(0))]
     pub transient: u64,
 
     /// Forcing periods analysed (the resolution is 1/P orders; a multiple of 6 puts ½× and ⅓×
@@ -73,7 +74,7 @@ pub fn run(args: &Args) -> Result<()> {
             ("the plot", svg.as_path()),
             ("the plot", png.as_path()),
         ],
-        &[],
+        &args.problem.input_files(),
     )?;
     ensure_parent(&args.out)?;
     let header: &[&str] = if args.whirl {
@@ -167,7 +168,7 @@ pub fn run(args: &Args) -> Result<()> {
         svg.display(),
         png.display()
     );
-    print(&report)
+    stdio::out(&report)
 }
 
 /// The number of samples of `periods` forcing periods at `per_period` samples each, refused when
@@ -200,7 +201,9 @@ pub fn signal(
     let start = transient as f64 * period;
     let dt = period / per_period as f64;
     let mut tracker = budget.run(problem.start_time, end_period as f64 * period);
-    let (mut x, mut y) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    reserve(&mut x, n, "--periods × --samples-per-period (samples)")?;
+    reserve(&mut y, n, "--periods × --samples-per-period (samples)")?;
     for i in 0..n {
         let t = start + i as f64 * dt;
         let s = trajectory::advance_to(&mut propagator, t, &mut tracker, |_| Ok(()))?.state;

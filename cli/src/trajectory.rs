@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use rotor_rub::{Event, EventKind, Options, Problem, Propagate, Propagator, Regime, Sample};
 
 use crate::error::{CliError, Result};
-use crate::limits::{Tracker, fits_memory, memory_limit};
+use crate::limits::{Tracker, fits_memory, memory_limit, reserve};
 
 /// What a pass saw.
 pub struct Pass {
@@ -57,10 +57,12 @@ pub fn section(
     count: usize,
     tracker: &mut Tracker<'_>,
 ) -> Result<Vec<Sample>> {
-    let times = rotor_rub::poincare_times(propagator.time(), speed_ratio, count);
-    times
-        .map(|t| advance_to(propagator, t, tracker, |_| Ok(())))
-        .collect()
+    let mut points = Vec::new();
+    reserve(&mut points, count, "Poincaré points")?;
+    for t in rotor_rub::poincare_times(propagator.time(), speed_ratio, count) {
+        points.push(advance_to(propagator, t, tracker, |_| Ok(()))?);
+    }
+    Ok(points)
 }
 
 /// Propagate from the propagator's time to `end`, handing the sample at each of `times`
@@ -104,6 +106,7 @@ pub fn run(
                 if switches > max_kept {
                     fits_memory("switches kept", switches, std::mem::size_of::<Event>())?;
                 }
+                reserve(&mut events, 1, "switches kept")?;
                 events.push(*e);
             }
             on_event(e)
@@ -152,6 +155,7 @@ pub fn run_collect(
         true,
         |_| Ok(()),
         |s: &Sample| {
+            reserve(&mut samples, 1, "samples kept")?;
             samples.push(*s);
             Ok(())
         },

@@ -3,7 +3,7 @@
 //! truncates an existing one. What "reaching the destination" means depends on what is there
 //! ([`target`]): a rename over a regular file or new path (a symlink's target, for a symlink), a
 //! copy into a device node or FIFO. The report on stdout comes after every file is in place
-//! ([`print`](fn@print)).
+//! ([`crate::stdio::out`]).
 
 pub mod target;
 pub mod temps;
@@ -196,23 +196,4 @@ impl CsvOut {
             .into_inner()
             .map_err(|e| io_error(&dest, "write", e.error()))
     }
-}
-
-/// The command's report, written to stdout after its files are in place. A closed pipe (the
-/// reader, e.g. `head`, has what it wanted) ends the command quietly with status 141, as a Unix
-/// tool killed by SIGPIPE; any other write error (a full disk) is a failure, exit 1.
-pub fn print(report: &str) -> Result<()> {
-    let mut out = io::stdout().lock();
-    match out.write_all(report.as_bytes()).and_then(|()| out.flush()) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Err(CliError::broken_pipe()),
-        Err(e) => Err(CliError::failure(format!(
-            "cannot write to standard output: {e} (the output files are complete)"
-        ))),
-    }
-}
-
-/// A warning on stderr; a stderr that cannot be written is not an error.
-pub fn warn(message: &str) {
-    let _ = writeln!(io::stderr(), "warning: {message}");
 }

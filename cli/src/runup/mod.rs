@@ -12,27 +12,26 @@ mod program;
 mod report;
 
 use std::fmt::Write as _;
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rotor_rub::Method;
 use rotor_rub::speed::{RunupPreset, SpeedProfile};
 use rotor_rub::variable_speed::{
-    DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SpeedDirection, VariableSpeedError,
-    VariableSpeedOptions, VariableSpeedPropagator,
+    DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SPEED_HOLDS_RANGE, SpeedDirection,
+    VariableSpeedError, VariableSpeedOptions, VariableSpeedPropagator,
 };
+use rotor_rub::{Method, Propagate, PropagationError};
 
 use self::analysis::Branch;
 use self::files::{RunEvent, events_beside, events_file, rows_file};
 use self::program::{SpeedArgs, parse_program, program_help};
 use crate::error::{CliError, Result};
-use crate::limits::{LimitArgs, fits_memory};
-use crate::options::{MethodArgs, Survey, at_least, describe};
-use crate::output::{check_distinct, commit_all, ensure_parent, print};
+use crate::limits::{LimitArgs, fits_memory, reserve};
+use crate::options::{MethodArgs, Survey, at_least, describe, flagged};
+use crate::output::{check_distinct, commit_all, ensure_parent};
 use crate::plot;
 use crate::problem::ProblemArgs;
+use crate::stdio;
 
 /// Run-up and coast-down through resonance.
 #[derive(clap::Args, Debug)]
@@ -69,30 +68,15 @@ pub struct Args {
     #[arg(long, value_name = "FILE.csv", default_value = "out/runup.csv")]
     pub out: PathBuf,
 
-    /// Every switch: time, speed_ratio, period, direction, kind, x, y, vx, vy [default:
-    /// <out's stem>-events.csv next to --out]
+    /// Every switch of the run: time, speed_ratio, period, direction, kind, x, y, vx, vy (those
+    /// after the last whole forcing period carry the next period's number, which --out has no
+    /// row for) [default: <out's stem>-events.csv next to --out]
     #[arg(long, value_name = "FILE.csv")]
     pub events: Option<PathBuf>,
 
     /// Do not draw the plot
     #[arg(long)]
     pub no_plot: bool,
-}
-
-/// A progress bar on stderr, hidden when stderr is not a terminal.
-fn progress(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} forcing periods, η = {msg}, {elapsed} elapsed, ETA {eta}",
-    ) {
-        bar.set_style(style);
-    }
-    bar
 }
 
 /// The error of a run that cannot start: the runtime's message, exit 2 (bad input) unless the
@@ -104,7 +88,8 @@ fn cannot_start(e: VariableSpeedError) -> CliError {
     }
 }
 
-/// The held-speed steps per period (an input error for another method or out of range).
+/// The held-speed steps per period (an input error for another method or out of range, naming
+/// `--speed-holds`).
 fn speed_holds(args: &Args) -> Result<u32> {
     match args.speed_holds {
         None => Ok(DEFAULT_SPEED_HOLDS),
@@ -112,12 +97,16 @@ fn speed_holds(args: &Args) -> Result<u32> {
             "--speed-holds applies only to --method analytic, not to --method {}",
             args.method.method.name()
         ))),
-        Some(n) => u32::try_from(n).map_err(|_| {
-            CliError::input(format!(
-                "--speed-holds {n} is out of range: it must be in {}",
-                rotor_rub::variable_speed::SPEED_HOLDS_RANGE
-            ))
-        }),
+        Some(n) if SPEED_HOLDS_RANGE.contains(n as f64) => Ok(n as u32),
+        Some(n) => Err(flagged(
+            PropagationError::InvalidOption {
+                method: Method::Analytic.name(),
+                what: "speed_holds",
+                value: n as f64,
+                valid: SPEED_HOLDS_RANGE,
+            },
+            &[("speed_holds", "--speed-holds")],
+        )),
     }
 }
 
@@ -148,7 +137,11 @@ pub fn run(args: &Args) -> Result<()> {
     if !args.no_plot {
         outputs.extend([("the plot", svg.as_path()), ("the plot", png.as_path())]);
     }
-    check_distinct(&outputs, &[])?;
+    let mut inputs = args.problem.input_files();
+    if let Some(profile) = &args.speed.profile {
+        inputs.push(("--profile", profile.as_path()));
+    }
+    check_distinct(&outputs, &inputs)?;
 
     let mut propagator =
         VariableSpeedPropagator::new(&problem, profile, &options).map_err(cannot_start)?;
@@ -173,7 +166,10 @@ pub fn run(args: &Args) -> Result<()> {
     let mut tracker = budget.run(profile.start(), profile.end());
 
     let started = Instant::now();
-    let bar = progress(count);
+    let bar = stdio::progress(
+        count,
+        "{bar:40} {pos}/{len} forcing periods, η = {msg}, {elapsed} elapsed, ETA {eta}",
+    );
     let mut rows = Vec::new();
     let mut events = Vec::new();
     let mut cursor = profile.first_piece(problem.params.phase);
@@ -183,6 +179,7 @@ pub fn run(args: &Args) -> Result<()> {
         for event in pending.drain(..) {
             tracker.switch(event.time)?;
             cursor = profile.piece_holding(cursor, event.time);
+            reserve(&mut events, 1, "switches kept")?;
             events.push(RunEvent {
                 event,
                 speed_ratio: cursor.speed_at(event.time),
@@ -192,9 +189,40 @@ pub fn run(args: &Args) -> Result<()> {
         }
         bar.set_message(format!("{:.3}", row.speed_ratio));
         bar.inc(1);
+        reserve(&mut rows, 1, "forcing periods")?;
         rows.push(row);
     }
     bar.finish_and_clear();
+    // The switches after the last whole forcing period, in the partial one the per-period file
+    // has no row for: the events file holds every switch of the run. A remainder within
+    // rounding of a whole turn (less than 1e-9 turns) was counted as that turn by `Revolutions`.
+    let start = propagator.time();
+    let phase_at = |t: f64| profile.piece_holding(cursor, t).phase_at(t);
+    if phase_at(profile.end()) - phase_at(start) > 1e-9 * std::f64::consts::TAU {
+        let speed_at = |t: f64| profile.piece_holding(cursor, t).speed_at(t);
+        let change = speed_at(profile.end()) - speed_at(start);
+        let direction = if change > 0.0 {
+            SpeedDirection::Up
+        } else if change < 0.0 {
+            SpeedDirection::Down
+        } else {
+            SpeedDirection::Hold
+        };
+        while let Some(event) = propagator
+            .advance(profile.end())
+            .map_err(|e| CliError::propagation("", e))?
+        {
+            tracker.switch(event.time)?;
+            cursor = profile.piece_holding(cursor, event.time);
+            reserve(&mut events, 1, "switches kept")?;
+            events.push(RunEvent {
+                event,
+                speed_ratio: cursor.speed_at(event.time),
+                period: count,
+                direction,
+            });
+        }
+    }
     let elapsed = started.elapsed();
 
     let up = Branch::of(&rows, SpeedDirection::Up);
@@ -239,5 +267,5 @@ pub fn run(args: &Args) -> Result<()> {
             png.display()
         );
     }
-    print(&report)
+    stdio::out(&report)
 }

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use rotor_rub::params::Number;
-use rotor_rub::speed::{Ramp, RampPace, RunupPreset, SpeedPoint};
+use rotor_rub::speed::{Ramp, RampError, RampPace, RunupPreset, SpeedPoint};
 
 use super::profile_csv;
 use crate::error::{CliError, Result};
@@ -58,7 +58,8 @@ pub struct SpeedArgs {
     #[arg(long, value_name = "P", value_parser = parse_finite, allow_hyphen_values = true)]
     pub settle: Option<f64>,
 
-    /// Forcing periods held at --to before running back [default: the program's]
+    /// Forcing periods held at --to before running back (so not with --one-way) [default: the
+    /// program's]
     #[arg(long, value_name = "P", value_parser = parse_finite, allow_hyphen_values = true)]
     pub dwell: Option<f64>,
 
@@ -68,14 +69,49 @@ pub struct SpeedArgs {
     pub one_way: bool,
 
     /// Speed profile instead of a ramp: a CSV file of rows time,speed_ratio (τ increasing, η
-    /// linear between rows and held after the last; an optional header line, # comments; a
-    /// regular file of at most 1 MiB). The run goes from the first row's time to the last's
+    /// linear between rows and held after the last; # comments; a regular file of at most
+    /// 1 MiB; LF, CRLF or CR line ends, a UTF-8 BOM and quoted fields are read). A first row
+    /// naming the columns (time, tau, τ or t; speed_ratio, eta, η or speed) is a header; every
+    /// other row is two numbers. The run goes from the first row's time to the last's
     #[arg(
         long,
         value_name = "FILE.csv",
         conflicts_with_all = ["from", "to", "rate", "ramp_periods", "settle", "dwell", "one_way"]
     )]
     pub profile: Option<PathBuf>,
+}
+
+impl SpeedArgs {
+    /// A refused ramp as an input error led by the option that set the value (`--rate: ramp
+    /// rate dη/dτ = 5 is out of range …`); a refusal of the ramp as a whole names none.
+    fn ramp_error(&self, e: RampError) -> CliError {
+        let flag = match e {
+            RampError::Speed { which: "from", .. } => Some("--from"),
+            RampError::Speed { which: "to", .. } => Some("--to"),
+            RampError::SameSpeeds { .. } => match (self.from, self.to) {
+                (Some(_), Some(_)) => Some("--from, --to"),
+                (Some(_), None) => Some("--from"),
+                (None, Some(_)) => Some("--to"),
+                (None, None) => None,
+            },
+            RampError::Rate { periods: None, .. } => Some("--rate"),
+            RampError::Rate {
+                periods: Some(_), ..
+            } => Some("--ramp-periods"),
+            RampError::Periods {
+                which: "periods", ..
+            } => Some("--ramp-periods"),
+            RampError::Periods {
+                which: "settle", ..
+            } => Some("--settle"),
+            RampError::Periods { which: "dwell", .. } => Some("--dwell"),
+            _ => None,
+        };
+        match flag {
+            Some(flag) => CliError::input(format!("{flag}: {e}")),
+            None => CliError::input(format!("invalid speed ramp: {e}")),
+        }
+    }
 }
 
 /// The speed program of a run: its points and a one-line description.
@@ -123,9 +159,14 @@ impl SpeedArgs {
             });
         }
         let ramp = self.ramp(program);
-        let points = ramp
-            .points()
-            .map_err(|e| CliError::input(format!("invalid speed ramp: {e}")))?;
+        if let (Some(dwell), true) = (self.dwell.filter(|d| *d != 0.0), ramp.one_way) {
+            return Err(CliError::input(format!(
+                "--dwell {} holds the speed at --to before the ramp back, but the ramp is one-way \
+                 (--one-way): drop one of them",
+                Number(dwell)
+            )));
+        }
+        let points = ramp.points().map_err(|e| self.ramp_error(e))?;
         let back = if ramp.one_way {
             String::new()
         } else {

@@ -1,41 +1,32 @@
 //! `rotor-rub sweep`: a bifurcation diagram, Poincaré points over a range of one parameter, in
 //! parallel, optionally one shard of it.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use rotor_rub::{Options, Parameter, Problem, State};
 
 use crate::error::{CliError, Result, num};
-use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
+use crate::limits::{Budget, LimitArgs, add_counts, fits_memory, reserve};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
-use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent, print, warn};
+use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::BifurcationFigure};
 use crate::problem::{ProblemArgs, parse_parameter};
 use crate::shard::{ShardInfo, checksum};
+use crate::stdio;
 use crate::trajectory::{self, uniform_at};
+
+mod range;
+
+pub use range::{DEFAULT_TO, last_value, parse_shard};
+use range::{run_description, shard_len};
 
 /// Header of sweep files.
 pub const HEADER: [&str; 6] = ["value", "period", "x", "y", "vx", "vy"];
 
 /// One row: value, period index, x, y, vx, vy.
 pub type Row = (f64, u64, f64, f64, f64, f64);
-
-/// `I/N`: shard I of N (0 <= I < N).
-pub fn parse_shard(text: &str) -> Result<(usize, usize), String> {
-    let bad = || format!("'{text}' is not a shard I/N with integers 0 <= I < N");
-    let (i, n) = text.split_once('/').ok_or_else(bad)?;
-    let (i, n): (usize, usize) = (
-        i.trim().parse().map_err(|_| bad())?,
-        n.trim().parse().map_err(|_| bad())?,
-    );
-    if n == 0 || i >= n {
-        return Err(bad());
-    }
-    Ok((i, n))
-}
 
 /// Bifurcation diagram over one parameter. Each value runs from the same initial state;
 /// the Poincaré points are the states at τ = k·2π/η for the kept periods k.
@@ -58,17 +49,18 @@ pub struct Args {
     #[arg(long, value_name = "VALUE", default_value_t = 1.0, value_parser = parse_finite, allow_hyphen_values = true)]
     pub from: f64,
 
-    /// Last value
-    #[arg(long, value_name = "VALUE", default_value_t = 3.5, value_parser = parse_finite, allow_hyphen_values = true)]
-    pub to: f64,
+    /// Last value, different from --from [default: 3.5]; with --steps 1 (--from alone) leave it
+    /// out or give it equal to --from
+    #[arg(long, value_name = "VALUE", value_parser = parse_finite, allow_hyphen_values = true)]
+    pub to: Option<f64>,
 
     /// Number of values, evenly spaced from --from to --to inclusive (value_i = from + (to −
-    /// from)·i/(steps − 1))
+    /// from)·i/(steps − 1)); 1 runs --from alone
     #[arg(long, value_name = "N", default_value_t = 101, value_parser = crate::options::at_least(1))]
     pub steps: u64,
 
     /// Forcing periods skipped as transient before the Poincaré points are kept
-    #[arg(long, value_name = "P", default_value_t = 200)]
+    #[arg(long, value_name = "P", default_value_t = 200, value_parser = crate::options::at_least(0))]
     pub transient: u64,
 
     /// Forcing periods kept: Poincaré points per value
@@ -151,22 +143,6 @@ pub fn sort_rows<T>(rows: &mut [T], key: impl Fn(&T) -> (f64, u64)) {
     });
 }
 
-/// A progress bar on stderr, hidden when stderr is not a terminal.
-fn progress(len: usize) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len as u64), target);
-    if let Ok(style) =
-        ProgressStyle::with_template("{bar:40} {pos}/{len} values, {elapsed} elapsed, ETA {eta}")
-    {
-        bar.set_style(style);
-    }
-    bar
-}
-
 /// Draw the bifurcation diagram of `rows` next to `csv` (uncommitted).
 pub fn plot_rows(
     rows: &[Row],
@@ -182,32 +158,11 @@ pub fn plot_rows(
     plot::render_beside(&figure, csv)
 }
 
-/// How many of `steps` values shard `shard` of `shards` runs (round robin).
-fn shard_len(steps: u64, shard: u64, shards: u64) -> u64 {
-    steps.saturating_sub(shard).div_ceil(shards)
-}
-
-/// The run every shard of this sweep shares, for the shard metadata.
-fn run_description(args: &Args, base: &Problem, options: &Options) -> String {
-    format!(
-        "rotor-rub {}; param {}; from {:e} to {:e}; steps {}; transient {}; keep {}; skip_errors {}; {:?}; {:?}",
-        env!("CARGO_PKG_VERSION"),
-        args.param,
-        args.from,
-        args.to,
-        args.steps,
-        args.transient,
-        args.keep,
-        args.skip_errors,
-        options,
-        base
-    )
-}
-
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
     let base = args.problem.build()?;
     let options = args.method.options()?;
+    let to = last_value(args)?;
     add_counts(("--transient", args.transient), ("--keep", args.keep))?;
     let (shard, shards) = args.shard.unwrap_or((0, 1));
     let (shard, shards) = (shard as u64, shards as u64);
@@ -232,23 +187,27 @@ pub fn run(args: &Args) -> Result<()> {
     if plot {
         outputs.extend([("the plot", svg.as_path()), ("the plot", png.as_path())]);
     }
-    check_distinct(&outputs, &[])?;
+    check_distinct(&outputs, &args.problem.input_files())?;
     // Check every value before anything runs or any file is created.
-    let problems = (0..count)
-        .map(|k| {
-            let v = uniform_at(args.from, args.to, args.steps, shard + k * shards);
-            let mut p = base;
-            args.param.set(&mut p, v);
-            p.validate().map(|()| (v, p)).map_err(|e| {
-                CliError::input(format!("--param {} = {} (swept): {e}", args.param, num(v)))
-            })
-        })
-        .collect::<Result<Vec<(f64, Problem)>>>()?;
+    let mut problems: Vec<(f64, Problem)> = Vec::new();
+    reserve(&mut problems, count as usize, "--steps (values run here)")?;
+    for k in 0..count {
+        let v = uniform_at(args.from, to, args.steps, shard + k * shards);
+        let mut p = base;
+        args.param.set(&mut p, v);
+        p.validate().map_err(|e| {
+            CliError::input(format!("--param {} = {} (swept): {e}", args.param, num(v)))
+        })?;
+        problems.push((v, p));
+    }
     trajectory::start(&base, &options)?;
     ensure_parent(&args.out)?;
     let mut file = AtomicFile::create(&args.out)?;
 
-    let bar = progress(problems.len());
+    let bar = stdio::progress(
+        problems.len() as u64,
+        "{bar:40} {pos}/{len} values, {elapsed} elapsed, ETA {eta}",
+    );
     let results = sections(
         &problems,
         &options,
@@ -261,6 +220,7 @@ pub fn run(args: &Args) -> Result<()> {
     bar.finish_and_clear();
 
     let mut rows = Vec::new();
+    reserve(&mut rows, rows_planned as usize, "--steps × --keep (rows)")?;
     for ((v, _), r) in problems.iter().zip(results) {
         match r {
             Ok(points) => rows.extend(
@@ -271,7 +231,7 @@ pub fn run(args: &Args) -> Result<()> {
             ),
             // A refused run (over --max-work) stops the sweep even with --skip-errors.
             Err(e) if args.skip_errors && e.code != crate::error::EXIT_INPUT => {
-                warn(&format!("skipped {e}"));
+                stdio::warn(&format!("skipped {e}"));
             }
             Err(e) => return Err(e),
         }
@@ -285,7 +245,7 @@ pub fn run(args: &Args) -> Result<()> {
             count: shards,
             rows: rows.len() as u64,
             checksum: checksum(&body),
-            run: run_description(args, &base, &options),
+            run: run_description(args, to, &base, &options),
         };
         file.write_all(info.line().as_bytes())
             .map_err(|e| CliError::failure(format!("cannot write {}: {e}", args.out.display())))?;
@@ -312,14 +272,14 @@ pub fn run(args: &Args) -> Result<()> {
         "{slice} of {} from {} to {}, {} Poincaré points written to {}\n",
         args.param,
         num(args.from),
-        num(args.to),
+        num(to),
         rows.len(),
         args.out.display()
     );
     if plot {
         report += &format!("plot written to {} and {}\n", svg.display(), png.display());
     }
-    print(&report)
+    stdio::out(&report)
 }
 
 /// The CSV text of a sweep file: header, then `rows`.

@@ -1,8 +1,13 @@
 //! Limits checked before a run starts or while it runs: counts held in memory (by what this
-//! machine can hold) and the work of a run (`--max-work`), so that a request that would take
-//! days or exhaust memory is refused with a clear message instead of hanging or aborting.
+//! process may hold: [`memory`]) and the work of a run (`--max-work`), so that a request that
+//! would take days or exhaust memory is refused with a clear message instead of hanging or
+//! aborting.
+
+mod memory;
 
 use std::sync::atomic::{AtomicU64, Ordering};
+
+pub use memory::{MemoryShare, reserve, share as memory_share};
 
 use crate::error::{CliError, Result, num};
 
@@ -13,9 +18,6 @@ const PILOT_SWITCHES: u64 = 100_000;
 fn pilot(limit: u64) -> u64 {
     (limit / 100).clamp(100, PILOT_SWITCHES)
 }
-
-/// Fraction of the physical memory a command may fill with the data it keeps.
-const MEMORY_SHARE: u64 = 2;
 
 /// `--max-work`: an integer >= 1, also in exponent form (`1e12`).
 pub fn parse_work(text: &str) -> Result<u64, String> {
@@ -143,36 +145,26 @@ impl Tracker<'_> {
     }
 }
 
-/// Bytes a command may fill with the data it keeps: half the physical memory (MemTotal in
-/// /proc/meminfo, read once per process), 4 GiB where that is unknown.
+/// Bytes a command may fill with the data it keeps ([`memory::share`]: half of the least of the
+/// physical memory, the cgroup's limit and what `ulimit -v`/`-d` leave), read once per process.
 pub fn memory_limit() -> u64 {
-    static LIMIT: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
-    *LIMIT.get_or_init(read_memory_limit)
+    memory::share().bytes
 }
 
-fn read_memory_limit() -> u64 {
-    let total = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|text| {
-            let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
-            let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-            kib.checked_mul(1024)
-        });
-    total.map_or(4 << 30, |bytes| bytes / MEMORY_SHARE)
-}
-
-/// Check that `count` items of `bytes_each` bytes, kept in memory for `what`, fit this machine:
-/// the count as a `usize`, or an input error naming the value and the limit.
+/// Check that `count` items of `bytes_each` bytes, kept in memory for `what`, fit this process's
+/// share: the count as a `usize`, or an input error naming the value, the limit and what sets
+/// it.
 pub fn fits_memory(what: &str, count: u64, bytes_each: usize) -> Result<usize> {
-    let limit = memory_limit();
+    let share = memory::share();
     let bytes = count.checked_mul(bytes_each as u64);
     match (bytes, usize::try_from(count)) {
-        (Some(bytes), Ok(n)) if bytes <= limit => Ok(n),
+        (Some(bytes), Ok(n)) if bytes <= share.bytes => Ok(n),
         _ => Err(CliError::input(format!(
-            "{what} = {count} would keep {} bytes in memory, more than the {} bytes (half the \
-             physical memory) this command may use; ask for fewer",
+            "{what} = {count} would keep {} bytes in memory, more than the {} bytes ({}) this \
+             command may use; ask for fewer",
             num(count as f64 * bytes_each as f64),
-            num(limit as f64)
+            num(share.bytes as f64),
+            share.reason
         ))),
     }
 }
