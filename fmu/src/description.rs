@@ -1,13 +1,24 @@
-//! `modelDescription.xml` for FMI 2.0 and FMI 3.0, written from the variable table
-//! (`variables.rs`, itself read off the parameter table): names, descriptions, start values and
-//! ranges cannot drift from the code. Units: everything is dimensionless (unit "1").
+//! `modelDescription.xml` for FMI 2.0 and FMI 3.0 and either unit system, written from the
+//! variable table (`variables.rs`, itself read off the parameter table): names, descriptions,
+//! start values, ranges, units and display units cannot drift from the code.
 //!
-//! The GUID / instantiation token is a hash of the variable table and the crate version, so an
-//! FMU built from changed variables refuses a description of the old ones.
+//! The GUID / instantiation token is a hash of the unit system, the variable table and the crate
+//! version, so an FMU built from changed variables refuses a description of the old ones, and
+//! the one binary knows from the token which unit system an instance speaks
+//! ([`units_of_token`]).
+//!
+//! `ModelStructure` states each output's dependencies on the inputs at a communication point:
+//! the state outputs (x, y, vx, vy), the normal force and the contact count depend on none (the
+//! inputs are held over the next step and act only through it: no direct feedthrough, so a
+//! controller closing a loop over them has no algebraic loop); `in_contact` and `slip_regime`
+//! depend on the speed input, which re-decides the contact regime and the slip direction at the
+//! current state at once (`Stepper::set_speed_ratio`).
 
 use std::fmt::Write;
 
-use crate::variables::{self, Kind, Role, Variable};
+use crate::instance::CATEGORIES;
+use crate::units::{SI_DEFAULT, SI_UNITS, Units};
+use crate::variables::{self, Kind, Output, Role, Target, Variable};
 
 /// The model identifier: the binary's file name without its extension.
 pub const MODEL_IDENTIFIER: &str = "rotor_rub_fmu";
@@ -21,15 +32,31 @@ pub enum Version {
     Fmi3,
 }
 
-/// The GUID (FMI 2.0) and instantiation token (FMI 3.0): FNV-1a of the version and of every
-/// variable's reference, name, type, role and bounds, as `{xxxxxxxx-xxxx-xxxx-xxxx-xxxxxxxxxxxx}`.
-pub fn guid() -> String {
-    let mut text = String::from(env!("CARGO_PKG_VERSION"));
-    for v in variables::all() {
+/// The model name of `units`.
+pub fn model_name(units: Units) -> &'static str {
+    match units {
+        Units::Dimensionless => "rotor_rub",
+        Units::Si => "rotor_rub_si",
+    }
+}
+
+/// The GUID (FMI 2.0) and instantiation token (FMI 3.0) of `units`: FNV-1a of the version, the
+/// unit system and every variable's reference, name, type, role, bounds and unit, as
+/// `{xxxxxxxx-xxxx-xxxx-xxxx-xxxxxxxxxxxx}`.
+pub fn guid(units: Units) -> String {
+    let mut text = format!("{}|{:?}", env!("CARGO_PKG_VERSION"), units);
+    for v in variables::all(units) {
         let _ = write!(
             text,
-            "|{}:{}:{:?}:{:?}:{:?}:{:?}:{:?}",
-            v.vr, v.name, v.kind, v.role, v.start, v.min, v.max
+            "|{}:{}:{:?}:{:?}:{:?}:{:?}:{:?}:{}",
+            v.vr,
+            v.name,
+            v.kind,
+            v.role,
+            v.start,
+            v.min,
+            v.max,
+            v.dimension.unit(units)
         );
     }
     let hash = |seed: u64| {
@@ -48,8 +75,15 @@ pub fn guid() -> String {
     )
 }
 
+/// The unit system whose token is `token`, if any.
+pub fn units_of_token(token: &str) -> Option<Units> {
+    [Units::Dimensionless, Units::Si]
+        .into_iter()
+        .find(|&u| guid(u) == token)
+}
+
 /// XML text with `&`, `<`, `>` and `"` escaped.
-fn escape(s: &str) -> String {
+pub fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -61,20 +95,55 @@ fn number(x: f64) -> String {
     format!("{x:?}")
 }
 
-const DESCRIPTION: &str = "Jeffcott rotor rubbing on an anisotropically supported stator (rotor-rub): exact piecewise-analytical co-simulation with contact events, an external input force and a speed input; all quantities dimensionless";
+/// One line on the model, per unit system.
+pub fn summary(units: Units) -> &'static str {
+    match units {
+        Units::Dimensionless => {
+            "Jeffcott rotor rubbing on an anisotropically supported stator (rotor-rub): exact piecewise-analytical co-simulation with contact events, an external input force and a speed input; all quantities dimensionless"
+        }
+        Units::Si => {
+            "Jeffcott rotor rubbing on an anisotropically supported stator (rotor-rub): exact piecewise-analytical co-simulation with contact events, an external input force and a speed input; SI units (s, m, m/s, N, rad/s) scaled by the natural frequency, the radial clearance and the rotor mass"
+        }
+    }
+}
 
-/// The model description for `version`.
-pub fn model_description(version: Version) -> String {
+/// The inputs an output depends on at a communication point (see the module docs).
+pub fn dependencies(output: Output) -> &'static [u32] {
+    const SPEED: u32 = 12;
+    match output {
+        Output::InContact | Output::SlipRegime => &[SPEED],
+        _ => &[],
+    }
+}
+
+/// `<DefaultExperiment>`'s stop time and step: 20 forcing periods of the default speed.
+fn default_experiment(units: Units) -> (f64, f64) {
+    let periods = 20.0 * core::f64::consts::TAU / rotor_rub::Params::DEFAULT.speed_ratio;
+    match units {
+        Units::Dimensionless => (periods, variables::INTERNAL_STEP),
+        Units::Si => (periods / SI_DEFAULT.natural_frequency, 1e-4),
+    }
+}
+
+/// The model description for `version` and `units`.
+pub fn model_description(version: Version, units: Units) -> String {
     let mut x = String::new();
-    let vars: Vec<Variable> = variables::all().collect();
+    // FMI 2.0 leaves the independent variable implicit (time); declared, it makes the FMI
+    // Library (libcosim's importer) report a missing start value, which it must not have.
+    let vars: Vec<Variable> = variables::all(units)
+        .into_iter()
+        .filter(|v| version == Version::Fmi3 || v.role != Role::Independent)
+        .collect();
+    let name = model_name(units);
+    let token = guid(units);
+    let description = escape(summary(units));
+    let tool = format!("rotor-rub {} (cargo xtask fmu)", env!("CARGO_PKG_VERSION"));
     let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     match version {
         Version::Fmi2 => {
             let _ = writeln!(
                 x,
-                r#"<fmiModelDescription fmiVersion="2.0" modelName="rotor_rub" guid="{}" description="{DESCRIPTION}" generationTool="rotor-rub {} (cargo xtask fmu)" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
-                guid(),
-                env!("CARGO_PKG_VERSION")
+                r#"<fmiModelDescription fmiVersion="2.0" modelName="{name}" guid="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat" numberOfEventIndicators="0">"#
             );
             let _ = writeln!(
                 x,
@@ -84,9 +153,7 @@ pub fn model_description(version: Version) -> String {
         Version::Fmi3 => {
             let _ = writeln!(
                 x,
-                r#"<fmiModelDescription fmiVersion="3.0" modelName="rotor_rub" instantiationToken="{}" description="{DESCRIPTION}" generationTool="rotor-rub {} (cargo xtask fmu)" variableNamingConvention="flat">"#,
-                guid(),
-                env!("CARGO_PKG_VERSION")
+                r#"<fmiModelDescription fmiVersion="3.0" modelName="{name}" instantiationToken="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat">"#
             );
             let _ = writeln!(
                 x,
@@ -94,49 +161,131 @@ pub fn model_description(version: Version) -> String {
             );
         }
     }
-    let _ = writeln!(x, r#"  <UnitDefinitions>"#);
-    let _ = writeln!(x, r#"    <Unit name="1"/>"#);
-    let _ = writeln!(x, r#"  </UnitDefinitions>"#);
+    unit_definitions(&mut x, units);
+    let _ = writeln!(x, r#"  <LogCategories>"#);
+    for (category, _, text) in CATEGORIES {
+        let _ = writeln!(
+            x,
+            r#"    <Category name="{category}" description="{}"/>"#,
+            escape(text)
+        );
+    }
+    let _ = writeln!(x, r#"  </LogCategories>"#);
+    let (stop, step) = default_experiment(units);
     let _ = writeln!(
         x,
-        r#"  <DefaultExperiment startTime="0.0" stopTime="83.77580409572782" stepSize="{}"/>"#,
-        number(variables::INTERNAL_STEP)
+        r#"  <DefaultExperiment startTime="0.0" stopTime="{}" stepSize="{}"/>"#,
+        number(stop),
+        number(step)
     );
     let _ = writeln!(x, r#"  <ModelVariables>"#);
     for v in &vars {
         match version {
-            Version::Fmi2 => fmi2_variable(&mut x, v),
-            Version::Fmi3 => fmi3_variable(&mut x, v),
+            Version::Fmi2 => fmi2_variable(&mut x, v, units),
+            Version::Fmi3 => fmi3_variable(&mut x, v, units),
         }
     }
     let _ = writeln!(x, r#"  </ModelVariables>"#);
+    model_structure(&mut x, version, &vars);
+    let _ = writeln!(x, r#"</fmiModelDescription>"#);
+    x
+}
+
+fn unit_definitions(x: &mut String, units: Units) {
+    let _ = writeln!(x, r#"  <UnitDefinitions>"#);
+    match units {
+        Units::Dimensionless => {
+            let _ = writeln!(x, r#"    <Unit name="1"/>"#);
+        }
+        Units::Si => {
+            for u in &SI_UNITS {
+                let _ = write!(x, r#"    <Unit name="{}">"#, escape(u.name));
+                let exponents: Vec<String> = u
+                    .base
+                    .iter()
+                    .filter(|(_, e)| *e != 0)
+                    .map(|(b, e)| format!(r#"{b}="{e}""#))
+                    .collect();
+                if !exponents.is_empty() {
+                    let _ = write!(x, "<BaseUnit {}/>", exponents.join(" "));
+                }
+                for (name, factor) in u.display {
+                    let _ = write!(
+                        x,
+                        r#"<DisplayUnit name="{}" factor="{}"/>"#,
+                        escape(name),
+                        number(*factor)
+                    );
+                }
+                let _ = writeln!(x, "</Unit>");
+            }
+        }
+    }
+    let _ = writeln!(x, r#"  </UnitDefinitions>"#);
+}
+
+fn model_structure(x: &mut String, version: Version, vars: &[Variable]) {
+    let outputs: Vec<(usize, &Variable)> = vars
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| is_output(v))
+        .collect();
+    let depends = |v: &Variable| match v.target {
+        Target::Output(o) => dependencies(o),
+        _ => &[],
+    };
     let _ = writeln!(x, r#"  <ModelStructure>"#);
     match version {
         Version::Fmi2 => {
-            // Outputs and initial unknowns by index (1-based order in ModelVariables).
+            // By index: the 1-based position in ModelVariables.
+            let index = |vr: u32| vars.iter().position(|v| v.vr == vr).map_or(0, |k| k + 1);
             let _ = writeln!(x, r#"    <Outputs>"#);
-            for (k, _) in vars.iter().enumerate().filter(|(_, v)| is_output(v)) {
-                let _ = writeln!(x, r#"      <Unknown index="{}"/>"#, k + 1);
+            for (k, v) in &outputs {
+                let deps: Vec<String> = depends(v).iter().map(|&r| index(r).to_string()).collect();
+                let kinds = vec!["dependent"; deps.len()].join(" ");
+                let kinds = if deps.is_empty() {
+                    String::new()
+                } else {
+                    format!(r#" dependenciesKind="{kinds}""#)
+                };
+                let _ = writeln!(
+                    x,
+                    r#"      <Unknown index="{}" dependencies="{}"{kinds}/>"#,
+                    k + 1,
+                    deps.join(" ")
+                );
             }
             let _ = writeln!(x, r#"    </Outputs>"#);
             let _ = writeln!(x, r#"    <InitialUnknowns>"#);
-            for (k, _) in vars.iter().enumerate().filter(|(_, v)| is_output(v)) {
+            for (k, _) in &outputs {
                 let _ = writeln!(x, r#"      <Unknown index="{}"/>"#, k + 1);
             }
             let _ = writeln!(x, r#"    </InitialUnknowns>"#);
         }
         Version::Fmi3 => {
-            for v in vars.iter().filter(|v| is_output(v)) {
-                let _ = writeln!(x, r#"    <Output valueReference="{}"/>"#, v.vr);
+            for (_, v) in &outputs {
+                let deps: Vec<String> = depends(v).iter().map(u32::to_string).collect();
+                let kinds = if deps.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        r#" dependenciesKind="{}""#,
+                        vec!["dependent"; deps.len()].join(" ")
+                    )
+                };
+                let _ = writeln!(
+                    x,
+                    r#"    <Output valueReference="{}" dependencies="{}"{kinds}/>"#,
+                    v.vr,
+                    deps.join(" ")
+                );
             }
-            for v in vars.iter().filter(|v| is_output(v)) {
+            for (_, v) in &outputs {
                 let _ = writeln!(x, r#"    <InitialUnknown valueReference="{}"/>"#, v.vr);
             }
         }
     }
     let _ = writeln!(x, r#"  </ModelStructure>"#);
-    let _ = writeln!(x, r#"</fmiModelDescription>"#);
-    x
 }
 
 fn is_output(v: &Variable) -> bool {
@@ -144,7 +293,7 @@ fn is_output(v: &Variable) -> bool {
 }
 
 /// causality, variability and initial of a role.
-fn attributes(role: Role) -> (&'static str, &'static str, Option<&'static str>) {
+pub fn attributes(role: Role) -> (&'static str, &'static str, Option<&'static str>) {
     match role {
         Role::Independent => ("independent", "continuous", None),
         Role::ContinuousOutput => ("output", "continuous", Some("calculated")),
@@ -155,7 +304,7 @@ fn attributes(role: Role) -> (&'static str, &'static str, Option<&'static str>) 
     }
 }
 
-fn head(x: &mut String, v: &Variable) -> (Option<&'static str>, String) {
+fn head(x: &mut String, v: &Variable, units: Units) -> (Option<&'static str>, String) {
     let (causality, variability, initial) = attributes(v.role);
     let _ = write!(
         x,
@@ -166,7 +315,12 @@ fn head(x: &mut String, v: &Variable) -> (Option<&'static str>, String) {
     );
     let mut bounds = String::new();
     if v.kind == Kind::Float {
-        bounds.push_str(r#" unit="1""#);
+        let _ = write!(bounds, r#" unit="{}""#, escape(v.dimension.unit(units)));
+        if let Some(shown) = v.dimension.display_unit(units) {
+            let _ = write!(bounds, r#" displayUnit="{}""#, escape(shown));
+        }
+    }
+    if v.kind != Kind::Bool {
         if let Some(min) = v.min {
             let _ = write!(bounds, r#" min="{}""#, number(min));
         }
@@ -180,9 +334,9 @@ fn head(x: &mut String, v: &Variable) -> (Option<&'static str>, String) {
     (initial, bounds)
 }
 
-fn fmi2_variable(x: &mut String, v: &Variable) {
+fn fmi2_variable(x: &mut String, v: &Variable, units: Units) {
     x.push_str("    <ScalarVariable ");
-    let (initial, bounds) = head(x, v);
+    let (initial, bounds) = head(x, v, units);
     if let Some(i) = initial {
         let _ = write!(x, r#" initial="{i}""#);
     }
@@ -191,10 +345,16 @@ fn fmi2_variable(x: &mut String, v: &Variable) {
         Kind::Int64 | Kind::Int32 => "Integer",
         Kind::Bool => "Boolean",
     };
+    // FMI 2.0's Integer min/max and start are integers.
+    let bounds = if element == "Integer" {
+        bounds.replace(".0\"", "\"")
+    } else {
+        bounds
+    };
     let _ = writeln!(x, ">\n      <{element}{bounds}/>\n    </ScalarVariable>");
 }
 
-fn fmi3_variable(x: &mut String, v: &Variable) {
+fn fmi3_variable(x: &mut String, v: &Variable, units: Units) {
     let element = match v.kind {
         Kind::Float => "Float64",
         Kind::Int64 => "Int64",
@@ -202,9 +362,14 @@ fn fmi3_variable(x: &mut String, v: &Variable) {
         Kind::Bool => "Boolean",
     };
     let _ = write!(x, "    <{element} ");
-    let (initial, bounds) = head(x, v);
+    let (initial, bounds) = head(x, v, units);
     if let Some(i) = initial {
         let _ = write!(x, r#" initial="{i}""#);
     }
+    let bounds = if matches!(v.kind, Kind::Int64 | Kind::Int32) {
+        bounds.replace(".0\"", "\"")
+    } else {
+        bounds
+    };
     let _ = writeln!(x, "{bounds}/>");
 }

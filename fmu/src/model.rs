@@ -1,137 +1,224 @@
-//! The FMU's model, shared by the FMI 2.0 and 3.0 layers: parameters and inputs staged before
-//! initialization, the stepper after it, the communication step covered by internal steps, and
-//! the outputs. Plain data (`Copy`): a saved FMU state is a copy; no call after instantiation
-//! allocates.
+//! The FMU's model, shared by the FMI 2.0 and 3.0 layers and by both unit systems: the values
+//! the importer set (in its units), the stepper after initialization, and the outputs. Plain
+//! data (`Copy`): a saved FMU state is a copy; no call after instantiation allocates. The
+//! communication step is in `step.rs`.
 //!
-//! # A communication step
-//! [`Model::do_step`] covers (t, t + h] with stepper steps of at most `internal_step`, so the
-//! accuracy does not depend on h. A step whose exprb43 error estimate exceeds `tolerance` is
-//! undone (the stepper is `Copy`) and retried at half the length (at most
-//! [`MAX_HALVINGS`] times; the length grows back by doubling when the estimate is 64× below the
-//! tolerance). Every contact switch inside is located exactly by the stepper; with early return
-//! the step ends at the first one ([`Stepper::step_to_switch`]) and reports its time.
+//! # When a value takes effect
+//! * Before initialization every value is staged; the parameter set is validated as a whole
+//!   (ranges in the importer's units, cross-parameter rules) when initialization ends.
+//! * After it, an input (fx, fy, the speed) takes effect at once: it is checked against its
+//!   range and applied to the stepper (inputs enter no cross-parameter rule).
+//! * A tunable parameter is checked against its own range when set, and staged; the staged set
+//!   is validated as a whole, and applied as one, by the next communication step
+//!   ([`Model::apply_pending`]). So the outcome does not depend on the order of the sets (μ > 0,
+//!   then k_xy = 50, then k_yx = −50 is the same as the reverse order), and a refused set
+//!   changes nothing: the stepper never runs on a mix of old and new values.
 
+use rotor_rub::params::Number;
 use rotor_rub::stepper::{OnCap, Stepper, StepperConfig};
-use rotor_rub::{Parameter, Problem, Regime, field};
+use rotor_rub::{ParamError, Parameter, Params, Problem, Regime, field};
 
 use crate::message::Message;
 use crate::msg;
-use crate::variables::{self, Output, Setting, Target};
+use crate::units::{Dimension, Scales, Units};
+use crate::variables::{self, Output, Role, Setting, Target, Variable, dimension};
 
-/// Most halvings of one internal step (2⁻¹² of `internal_step`).
-pub const MAX_HALVINGS: u32 = 12;
-
-/// The FMU's settings (`variables::SETTINGS`).
+/// The FMU's settings (`variables::settings`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    /// Longest internal step.
+    /// Longest internal step in the importer's time unit (SI: 0 means 1e-3/ω_n).
     pub internal_step: f64,
     /// Accepted error estimate.
     pub tolerance: f64,
-}
-
-/// How a communication step ended.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Stepped {
-    /// At t + h.
-    Completed,
-    /// Early, at a switch at this time (early return only).
-    EarlyReturn(f64),
+    /// Most internal steps in one communication step.
+    pub max_internal_steps: u32,
+    /// ω_n, δ, M (all 1 in the dimensionless FMU).
+    pub scales: Scales,
 }
 
 /// The model of one FMU instance.
 #[derive(Clone, Copy, Debug)]
 pub struct Model {
-    /// Parameters, input force and speed, initial state; the stepper's own after initialization.
-    pub problem: Problem,
+    /// The unit system of the instance.
+    pub units: Units,
+    /// Every table entry as the importer set it, in the importer's units (`start_time` unused).
+    pub requested: Problem,
+    /// The experiment's start time, in the importer's units.
+    pub start_time: f64,
     /// The settings.
     pub settings: Settings,
     /// The stepper, from the end of initialization on.
     pub stepper: Option<Stepper>,
+    /// Tunable parameters were set since the last step: the next step applies them as a set.
+    pub pending: bool,
     /// Contact entries so far.
     pub contact_count: u64,
-    /// The next internal step length (step control).
+    /// The next internal step length in model time (step control).
     pub next_step: f64,
 }
 
-impl Default for Model {
-    fn default() -> Self {
+impl Model {
+    /// A model with every value at its default.
+    pub fn new(units: Units) -> Model {
+        let scales = variables::default_scales(units);
+        let mut requested = Problem::DEFAULT;
+        for p in Parameter::ALL {
+            let value = p.get(&Problem::DEFAULT);
+            p.set(&mut requested, scales.to_importer(dimension(p), value));
+        }
+        let internal_step = match units {
+            Units::Dimensionless => variables::INTERNAL_STEP,
+            Units::Si => 0.0,
+        };
         Model {
-            problem: Problem::DEFAULT,
+            units,
+            requested,
+            start_time: 0.0,
             settings: Settings {
-                internal_step: variables::INTERNAL_STEP,
+                internal_step,
                 tolerance: variables::TOLERANCE,
+                max_internal_steps: variables::MAX_INTERNAL_STEPS,
+                scales,
             },
             stepper: None,
+            pending: false,
             contact_count: 0,
             next_step: variables::INTERNAL_STEP,
         }
     }
-}
 
-impl Model {
-    /// Build the stepper at `start_time` (end of initialization).
-    pub fn initialize(&mut self, start_time: f64) -> Result<(), Message> {
-        let mut problem = self.problem;
-        problem.start_time = start_time;
+    /// The scales in force.
+    pub fn scales(&self) -> Scales {
+        self.settings.scales
+    }
+
+    /// The longest internal step in model time.
+    pub fn model_internal_step(&self) -> f64 {
+        match self.units {
+            Units::Si if self.settings.internal_step == 0.0 => variables::INTERNAL_STEP,
+            _ => self
+                .scales()
+                .to_model(Dimension::Time, self.settings.internal_step),
+        }
+    }
+
+    /// The problem the requested values describe, in model units, from the start time.
+    pub fn requested_problem(&self) -> Problem {
+        let scales = self.scales();
+        let mut problem = Problem::DEFAULT;
+        for p in Parameter::ALL {
+            let value = p.get(&self.requested);
+            p.set(&mut problem, scales.to_model(dimension(p), value));
+        }
+        problem.start_time = scales.to_model(Dimension::Time, self.start_time);
+        problem
+    }
+
+    /// The FMU's time in the importer's units.
+    pub fn time(&self) -> f64 {
+        match &self.stepper {
+            Some(s) => self.scales().to_importer(Dimension::Time, s.time()),
+            None => self.start_time,
+        }
+    }
+
+    /// Build the stepper at the start time (end of initialization): the scales, the internal
+    /// step and the whole parameter set are validated here, in the importer's units.
+    pub fn initialize(&mut self) -> Result<(), Message> {
+        self.scales().check().map_err(|(name, value, (lo, hi))| {
+            msg!("{name} = {value} is out of range: it must be in [{lo}, {hi}]")
+        })?;
+        let dt = self.model_internal_step();
+        let (lo, hi) = variables::INTERNAL_STEP_RANGE;
+        if !(dt.is_finite() && (lo..=hi).contains(&dt)) {
+            let to = |x| self.scales().to_importer(Dimension::Time, x);
+            return Err(msg!(
+                "internal_step = {} is out of range: it must be in [{}, {}] (or 0 for 1e-3/ω_n in the SI FMU)",
+                Number(self.settings.internal_step),
+                Number(to(lo)),
+                Number(to(hi))
+            ));
+        }
+        let problem = self.requested_problem();
+        if let Err(e) = problem.validate() {
+            return Err(self.refusal("cannot initialize", e, &problem.params));
+        }
         let config = StepperConfig {
             on_cap: OnCap::Degrade,
-            ..StepperConfig::with_dt(self.settings.internal_step)
+            ..StepperConfig::with_dt(dt)
         };
         let stepper = Stepper::new(&problem, config)
-            .map_err(|e| msg!("cannot initialize at start time {start_time}: {e}"))?;
-        self.problem = problem;
+            .map_err(|e| msg!("cannot initialize at start time {}: {e}", self.start_time))?;
         self.stepper = Some(stepper);
-        self.next_step = self.settings.internal_step;
+        self.next_step = dt;
         self.contact_count = 0;
+        self.pending = false;
         Ok(())
     }
 
-    /// The value of variable `vr` as f64 (booleans 0/1, counts as f64 exactly up to 2⁵³).
+    /// The variable `vr` of this instance's unit system.
+    pub fn variable(&self, vr: u32) -> Result<Variable, Message> {
+        variables::find(vr, self.units)
+            .ok_or_else(|| msg!("unknown value reference {vr} (see modelDescription.xml)"))
+    }
+
+    /// The value of variable `vr` as f64 in the importer's units (booleans 0/1, counts exact up
+    /// to 2⁵³). A parameter reads as last set (a tunable one takes effect at the next step);
+    /// the phase reads as in force (re-based when the speed changes).
     pub fn get(&self, vr: u32) -> Result<f64, Message> {
-        let var = variables::find(vr).ok_or_else(|| unknown(vr))?;
+        let var = self.variable(vr)?;
         Ok(match var.target {
-            Target::Table(p) => p.get(&self.current_problem()),
-            Target::Setting(Setting::InternalStep) => self.settings.internal_step,
-            Target::Setting(Setting::Tolerance) => self.settings.tolerance,
+            Target::Table(Parameter::Phase) => self
+                .stepper
+                .as_ref()
+                .map_or(self.requested.params.phase, |s| s.params().phase),
+            Target::Table(p) => p.get(&self.requested),
+            Target::Setting(s) => self.setting(s),
             Target::Output(o) => self.output(o),
         })
     }
 
-    /// The problem in force: the staged one before initialization, the stepper's after.
-    fn current_problem(&self) -> Problem {
-        let mut p = self.problem;
-        if let Some(s) = &self.stepper {
-            p.params = *s.params();
+    fn setting(&self, s: Setting) -> f64 {
+        let st = &self.settings;
+        match s {
+            Setting::InternalStep => st.internal_step,
+            Setting::Tolerance => st.tolerance,
+            Setting::MaxInternalSteps => f64::from(st.max_internal_steps),
+            Setting::NaturalFrequency => st.scales.natural_frequency,
+            Setting::Clearance => st.scales.clearance,
+            Setting::Mass => st.scales.mass,
         }
-        p
     }
 
     fn output(&self, o: Output) -> f64 {
-        let (state, regime, sigma) = match &self.stepper {
-            Some(s) => (s.state(), s.regime(), s.slip_direction()),
+        let scales = self.scales();
+        let (problem, time, state, regime, sigma) = match &self.stepper {
+            Some(s) => {
+                let problem = Problem {
+                    params: *s.params(),
+                    ..Problem::DEFAULT
+                };
+                (problem, s.time(), s.state(), s.regime(), s.slip_direction())
+            }
             None => {
-                let p = &self.problem;
+                let p = self.requested_problem();
                 let regime = field::regime_of(&p.params, p.start_time, &p.initial);
-                (p.initial, regime, 0.0)
+                (p, p.start_time, p.initial, regime, 0.0)
             }
         };
         let in_contact = regime != Regime::Free;
+        let to = |d, v| scales.to_importer(d, v);
         match o {
-            Output::Time => self
-                .stepper
-                .as_ref()
-                .map_or(self.problem.start_time, Stepper::time),
-            Output::X => state.x,
-            Output::Y => state.y,
-            Output::Vx => state.vx,
-            Output::Vy => state.vy,
+            Output::Time => self.time(),
+            Output::X => to(Dimension::Length, state.x),
+            Output::Y => to(Dimension::Length, state.y),
+            Output::Vx => to(Dimension::Velocity, state.vx),
+            Output::Vy => to(Dimension::Velocity, state.vy),
             Output::InContact => f64::from(u8::from(in_contact)),
-            Output::NormalForce if in_contact => {
-                let p = self.current_problem();
-                let t = self.stepper.as_ref().map_or(p.start_time, Stepper::time);
-                field::friction_at(&p.params, t, &state).normal
-            }
+            Output::NormalForce if in_contact => to(
+                Dimension::Force,
+                field::friction_at(&problem.params, time, &state).normal,
+            ),
             Output::NormalForce => 0.0,
             Output::ContactCount => self.contact_count as f64,
             Output::SlipRegime => match regime {
@@ -144,162 +231,212 @@ impl Model {
         }
     }
 
-    /// Set variable `vr` to `value`: checked against its range and causality; on error nothing
-    /// changes. Before initialization every parameter and input may be set; after it the inputs
-    /// (cheap for fx, fy; the free map's forcing columns recomputed for speed_ratio) and the
-    /// tunable parameters (the free map recomputed, Φ kept unless the damping changes).
+    /// Set variable `vr` to `value` (importer units), checked against its range and causality
+    /// (see the module docs for when it takes effect); on error nothing changes.
     pub fn set(&mut self, vr: u32, value: f64) -> Result<(), Message> {
-        let var = variables::find(vr).ok_or_else(|| unknown(vr))?;
-        if matches!(
-            var.role,
-            variables::Role::ContinuousOutput
-                | variables::Role::DiscreteOutput
-                | variables::Role::Independent
-        ) {
-            return Err(msg!(
-                "variable {} (vr {vr}) is computed by the FMU: it cannot be set",
-                var.name
-            ));
+        let var = self.variable(vr)?;
+        let initialized = self.stepper.is_some();
+        match var.role {
+            Role::ContinuousOutput | Role::DiscreteOutput | Role::Independent => {
+                return Err(msg!(
+                    "variable {} (vr {vr}) is computed by the FMU: it cannot be set",
+                    var.name
+                ));
+            }
+            Role::Fixed if initialized => {
+                return Err(msg!(
+                    "{} is fixed: it cannot change after initialization (tried {value})",
+                    var.name
+                ));
+            }
+            _ => {}
         }
-        let Some(stepper) = self.stepper.as_mut() else {
-            return self.stage(var.target, var.name, value);
-        };
-        let p = match var.target {
-            Target::Table(p) => p,
-            Target::Setting(_) | Target::Output(_) => {
-                return Err(msg!(
-                    "{} is fixed after initialization (tried to set it to {value})",
-                    var.name
-                ));
-            }
-        };
-        p.check(value).map_err(|e| msg!("{}: {e}", var.name))?;
-        let result = match p {
-            Parameter::ForceX => stepper.set_input_force(value, stepper.input_force().1),
-            Parameter::ForceY => stepper.set_input_force(stepper.input_force().0, value),
-            Parameter::SpeedRatio => stepper.set_speed_ratio(value),
-            _ if var.role == variables::Role::Tunable => {
-                let mut problem = Problem {
-                    params: *stepper.params(),
-                    ..self.problem
-                };
-                p.set(&mut problem, value);
-                stepper.set_params(&problem.params)
-            }
-            _ => {
-                return Err(msg!(
-                    "{} is a fixed parameter: it cannot change after initialization (tried {value})",
-                    var.name
-                ));
-            }
-        };
-        result.map_err(|e| msg!("{} = {value} refused: {e}", var.name))
+        if !value.is_finite() {
+            return Err(msg!("{} = {value} is not a finite number", var.name));
+        }
+        match var.target {
+            Target::Table(p) => self.set_table(p, &var, value),
+            Target::Setting(s) => self.set_setting(s, &var, value),
+            Target::Output(_) => Err(msg!("{} is an output: it cannot be set", var.name)),
+        }
     }
 
-    fn stage(&mut self, target: Target, name: &str, value: f64) -> Result<(), Message> {
-        match target {
-            Target::Table(p) => {
-                p.check(value).map_err(|e| msg!("{name}: {e}"))?;
-                p.set(&mut self.problem, value);
+    fn set_table(&mut self, p: Parameter, var: &Variable, value: f64) -> Result<(), Message> {
+        let model_value = self.scales().to_model(var.dimension, value);
+        let scale_free = matches!(var.dimension, Dimension::One | Dimension::Angle);
+        if self.stepper.is_none() && self.units == Units::Si && !scale_free {
+            // Before initialization the SI scales may still change: an SI value is checked for
+            // its sign here and against its whole range when initialization ends.
+            let range = p.range();
+            let below = if range.min_open {
+                value <= 0.0
+            } else {
+                value < 0.0
+            };
+            if range.min >= 0.0 && below {
+                let bound = if range.min_open { "> 0" } else { ">= 0" };
+                return Err(msg!(
+                    "{} = {} {} is out of range: it must be {bound}",
+                    var.name,
+                    Number(value),
+                    var.dimension.unit(self.units)
+                ));
             }
-            Target::Setting(s) => {
-                let (lo, hi) = match s {
-                    Setting::InternalStep => variables::INTERNAL_STEP_RANGE,
-                    Setting::Tolerance => variables::TOLERANCE_RANGE,
-                };
-                if !(value.is_finite() && (lo..=hi).contains(&value)) {
-                    return Err(msg!(
-                        "{name} = {value} is out of range: it must be in [{lo}, {hi}]"
-                    ));
+        } else if let Err(e) = p.check(model_value) {
+            let params = self
+                .stepper
+                .as_ref()
+                .map_or(Params::DEFAULT, |s| *s.params());
+            return Err(self.refusal("refused", e, &params));
+        }
+        if let Some(stepper) = self.stepper.as_mut() {
+            let applied = match p {
+                Parameter::ForceX => stepper.set_input_force(model_value, stepper.input_force().1),
+                Parameter::ForceY => stepper.set_input_force(stepper.input_force().0, model_value),
+                Parameter::SpeedRatio => stepper.set_speed_ratio(model_value),
+                _ => {
+                    self.pending = true;
+                    Ok(())
                 }
-                match s {
-                    Setting::InternalStep => self.settings.internal_step = value,
-                    Setting::Tolerance => self.settings.tolerance = value,
-                }
-            }
-            Target::Output(_) => return Err(msg!("{name} is an output: it cannot be set")),
+            };
+            applied.map_err(|e| msg!("{} = {value} refused: {e}", var.name))?;
+        }
+        p.set(&mut self.requested, value);
+        Ok(())
+    }
+
+    fn set_setting(&mut self, s: Setting, var: &Variable, value: f64) -> Result<(), Message> {
+        let (lo, hi) = (var.min.unwrap_or(f64::MIN), var.max.unwrap_or(f64::MAX));
+        let integral = var.kind != variables::Kind::Float;
+        if !(lo..=hi).contains(&value) || (integral && value.fract() != 0.0) {
+            return Err(msg!(
+                "{} = {} is out of range: it must be {}in [{}, {}]",
+                var.name,
+                Number(value),
+                if integral { "an integer " } else { "" },
+                Number(lo),
+                Number(hi)
+            ));
+        }
+        let st = &mut self.settings;
+        match s {
+            Setting::InternalStep => st.internal_step = value,
+            Setting::Tolerance => st.tolerance = value,
+            // In range [1, 2³¹ − 1] and integral: exact.
+            Setting::MaxInternalSteps => st.max_internal_steps = value as u32,
+            Setting::NaturalFrequency => st.scales.natural_frequency = value,
+            Setting::Clearance => st.scales.clearance = value,
+            Setting::Mass => st.scales.mass = value,
         }
         Ok(())
     }
 
-    /// Cover the communication step (`t`, `t` + `h`] (see the module docs); with
-    /// `early_return` end at the first switch. On error the model is left at its last
-    /// completed internal step.
-    pub fn do_step(&mut self, t: f64, h: f64, early_return: bool) -> Result<Stepped, Message> {
-        let settings = self.settings;
+    /// Apply the tunable parameters set since the last step, validated as one set (ranges and
+    /// cross-parameter rules). On error nothing changes and the set stays staged: the importer
+    /// sets consistent values and steps again.
+    pub fn apply_pending(&mut self) -> Result<(), Message> {
         let Some(stepper) = self.stepper.as_mut() else {
             return Err(msg!("doStep before the end of initialization"));
         };
-        let now = stepper.time();
-        let scale = 1.0 + t.abs().max(now.abs());
-        if !t.is_finite() || (t - now).abs() > 1e-9 * scale {
-            return Err(msg!(
-                "communication point t = {t} does not match the FMU's time {now} (set the FMU state, or step from {now})"
-            ));
+        if !self.pending {
+            return Ok(());
         }
-        if !(h.is_finite() && h > 0.0) {
-            return Err(msg!(
-                "communication step size h = {h} is invalid: it must be finite and > 0"
-            ));
+        let scales = self.settings.scales;
+        let mut candidate = Problem {
+            params: *stepper.params(),
+            ..Problem::DEFAULT
+        };
+        let tunable = Parameter::ALL.into_iter().filter(|&p| {
+            variables::of_parameter(p, self.units).is_some_and(|v| v.role == Role::Tunable)
+        });
+        for p in tunable {
+            let value = scales.to_model(dimension(p), p.get(&self.requested));
+            p.set(&mut candidate, value);
         }
-        let end = t + h;
-        let mut halvings = 0;
-        loop {
-            let remaining = end - stepper.time();
-            if remaining <= 1e-12 * scale {
-                return Ok(Stepped::Completed);
+        let params = candidate.params;
+        let checked = params.validate().map_err(Into::into);
+        match checked.and_then(|()| stepper.set_params(&params)) {
+            Ok(()) => {
+                self.pending = false;
+                Ok(())
             }
-            // A remainder within rounding of the step length takes the step length itself, so
-            // that communication steps of whole internal steps keep one precomputed map.
-            let dt = if remaining - self.next_step >= -1e-9 * self.next_step {
-                self.next_step
-            } else {
-                remaining
-            };
-            let before = *stepper;
-            let report = if early_return {
-                stepper.step_to_switch(dt)
-            } else {
-                stepper.step(dt)
+            Err(rotor_rub::StepperError::Propagation(
+                rotor_rub::PropagationError::InvalidProblem(e),
+            )) => Err(self.refusal(
+                "the parameters set since the last step are refused as a set, nothing changed",
+                e,
+                &params,
+            )),
+            Err(e) => Err(msg!(
+                "the parameters set since the last step are refused: {e}"
+            )),
+        }
+    }
+
+    /// A refused parameter value or set, in the importer's names and units.
+    pub fn refusal(&self, context: &str, e: ParamError, params: &Params) -> Message {
+        let scales = self.scales();
+        let units = self.units;
+        let name =
+            |p: Parameter| variables::of_parameter(p, units).map_or_else(|| p.name(), |v| v.name);
+        match e {
+            ParamError::NonFinite { parameter, value } => {
+                msg!(
+                    "{context}: {} = {value} is not a finite number",
+                    name(parameter)
+                )
             }
-            .map_err(|e| msg!("step of {dt} from t = {}: {e}", before.time()))?;
-            if report.error_estimate > settings.tolerance && halvings < MAX_HALVINGS {
-                *stepper = before;
-                self.next_step = dt * 0.5;
-                halvings += 1;
-                continue;
+            ParamError::OutOfRange {
+                parameter: Parameter::StartTime,
+                value,
+                range,
+            } => msg!(
+                "{context}: the start time {} gives τ0 = {} out of range: it must be in {range}",
+                Number(self.start_time),
+                Number(value)
+            ),
+            ParamError::OutOfRange {
+                parameter,
+                value,
+                range,
+            } => {
+                let d = dimension(parameter);
+                let to = |x| scales.to_importer(d, x);
+                let open = if range.min_open { '(' } else { '[' };
+                let unit = match d.unit(units) {
+                    "1" => "",
+                    u => u,
+                };
+                msg!(
+                    "{context}: {} = {}{}{unit} is out of range: it must be in {open}{}, {}]{}{unit}{}",
+                    name(parameter),
+                    Number(to(value)),
+                    if unit.is_empty() { "" } else { " " },
+                    Number(to(range.min)),
+                    Number(to(range.max)),
+                    if unit.is_empty() { "" } else { " " },
+                    if unit.is_empty() || matches!(d, Dimension::Angle) {
+                        ""
+                    } else {
+                        " (the model's range scaled by ω_n, δ and M)"
+                    }
+                )
             }
-            halvings = 0;
-            if report.events.overflowed() {
-                // More switches than a report holds: redo the step switch by switch.
-                *stepper = before;
-                let stop = before.time() + dt;
-                while stop - stepper.time() > 1e-12 * scale {
-                    let r = stepper
-                        .step_to_switch(stop - stepper.time())
-                        .map_err(|e| msg!("step from t = {}: {e}", stepper.time()))?;
-                    self.contact_count += entries(&r.events);
-                }
-            } else {
-                self.contact_count += entries(&report.events);
-            }
-            if report.error_estimate * 64.0 < settings.tolerance {
-                self.next_step = (self.next_step * 2.0).min(settings.internal_step);
-            }
-            if early_return && !report.events.is_empty() {
-                return Ok(Stepped::EarlyReturn(stepper.time()));
+            ParamError::FrictionNeedsDefiniteStator {
+                friction_coefficient,
+                ..
+            } => {
+                let k = |x| Number(scales.to_importer(Dimension::Stiffness, x));
+                let unit = Dimension::Stiffness.unit(units);
+                msg!(
+                    "{context}: friction_coefficient = {} needs a stator stiffness with a positive definite symmetric part (k_xx > 0, k_yy > 0, k_xx·k_yy > ((k_xy + k_yx)/2)²); the set has k_xx = {}, k_xy = {}, k_yx = {}, k_yy = {} ({unit})",
+                    Number(friction_coefficient),
+                    k(params.k_xx),
+                    k(params.k_xy),
+                    k(params.k_yx),
+                    k(params.k_yy)
+                )
             }
         }
     }
-}
-
-fn entries(events: &rotor_rub::EventList) -> u64 {
-    events
-        .iter()
-        .filter(|e| e.kind == rotor_rub::EventKind::Enter)
-        .count() as u64
-}
-
-fn unknown(vr: u32) -> Message {
-    msg!("unknown value reference {vr} (see modelDescription.xml)")
 }
