@@ -42,6 +42,7 @@ pub mod fmi2_stubs;
 pub mod fmi3;
 pub mod fmi3_stubs;
 pub mod instance;
+pub mod log;
 pub mod message;
 pub mod model;
 pub mod saved;
