@@ -63,6 +63,25 @@ def test_the_outputs_do_not_move_when_the_force_inputs_change() -> None:
         fmi.close()
 
 
+def test_slip_regime_moves_with_the_speed_input_as_declared() -> None:
+    """The declared dependency is real: rolling (dry whip: isotropic K = 300, mu = 0.6,
+    R/clearance = 2), a new speed re-decides the slip at once, before any step."""
+    fmi = instance(FMUS["2.0"], start={"k_xx": 300.0, "k_xy": 0.0, "k_yx": 0.0, "k_yy": 300.0,
+                                       "offset_x": 0.0, "offset_y": 0.0,
+                                       "friction_coefficient": 0.6, "radius_ratio": 2.0})
+    try:
+        regime = fmi.vr["slip_regime"]
+        t = 0.0
+        while t < 40.0 and not (t > 2.0 and fmi.slave.getInteger([regime])[0] == 4):
+            fmi.slave.doStep(currentCommunicationPoint=t, communicationStepSize=1e-3)
+            t += 1e-3
+        assert fmi.slave.getInteger([regime])[0] == 4, "rolling"
+        fmi.slave.setReal([fmi.vr["speed_ratio"]], [0.5])
+        assert fmi.slave.getInteger([regime])[0] == 3, "slipping backward at once"
+    finally:
+        fmi.close()
+
+
 @pytest.mark.parametrize("name", ALL_FMUS)
 def test_log_categories_and_documentation_are_in_the_fmu(name: str) -> None:
     md = read_model_description(str(ALL_FMUS[name]))
