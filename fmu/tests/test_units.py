@@ -7,8 +7,11 @@ import math
 
 import numpy as np
 import pytest
+import warnings
+
 from fmpy import read_model_description, simulate_fmu
 from fmpy.fmi1 import FMICallException
+from fmpy.validation import validate_fmu
 
 from fmu_helpers import FMUS, SI_FMUS, instance
 
@@ -53,6 +56,16 @@ def test_the_si_fmu_is_the_dimensionless_one_scaled_by_hand(version: str) -> Non
     assert np.array_equal(si["contact_count"], model["contact_count"])
     assert np.array_equal(si["slip_regime"], model["slip_regime"])
     assert model["contact_count"][-1] >= 3 and set(model["slip_regime"]) & {2, 3, 4}
+
+
+@pytest.mark.parametrize("version", ["3.0", "2.0"])
+def test_fmpy_validation_finds_nothing_in_the_si_fmus(version: str) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert validate_fmu(str(SI_FMUS[version])) == []
+        md = read_model_description(str(SI_FMUS[version]), validate=True,
+                                    validate_variable_names=True, validate_model_structure=True)
+    assert md.fmiVersion == version and md.modelName == "rotor_rub_si"
 
 
 @pytest.mark.parametrize("version", ["3.0", "2.0"])
