@@ -295,7 +295,8 @@ pub unsafe extern "C" fn fmi3DoStep(
     unsafe {
         with_instance(i, |i| {
             i.expect("fmi3DoStep", &[Phase::Step])?;
-            let before = i.model;
+            // Without early return a capped step rewinds: keep where it started.
+            let before = (!i.early_return).then(|| i.model.checkpoint());
             let (log, units) = (i.log, (i.model.units, i.model.scales()));
             let stepped = i
                 .model
@@ -313,7 +314,9 @@ pub unsafe extern "C" fn fmi3DoStep(
                     // Without early return a partial step is a Discard, with the FMU in the
                     // state it had before the call (FMI 3.0, fmi3DoStep).
                     let m = capped(&i.model, at, "discarded: the FMU stays at the step's start");
-                    i.model = before;
+                    if let Some(before) = &before {
+                        i.model.rewind(before)?;
+                    }
                     log.log(status::DISCARD, &m);
                     (false, t, status::DISCARD)
                 }

@@ -13,7 +13,7 @@
 //! (FMI 3 with early return allowed), as `fmi3Discard` with the state of the step's start (FMI 3
 //! without), or as `fmi2Discard` with the time reached (FMI 2.0's "computed a subinterval").
 
-use rotor_rub::stepper::Stepper;
+use rotor_rub::stepper::{Snapshot, Stepper};
 use rotor_rub::{Event, EventKind, EventList};
 
 use crate::message::Message;
@@ -35,7 +35,41 @@ pub enum Stepped {
     Capped(f64),
 }
 
+/// What a communication step changes in a [`Model`], as it was before the step: the stepper as
+/// a [`Snapshot`] (a quarter of the stepper's size, so taking one costs little on every step;
+/// rebuilding from it is needed only to rewind), the counters and the pending flag.
+#[derive(Clone, Copy, Debug)]
+pub struct Checkpoint {
+    stepper: Option<Snapshot>,
+    contact_count: u64,
+    next_step: f64,
+    pending: bool,
+}
+
 impl Model {
+    /// The state a communication step starts from, to [`Model::rewind`] to.
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            stepper: self.stepper.as_ref().map(Stepper::snapshot),
+            contact_count: self.contact_count,
+            next_step: self.next_step,
+            pending: self.pending,
+        }
+    }
+
+    /// Back to `checkpoint`: the model as it was (the stepper rebuilt from its snapshot steps on
+    /// with the same bits, `Stepper::restore`).
+    pub fn rewind(&mut self, checkpoint: &Checkpoint) -> Result<(), Message> {
+        self.stepper = match &checkpoint.stepper {
+            Some(s) => Some(Stepper::restore(s).map_err(|e| msg!("rewinding the step: {e}"))?),
+            None => None,
+        };
+        self.contact_count = checkpoint.contact_count;
+        self.next_step = checkpoint.next_step;
+        self.pending = checkpoint.pending;
+        Ok(())
+    }
+
     /// Cover the communication step (`t`, `t` + `h`] (importer units; see the module docs);
     /// with `early_return` end at the first switch. `on_event` sees every switch (in model
     /// units). The tunable parameters set since the last step take effect first, as one set.

@@ -42,7 +42,16 @@ fn the_issues_1e5_time_unit_step_is_cut_by_the_work_cap() {
         last_message()
     );
     assert_eq!(get(i, &STATE), before, "a discarded step changed the state");
-    assert_eq!(step(i, 0.0, 1e-3).0, status::OK, "usable after the Discard");
+    // The run goes on as if the discarded step had never been asked for, bit for bit.
+    let untouched = instantiate(false);
+    let (mut t, mut u) = (0.0, 0.0);
+    for _ in 0..3000 {
+        let (s, _, last) = step(i, t, 1e-3);
+        assert_eq!(s, status::OK, "usable after the Discard");
+        t = last;
+        u = step(untouched, u, 1e-3).2;
+    }
+    assert_eq!(get(i, &STATE), get(untouched, &STATE));
 
     // With early return: the step ends early where the cap stopped it, and goes on from there.
     let i = instantiate(true);
