@@ -75,7 +75,7 @@ pub fn index_html(units: Units) -> String {
     );
     x.push_str(match units {
         Units::Dimensionless => {
-            "<p>All quantities are the model's dimensionless ones: lengths in radial clearances δ, time τ = ω<sub>n</sub>t, stiffnesses over the rotor's stiffness, forces per unit mass in clearances·ω<sub>n</sub><sup>2</sup>. The SI variant of this FMU (<code>rotor_rub_si</code>) takes ω<sub>n</sub>, δ and M and speaks seconds, metres and newtons.</p>\n"
+            "<p>All quantities are the model's dimensionless ones: lengths in radial clearances δ, time τ = ω<sub>n</sub>t, stiffnesses over the rotor's stiffness, forces per unit mass in clearances·ω<sub>n</sub><sup>2</sup>; the FMI 2.0 description leaves the independent variable implicit (it is τ as well). The SI variant of this FMU (<code>rotor_rub_si</code>) takes ω<sub>n</sub>, δ and M and speaks seconds, metres and newtons.</p>\n"
         }
         Units::Si => {
             "<p>Units: time in s, positions in m, velocities in m/s, forces in N, stiffnesses in N/m, the speed in rad/s (displayed in rpm). Three fixed parameters set the scales: <code>natural_frequency</code> ω<sub>n</sub> [rad/s], <code>clearance</code> δ [m] and <code>mass</code> M [kg] (rotor stiffness k = Mω<sub>n</sub><sup>2</sup>). Internally the model runs in τ = ω<sub>n</sub>t with lengths in clearances; its valid ranges, scaled, apply (a value outside is refused with the scaled range). The dimensionless variant is <code>rotor_rub</code>.</p>\n"
