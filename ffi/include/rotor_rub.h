@@ -82,7 +82,8 @@
 // The linearized contact system is singular or resonant.
 #define ROTOR_RUB_ERR_SINGULAR_CONTACT 8
 
-// An enumeration argument (preset, scheme) has no such value.
+// An argument has no such value: an enumeration (preset, scheme), a parameter index or name,
+// or a buffer capacity larger than any buffer can be.
 #define ROTOR_RUB_ERR_INVALID_ARGUMENT 9
 
 // An internal error was caught at the boundary (a bug: please report it).
@@ -304,10 +305,12 @@ int32_t rotor_rub_config_default(struct RotorRubConfig *config);
 // Validate parameters and initial state: `ROTOR_RUB_OK` or `ROTOR_RUB_ERR_INVALID_PARAMS`.
 // When `message` is not null and `capacity` > 0, a NUL-terminated description is written
 // there (truncated to fit; "ok" when valid), e.g. "speed_ratio = -1 is out of range: it must be in [0.001, 100]".
+// Only the description's bytes are written, whatever `capacity` says.
 //
 // Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `params` or `initial` is null;
 // `ROTOR_RUB_ERR_INVALID_PARAMS` if a value is not finite, outside its range or breaks a
-// cross-parameter rule.
+// cross-parameter rule; `ROTOR_RUB_ERR_INVALID_ARGUMENT` if `capacity` is larger than any
+// buffer can be (over `PTRDIFF_MAX`, or past the end of the address space).
 //
 // # Safety
 // `params` and `initial` are null or valid for reads; `message` is null or valid for writes
@@ -426,7 +429,8 @@ int32_t rotor_rub_parameter_index(const char *name, int32_t *index);
 // excluded). Every output is optional (null skips it).
 //
 // Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` if `index` is not in
-// `[0, ROTOR_RUB_PARAMETER_COUNT)`.
+// `[0, ROTOR_RUB_PARAMETER_COUNT)` or `capacity` is larger than any buffer can be (nothing is
+// written then).
 //
 // # Safety
 // `name` is null or valid for writes of `capacity` bytes; the other outputs null or valid for

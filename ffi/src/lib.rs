@@ -41,9 +41,8 @@ pub use parameters::*;
 pub use types::*;
 
 use core::ffi::c_char;
-use core::fmt::Write;
 
-use raw::{Buffer, MAGIC, Slot, error_code, guard, read, slot_mut, slot_ref, write};
+use raw::{MAGIC, Slot, error_code, guard, read, slot_mut, slot_ref, write, write_text};
 use rotor_rub::stepper::{Stepper, StepperConfig};
 use rotor_rub::{Params, Preset, Problem};
 
@@ -70,7 +69,9 @@ pub extern "C" fn rotor_rub_error_message(code: i32) -> *const c_char {
             c"the motion diverged (flutter): the stepper stays at the start of the failed step"
         }
         ROTOR_RUB_ERR_SINGULAR_CONTACT => c"the linearized contact system is singular or resonant",
-        ROTOR_RUB_ERR_INVALID_ARGUMENT => c"unknown enumeration value (preset or scheme)",
+        ROTOR_RUB_ERR_INVALID_ARGUMENT => {
+            c"invalid argument: an unknown enumeration value, parameter index or name, or a buffer capacity larger than memory"
+        }
         ROTOR_RUB_ERR_INTERNAL => c"internal error caught at the C boundary (a bug)",
         ROTOR_RUB_ERR_BUDGET_EXCEEDED => {
             c"the step would exceed its bounded work (on_cap = FAIL): refused, the stepper is unchanged"
@@ -161,10 +162,12 @@ pub unsafe extern "C" fn rotor_rub_config_default(config: *mut RotorRubConfig) -
 /// Validate parameters and initial state: `ROTOR_RUB_OK` or `ROTOR_RUB_ERR_INVALID_PARAMS`.
 /// When `message` is not null and `capacity` > 0, a NUL-terminated description is written
 /// there (truncated to fit; "ok" when valid), e.g. "speed_ratio = -1 is out of range: it must be in [0.001, 100]".
+/// Only the description's bytes are written, whatever `capacity` says.
 ///
 /// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `params` or `initial` is null;
 /// `ROTOR_RUB_ERR_INVALID_PARAMS` if a value is not finite, outside its range or breaks a
-/// cross-parameter rule.
+/// cross-parameter rule; `ROTOR_RUB_ERR_INVALID_ARGUMENT` if `capacity` is larger than any
+/// buffer can be (over `PTRDIFF_MAX`, or past the end of the address space).
 ///
 /// # Safety
 /// `params` and `initial` are null or valid for reads; `message` is null or valid for writes
@@ -186,17 +189,11 @@ pub unsafe extern "C" fn rotor_rub_problem_validate(
             start_time,
         };
         let result = problem.validate();
-        if !message.is_null() && capacity > 0 {
-            // SAFETY: caller's contract: `capacity` writable bytes at `message`.
-            let bytes = unsafe { core::slice::from_raw_parts_mut(message.cast::<u8>(), capacity) };
-            let mut buffer = Buffer { bytes, len: 0 };
-            let _ = match result {
-                Ok(()) => buffer.write_str("ok"),
-                Err(e) => write!(buffer, "{e}"),
-            };
-            let end = buffer.len;
-            if let Some(nul) = buffer.bytes.get_mut(end) {
-                *nul = 0;
+        // SAFETY: caller's contract: `capacity` writable bytes at `message` (or null).
+        unsafe {
+            match result {
+                Ok(()) => write_text(message, capacity, format_args!("ok"))?,
+                Err(e) => write_text(message, capacity, format_args!("{e}"))?,
             }
         }
         result.map_err(|_| ROTOR_RUB_ERR_INVALID_PARAMS)

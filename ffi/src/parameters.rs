@@ -3,11 +3,10 @@
 //! constants are generated from the same table (`tests/header.rs`).
 
 use core::ffi::{CStr, c_char};
-use core::fmt::Write;
 
 use rotor_rub::{Parameter, Problem};
 
-use crate::raw::{Buffer, guard, read, write};
+use crate::raw::{guard, read, write, write_text};
 use crate::types::*;
 
 /// Number of table entries: model parameters, initial state and start time.
@@ -53,7 +52,8 @@ pub unsafe extern "C" fn rotor_rub_parameter_index(name: *const c_char, index: *
 /// excluded). Every output is optional (null skips it).
 ///
 /// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` if `index` is not in
-/// `[0, ROTOR_RUB_PARAMETER_COUNT)`.
+/// `[0, ROTOR_RUB_PARAMETER_COUNT)` or `capacity` is larger than any buffer can be (nothing is
+/// written then).
 ///
 /// # Safety
 /// `name` is null or valid for writes of `capacity` bytes; the other outputs null or valid for
@@ -70,16 +70,8 @@ pub unsafe extern "C" fn rotor_rub_parameter_info(
 ) -> i32 {
     guard(|| {
         let info = parameter(index)?.info();
-        if !name.is_null() && capacity > 0 {
-            // SAFETY: caller's contract: `capacity` writable bytes at `name`.
-            let bytes = unsafe { core::slice::from_raw_parts_mut(name.cast::<u8>(), capacity) };
-            let mut buffer = Buffer { bytes, len: 0 };
-            let _ = buffer.write_str(info.name);
-            let end = buffer.len;
-            if let Some(nul) = buffer.bytes.get_mut(end) {
-                *nul = 0;
-            }
-        }
+        // SAFETY: caller's contract: `capacity` writable bytes at `name` (or null).
+        unsafe { write_text(name, capacity, format_args!("{}", info.name))? };
         // SAFETY: caller's contract.
         unsafe {
             write(default_value, info.default);

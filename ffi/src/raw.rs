@@ -122,3 +122,40 @@ impl Write for Buffer<'_> {
         Ok(())
     }
 }
+
+/// Longest text a call writes (messages and names are far shorter).
+const TEXT_MAX: usize = 1024;
+
+/// Write `text` NUL-terminated into the caller's buffer of `capacity` bytes at `dst`
+/// (truncated to fit; null or 0 skips it). Only the bytes of the text and its NUL are touched.
+/// A capacity that no buffer can have (more than `isize::MAX` bytes, or past the end of the
+/// address space) is a wrong count: `ROTOR_RUB_ERR_INVALID_ARGUMENT`, nothing written.
+///
+/// # Safety
+/// `dst` is null or valid for writes of `capacity` bytes.
+pub(crate) unsafe fn write_text(
+    dst: *mut core::ffi::c_char,
+    capacity: usize,
+    text: core::fmt::Arguments<'_>,
+) -> Result<(), i32> {
+    if dst.is_null() || capacity == 0 {
+        return Ok(());
+    }
+    if capacity > isize::MAX as usize || (dst as usize).checked_add(capacity).is_none() {
+        return Err(ROTOR_RUB_ERR_INVALID_ARGUMENT);
+    }
+    let mut staged = [0u8; TEXT_MAX];
+    let mut buffer = Buffer {
+        bytes: &mut staged,
+        len: 0,
+    };
+    let _ = buffer.write_fmt(text);
+    let len = buffer.len.min(capacity - 1);
+    // SAFETY: the caller's contract: `capacity` > `len` writable bytes at `dst`.
+    let out = unsafe { core::slice::from_raw_parts_mut(dst.cast::<u8>(), len + 1) };
+    if let (Some((nul, body)), Some(src)) = (out.split_last_mut(), staged.get(..len)) {
+        body.copy_from_slice(src);
+        *nul = 0;
+    }
+    Ok(())
+}

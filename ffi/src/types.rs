@@ -23,7 +23,8 @@ pub const ROTOR_RUB_ERR_INVALID_STEP: i32 = 6;
 pub const ROTOR_RUB_ERR_DIVERGED: i32 = 7;
 /// The linearized contact system is singular or resonant.
 pub const ROTOR_RUB_ERR_SINGULAR_CONTACT: i32 = 8;
-/// An enumeration argument (preset, scheme) has no such value.
+/// An argument has no such value: an enumeration (preset, scheme), a parameter index or name,
+/// or a buffer capacity larger than any buffer can be.
 pub const ROTOR_RUB_ERR_INVALID_ARGUMENT: i32 = 9;
 /// An internal error was caught at the boundary (a bug: please report it).
 pub const ROTOR_RUB_ERR_INTERNAL: i32 = 10;

@@ -1,15 +1,18 @@
 //! The FMI 2.0 co-simulation interface over [`crate::model::Model`]: the functions of
 //! `fmi2Functions.h`, each checking its arguments and the instance's phase, none panicking
 //! across the boundary, none allocating after `fmi2Instantiate` except `fmi2GetFMUstate` (`saved.rs`, which
-//! returns a new state object, as FMI 2.0 has it).
+//! returns a new state object, as FMI 2.0 has it). A communication step ended by the work cap
+//! returns `fmi2Discard` with the time reached as `fmi2LastSuccessfulTime` (`step.rs`).
 
 use core::ffi::{CStr, c_char, c_int, c_void};
 
+use crate::description::units_of_token;
 use crate::instance::{
-    Fmi2Logger, Instance, Logger, Phase, slice, slice_mut, status, with_instance,
+    Fmi2Logger, Instance, Log, Logger, Phase, slice, slice_mut, status, with_instance,
 };
-use crate::model::{Model, Stepped};
+use crate::model::Model;
 use crate::msg;
+use crate::step::Stepped;
 use crate::variables::Kind;
 
 type Component = *mut c_void;
@@ -62,25 +65,33 @@ pub unsafe extern "C" fn fmi2Instantiate(
         } else {
             unsafe { CStr::from_ptr(name) }.to_bytes()
         };
-        let instance = Instance::new(name_bytes, logger, logging_on != 0);
-        let expected = crate::description::guid();
+        let log = Log::new(name_bytes, logger, logging_on != 0);
         // SAFETY: as above.
         let given = (!guid.is_null()).then(|| unsafe { CStr::from_ptr(guid) });
-        let problem = if kind != CO_SIMULATION {
+        let units = given.and_then(|g| units_of_token(g.to_str().ok()?));
+        let refused = if kind != CO_SIMULATION {
             Some(msg!(
                 "this FMU supports co-simulation only (fmuType = {kind})"
             ))
-        } else if given.and_then(|g| g.to_str().ok()) != Some(expected.as_str()) {
-            Some(msg!("GUID {:?} does not match the FMU's {expected}", given))
+        } else if units.is_none() {
+            Some(msg!(
+                "GUID {:?} is not this FMU's (the guid in its modelDescription.xml)",
+                given
+            ))
         } else {
             None
         };
-        match problem {
-            Some(m) => {
-                instance.log(status::ERROR, &m);
+        match (refused, units) {
+            (None, Some(units)) => {
+                Box::into_raw(Box::new(Instance::new(log, units))).cast::<c_void>()
+            }
+            (m, _) => {
+                log.log(
+                    status::ERROR,
+                    &m.unwrap_or_else(|| msg!("instantiation refused")),
+                );
                 core::ptr::null_mut()
             }
-            None => Box::into_raw(Box::new(instance)).cast::<c_void>(),
         }
     });
     result.unwrap_or(core::ptr::null_mut())
@@ -102,13 +113,13 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
 pub unsafe extern "C" fn fmi2SetDebugLogging(
     c: Component,
     logging_on: c_int,
-    _n: usize,
-    _categories: *const *const c_char,
+    n: usize,
+    categories: *const *const c_char,
 ) -> Status {
     // SAFETY: caller's contract.
     unsafe {
         with_instance(c, |i| {
-            i.logging_on = logging_on != 0;
+            i.log.set(logging_on != 0, slice(categories, n)?)?;
             Ok(status::OK)
         })
     }
@@ -135,7 +146,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
             if tolerance_defined != 0 {
                 i.model.set(201, tolerance)?;
             }
-            i.start_time = start_time;
+            i.model.start_time = start_time;
             Ok(status::OK)
         })
     }
@@ -163,8 +174,8 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
     unsafe {
         with_instance(c, |i| {
             i.expect("fmi2ExitInitializationMode", &[Phase::Initialization])?;
-            i.model.initialize(i.start_time)?;
-            i.last_time = i.start_time;
+            i.model.initialize()?;
+            i.last_time = i.model.start_time;
             i.phase = Phase::Step;
             Ok(status::OK)
         })
@@ -191,7 +202,7 @@ pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
     // SAFETY: caller's contract.
     unsafe {
         with_instance(c, |i| {
-            i.model = Model::default();
+            i.model = Model::new(i.model.units);
             i.phase = Phase::Instantiated;
             Ok(status::OK)
         })
@@ -213,7 +224,7 @@ macro_rules! getter {
             unsafe {
                 with_instance(c, |i| {
                     let (vr, out) = (slice(vr, n)?, slice_mut(values, n)?);
-                    i.get_all(vr, $kind, out, $conv)?;
+                    i.get_all(vr, &[$kind], out, $conv)?;
                     Ok(status::OK)
                 })
             }
@@ -236,7 +247,7 @@ macro_rules! setter {
             unsafe {
                 with_instance(c, |i| {
                     let (vr, v) = (slice(vr, n)?, slice(values, n)?);
-                    i.set_all(vr, $kind, v.iter().map($conv))?;
+                    i.set_all(vr, &[$kind], v.iter().map($conv))?;
                     Ok(status::OK)
                 })
             }
@@ -262,13 +273,10 @@ pub unsafe extern "C" fn fmi2GetInteger(
     unsafe {
         with_instance(c, |i| {
             let (vrs, out) = (slice(vr, n)?, slice_mut(values, n)?);
-            for (&r, slot) in vrs.iter().zip(out.iter_mut()) {
-                let kind = crate::variables::find(r).map(|v| v.kind);
-                if !matches!(kind, Some(Kind::Int32 | Kind::Int64)) {
-                    Instance::check_kind(r, Kind::Int32)?;
-                }
-                *slot = i.model.get(r)?.min(f64::from(c_int::MAX)) as c_int;
-            }
+            // Int64 counts saturate at the largest FMI 2.0 Integer.
+            i.get_all(vrs, &[Kind::Int32, Kind::Int64], out, |v| {
+                v.min(f64::from(c_int::MAX)) as c_int
+            })?;
             Ok(status::OK)
         })
     }
@@ -281,16 +289,19 @@ pub unsafe extern "C" fn fmi2SetInteger(
     c: Component,
     vr: *const u32,
     n: usize,
-    _v: *const c_int,
+    values: *const c_int,
 ) -> Status {
     // SAFETY: caller's contract.
     unsafe {
-        no_variables(
-            c,
-            "fmi2SetInteger (every Integer variable is an output)",
-            vr,
-            n,
-        )
+        with_instance(c, |i| {
+            let (vrs, v) = (slice(vr, n)?, slice(values, n)?);
+            i.set_all(
+                vrs,
+                &[Kind::Int32, Kind::Int64],
+                v.iter().map(|&x| f64::from(x)),
+            )?;
+            Ok(status::OK)
+        })
     }
 }
 
@@ -339,11 +350,21 @@ pub unsafe extern "C" fn fmi2DoStep(c: Component, t: f64, h: f64, _no_set_prior:
     unsafe {
         with_instance(c, |i| {
             i.expect("fmi2DoStep", &[Phase::Step])?;
-            match i.model.do_step(t, h, false)? {
-                Stepped::Completed | Stepped::EarlyReturn(_) => {}
+            let (log, units) = (i.log, (i.model.units, i.model.scales()));
+            match i.model.do_step(t, h, false, &mut |e| log.event(units, e))? {
+                Stepped::Completed | Stepped::Switch(_) => {
+                    i.last_time = t + h;
+                    Ok(status::OK)
+                }
+                Stepped::Capped(at) => {
+                    // FMI 2.0: Discard, "computed successfully only a subinterval"; the time
+                    // reached is fmi2LastSuccessfulTime, and stepping on from it is allowed.
+                    i.last_time = at;
+                    let outcome = "the FMU stays there (fmi2LastSuccessfulTime): step on from it, or restore a saved state";
+                    log.log(status::DISCARD, &crate::fmi3::capped(&i.model, at, outcome));
+                    Ok(status::DISCARD)
+                }
             }
-            i.last_time = t + h;
-            Ok(status::OK)
         })
     }
 }

@@ -7,11 +7,13 @@
 
 use core::ffi::{CStr, c_char, c_void};
 
+use crate::description::units_of_token;
 use crate::instance::{
-    Fmi3Logger, Instance, Logger, Phase, slice, slice_mut, status, with_instance,
+    Fmi3Logger, Instance, Log, Logger, Phase, slice, slice_mut, status, with_instance,
 };
-use crate::model::{Model, Stepped};
+use crate::model::Model;
 use crate::msg;
+use crate::step::Stepped;
 use crate::variables::Kind;
 
 type Inst = *mut c_void;
@@ -28,13 +30,13 @@ pub extern "C" fn fmi3GetVersion() -> *const c_char {
 pub unsafe extern "C" fn fmi3SetDebugLogging(
     i: Inst,
     on: bool,
-    _n: usize,
-    _c: *const *const c_char,
+    n: usize,
+    categories: *const *const c_char,
 ) -> Status {
     // SAFETY: caller's contract.
     unsafe {
         with_instance(i, |i| {
-            i.logging_on = on;
+            i.log.set(on, slice(categories, n)?)?;
             Ok(status::OK)
         })
     }
@@ -64,29 +66,35 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
         } else {
             unsafe { CStr::from_ptr(name) }.to_bytes()
         };
-        let mut instance = Instance::new(name_bytes, Logger::Fmi3(log, environment), logging_on);
-        instance.early_return = early_return_allowed;
-        let expected = crate::description::guid();
+        let log = Log::new(name_bytes, Logger::Fmi3(log, environment), logging_on);
         // SAFETY: as above.
         let given = (!token.is_null()).then(|| unsafe { CStr::from_ptr(token) });
-        let problem = if event_mode_used {
+        let units = given.and_then(|g| units_of_token(g.to_str().ok()?));
+        let refused = if event_mode_used {
             Some(msg!(
                 "event mode is not provided (hasEventMode = false): instantiate with eventModeUsed = false"
             ))
-        } else if given.and_then(|g| g.to_str().ok()) != Some(expected.as_str()) {
+        } else if units.is_none() {
             Some(msg!(
-                "instantiation token {:?} does not match the FMU's {expected}",
+                "instantiation token {:?} is not this FMU's (the token in its modelDescription.xml)",
                 given
             ))
         } else {
             None
         };
-        match problem {
-            Some(m) => {
-                instance.log(status::ERROR, &m);
+        match (refused, units) {
+            (None, Some(units)) => {
+                let mut instance = Instance::new(log, units);
+                instance.early_return = early_return_allowed;
+                Box::into_raw(Box::new(instance)).cast::<c_void>()
+            }
+            (m, _) => {
+                log.log(
+                    status::ERROR,
+                    &m.unwrap_or_else(|| msg!("instantiation refused")),
+                );
                 core::ptr::null_mut()
             }
-            None => Box::into_raw(Box::new(instance)).cast::<c_void>(),
         }
     });
     result.unwrap_or(core::ptr::null_mut())
@@ -123,7 +131,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
             if tolerance_defined {
                 i.model.set(201, tolerance)?;
             }
-            i.start_time = start_time;
+            i.model.start_time = start_time;
             i.phase = Phase::Initialization;
             Ok(status::OK)
         })
@@ -138,8 +146,8 @@ pub unsafe extern "C" fn fmi3ExitInitializationMode(i: Inst) -> Status {
     unsafe {
         with_instance(i, |i| {
             i.expect("fmi3ExitInitializationMode", &[Phase::Initialization])?;
-            i.model.initialize(i.start_time)?;
-            i.last_time = i.start_time;
+            i.model.initialize()?;
+            i.last_time = i.model.start_time;
             i.phase = Phase::Step;
             Ok(status::OK)
         })
@@ -179,7 +187,7 @@ pub unsafe extern "C" fn fmi3Reset(i: Inst) -> Status {
     // SAFETY: caller's contract.
     unsafe {
         with_instance(i, |i| {
-            i.model = Model::default();
+            i.model = Model::new(i.model.units);
             i.phase = Phase::Instantiated;
             Ok(status::OK)
         })
@@ -205,7 +213,7 @@ macro_rules! access {
                         return Err(msg!("{} values for {} scalar variables", n, nvr));
                     }
                     let (vr, out) = (slice(vr, nvr)?, slice_mut(values, n)?);
-                    i.get_all(vr, $kind, out, $to)?;
+                    i.get_all(vr, &[$kind], out, $to)?;
                     Ok(status::OK)
                 })
             }
@@ -228,7 +236,7 @@ macro_rules! access {
                         return Err(msg!("{} values for {} scalar variables", n, nvr));
                     }
                     let (vr, v) = (slice(vr, nvr)?, slice(values, n)?);
-                    i.set_all(vr, $kind, v.iter().map($from))?;
+                    i.set_all(vr, &[$kind], v.iter().map($from))?;
                     Ok(status::OK)
                 })
             }
@@ -287,27 +295,53 @@ pub unsafe extern "C" fn fmi3DoStep(
     unsafe {
         with_instance(i, |i| {
             i.expect("fmi3DoStep", &[Phase::Step])?;
-            let stepped = i.model.do_step(t, h, i.early_return);
-            let (early, time) = match stepped {
-                Ok(Stepped::Completed) => (false, t + h),
-                Ok(Stepped::EarlyReturn(at)) => (true, at),
+            // Without early return a capped step rewinds: keep where it started.
+            let before = (!i.early_return).then(|| i.model.checkpoint());
+            let (log, units) = (i.log, (i.model.units, i.model.scales()));
+            let stepped = i
+                .model
+                .do_step(t, h, i.early_return, &mut |e| log.event(units, e));
+            write(event_handling_needed, false);
+            write(terminate, false);
+            let (early, time, code) = match stepped {
+                Ok(Stepped::Completed) => (false, t + h, status::OK),
+                Ok(Stepped::Switch(at)) => (true, at, status::OK),
+                Ok(Stepped::Capped(at)) if i.early_return => {
+                    log.log(status::OK, &capped(&i.model, at, "returned early"));
+                    (true, at, status::OK)
+                }
+                Ok(Stepped::Capped(at)) => {
+                    // Without early return a partial step is a Discard, with the FMU in the
+                    // state it had before the call (FMI 3.0, fmi3DoStep).
+                    let m = capped(&i.model, at, "discarded: the FMU stays at the step's start");
+                    if let Some(before) = &before {
+                        i.model.rewind(before)?;
+                    }
+                    log.log(status::DISCARD, &m);
+                    (false, t, status::DISCARD)
+                }
                 Err(m) => {
-                    let at = i.model.stepper.as_ref().map_or(t, |s| s.time());
-                    write(last_successful_time, at);
+                    write(last_successful_time, i.model.time());
                     write(early_return, false);
-                    write(event_handling_needed, false);
-                    write(terminate, false);
                     return Err(m);
                 }
             };
-            i.last_time = time;
-            write(event_handling_needed, false);
-            write(terminate, false);
+            if code == status::OK {
+                i.last_time = time;
+            }
             write(early_return, early);
             write(last_successful_time, time);
-            Ok(status::OK)
+            Ok(code)
         })
     }
+}
+
+/// The message of a step ended by the work cap at `at`.
+pub fn capped(model: &Model, at: f64, outcome: &str) -> crate::message::Message {
+    msg!(
+        "work cap reached: {} internal steps (max_internal_steps) covered the step up to t = {at}; {outcome}. Take shorter communication steps or raise max_internal_steps",
+        model.settings.max_internal_steps
+    )
 }
 
 /// Write an output argument (null skipped).

@@ -4,7 +4,7 @@
 
 use core::ffi::{c_char, c_void};
 
-use crate::instance::{Fmi3Logger, Instance, Logger, slice, status, with_instance};
+use crate::instance::{Fmi3Logger, Log, Logger, slice, status, with_instance};
 use crate::message::Message;
 
 type Inst = *mut c_void;
@@ -151,8 +151,8 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
 }
 
 fn refuse(environment: *mut c_void, log: Option<Fmi3Logger>, what: &str) -> Inst {
-    let instance = Instance::new(b"rotor_rub", Logger::Fmi3(log, environment), true);
-    instance.log(
+    let log = Log::new(b"rotor_rub", Logger::Fmi3(log, environment), true);
+    log.log(
         status::ERROR,
         &Message::new(format_args!(
             "{what} is not provided: this FMU is co-simulation only"

@@ -1,14 +1,17 @@
 //! One FMU instance, shared by the FMI 2.0 and 3.0 layers: the model, the FMI state machine's
-//! phase, the importer's logger, and the checked, panic-free plumbing every exported function
-//! goes through (null pointers, value references of the wrong type, phases, caught panics).
+//! phase, the importer's logger with its log categories (`log.rs`), and the checked, panic-free plumbing
+//! every exported function goes through (null pointers, array counts, value references of the
+//! wrong type, phases, caught panics).
 
-use core::ffi::{c_char, c_void};
+use core::ffi::c_void;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+pub use crate::log::{CATEGORIES, Fmi2Logger, Fmi3Logger, Log, Logger};
 use crate::message::Message;
 use crate::model::Model;
 use crate::msg;
-use crate::variables::{self, Kind, Role};
+use crate::units::Units;
+use crate::variables::Kind;
 
 /// FMI status codes (the same numbers in FMI 2.0 and 3.0).
 pub mod status {
@@ -22,21 +25,6 @@ pub mod status {
     pub const ERROR: i32 = 3;
     /// Fatal.
     pub const FATAL: i32 = 4;
-}
-
-/// The FMI 2.0 logger: variadic, its message is a printf format.
-pub type Fmi2Logger =
-    unsafe extern "C" fn(*mut c_void, *const c_char, i32, *const c_char, *const c_char, ...);
-/// The FMI 3.0 logger.
-pub type Fmi3Logger = unsafe extern "C" fn(*mut c_void, i32, *const c_char, *const c_char);
-
-/// Where log messages go.
-#[derive(Clone, Copy)]
-pub enum Logger {
-    /// FMI 2.0 callbacks.
-    Fmi2(Option<Fmi2Logger>, *mut c_void),
-    /// FMI 3.0 callback.
-    Fmi3(Option<Fmi3Logger>, *mut c_void),
 }
 
 /// Where an instance is in the FMI state machine.
@@ -58,70 +46,23 @@ pub struct Instance {
     pub model: Model,
     /// The phase.
     pub phase: Phase,
-    /// The logger.
-    pub logger: Logger,
-    /// Whether the importer wants log messages other than errors.
-    pub logging_on: bool,
-    /// FMI 3.0: fmi3DoStep may return early at a switch.
+    /// The logger and its categories.
+    pub log: Log,
+    /// FMI 3.0: fmi3DoStep may return early (at a switch, or at the work cap).
     pub early_return: bool,
-    /// The experiment's start time.
-    pub start_time: f64,
-    /// The end of the last completed (or early-returned) step.
+    /// The end of the last completed (or early-returned) step, in the importer's units.
     pub last_time: f64,
-    name: [u8; 64],
 }
 
 impl Instance {
-    /// A new instance named `name` (truncated to 63 bytes).
-    pub fn new(name: &[u8], logger: Logger, logging_on: bool) -> Instance {
-        let mut n = [0u8; 64];
-        for (d, s) in n.iter_mut().zip(name.iter().take(63)) {
-            *d = *s;
-        }
+    /// A new instance of `units` logging to `log`.
+    pub fn new(log: Log, units: Units) -> Instance {
         Instance {
-            model: Model::default(),
+            model: Model::new(units),
             phase: Phase::Instantiated,
-            logger,
-            logging_on,
+            log,
             early_return: false,
-            start_time: 0.0,
             last_time: 0.0,
-            name: n,
-        }
-    }
-
-    /// Log `message` with `status` (errors always, the rest when logging is on).
-    pub fn log(&self, status: i32, message: &Message) {
-        if status < status::WARNING && !self.logging_on {
-            return;
-        }
-        let category = match status {
-            status::OK => c"logAll",
-            status::WARNING => c"logStatusWarning",
-            status::DISCARD => c"logStatusDiscard",
-            status::ERROR => c"logStatusError",
-            _ => c"logStatusFatal",
-        };
-        match self.logger {
-            Logger::Fmi2(Some(log), env) => {
-                // SAFETY: the importer's logger, called as FMI 2.0 specifies; the message is
-                // passed as the argument of a "%s" format, never as a format itself.
-                unsafe {
-                    log(
-                        env,
-                        self.name.as_ptr().cast(),
-                        status,
-                        category.as_ptr(),
-                        c"%s".as_ptr(),
-                        message.as_ptr(),
-                    )
-                }
-            }
-            Logger::Fmi3(Some(log), env) => {
-                // SAFETY: the importer's logger, called as FMI 3.0 specifies.
-                unsafe { log(env, status, category.as_ptr(), message.as_ptr()) }
-            }
-            Logger::Fmi2(None, _) | Logger::Fmi3(None, _) => {}
         }
     }
 
@@ -135,9 +76,8 @@ impl Instance {
     }
 
     /// Check that `vr` is a variable of type `kind` (for a get or set of that type).
-    pub fn check_kind(vr: u32, kind: Kind) -> Result<(), Message> {
-        let var = variables::find(vr)
-            .ok_or_else(|| msg!("unknown value reference {vr} (see modelDescription.xml)"))?;
+    pub fn check_kind(&self, vr: u32, kind: Kind) -> Result<(), Message> {
+        let var = self.model.variable(vr)?;
         if var.kind == kind {
             Ok(())
         } else {
@@ -154,7 +94,7 @@ impl Instance {
     pub fn set_all(
         &mut self,
         vrs: &[u32],
-        kind: Kind,
+        kinds: &[Kind],
         values: impl Iterator<Item = f64>,
     ) -> Result<(), Message> {
         self.expect(
@@ -163,14 +103,9 @@ impl Instance {
         )?;
         let mut model = self.model;
         for (&vr, value) in vrs.iter().zip(values) {
-            Self::check_kind(vr, kind)?;
-            if self.phase == Phase::Step
-                && variables::find(vr).is_some_and(|v| v.role == Role::Fixed)
-            {
-                let name = variables::find(vr).map_or("", |v| v.name);
-                return Err(msg!(
-                    "{name} is fixed: it cannot change after initialization (tried {value})"
-                ));
+            let var = model.variable(vr)?;
+            if !kinds.contains(&var.kind) {
+                self.check_kind(vr, kinds.first().copied().unwrap_or(Kind::Float))?;
             }
             model.set(vr, value)?;
         }
@@ -178,16 +113,19 @@ impl Instance {
         Ok(())
     }
 
-    /// Every value of `vrs` (of type `kind`) into `out` through `convert`.
+    /// Every value of `vrs` (of one of `kinds`) into `out` through `convert`.
     pub fn get_all<T>(
         &self,
         vrs: &[u32],
-        kind: Kind,
+        kinds: &[Kind],
         out: &mut [T],
         convert: impl Fn(f64) -> T,
     ) -> Result<(), Message> {
         for (&vr, slot) in vrs.iter().zip(out.iter_mut()) {
-            Self::check_kind(vr, kind)?;
+            let var = self.model.variable(vr)?;
+            if !kinds.contains(&var.kind) {
+                self.check_kind(vr, kinds.first().copied().unwrap_or(Kind::Float))?;
+            }
             *slot = convert(self.model.get(vr)?);
         }
         Ok(())
@@ -211,11 +149,11 @@ pub unsafe fn with_instance(
     match catch_unwind(AssertUnwindSafe(|| body(instance))) {
         Ok(Ok(s)) => s,
         Ok(Err(m)) => {
-            instance.log(status::ERROR, &m);
+            instance.log.log(status::ERROR, &m);
             status::ERROR
         }
         Err(_) => {
-            instance.log(
+            instance.log.log(
                 status::FATAL,
                 &msg!("internal error (a bug): caught at the FMI boundary"),
             );
@@ -224,7 +162,24 @@ pub unsafe fn with_instance(
     }
 }
 
-/// A slice from an FMI array argument (`n` = 0 allows null).
+/// Check that an array of `n` elements of `T` at `p` can exist: at most `isize::MAX` bytes,
+/// not wrapping around the address space. A count beyond that is a bad argument, refused
+/// before any memory is touched (forming the slice would be undefined behaviour).
+fn check_count<T>(p: *const T, n: usize) -> Result<(), Message> {
+    let bytes = n.checked_mul(size_of::<T>().max(1));
+    let fits =
+        bytes.is_some_and(|b| b <= isize::MAX as usize && (p as usize).checked_add(b).is_some());
+    if fits {
+        Ok(())
+    } else {
+        Err(msg!(
+            "an array of {n} elements of {} bytes cannot exist in memory: the count is wrong",
+            size_of::<T>()
+        ))
+    }
+}
+
+/// A slice from an FMI array argument (`n` = 0 allows null), its count checked first.
 ///
 /// # Safety
 /// `p` is null with `n` = 0, or valid for `n` reads.
@@ -235,11 +190,12 @@ pub unsafe fn slice<'a, T>(p: *const T, n: usize) -> Result<&'a [T], Message> {
     if p.is_null() {
         return Err(msg!("a null array was passed with {n} elements"));
     }
-    // SAFETY: caller's contract.
+    check_count(p, n)?;
+    // SAFETY: caller's contract; the count fits the address space (checked).
     Ok(unsafe { core::slice::from_raw_parts(p, n) })
 }
 
-/// A mutable slice from an FMI array argument.
+/// A mutable slice from an FMI array argument, its count checked first.
 ///
 /// # Safety
 /// As [`slice`](fn@slice), for writes.
@@ -250,6 +206,7 @@ pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Result<&'a mut [T], Messa
     if p.is_null() {
         return Err(msg!("a null array was passed with {n} elements"));
     }
-    // SAFETY: caller's contract.
+    check_count(p, n)?;
+    // SAFETY: caller's contract; the count fits the address space (checked).
     Ok(unsafe { core::slice::from_raw_parts_mut(p, n) })
 }

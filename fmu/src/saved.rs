@@ -1,7 +1,8 @@
 //! FMU state get/set/free and serialization, the same six functions for FMI 2.0
 //! (`fmi2GetFMUstate`, …) and FMI 3.0 (`fmi3GetFMUState`, …): a saved state is a boxed copy of
 //! the [`Model`] (allocated by get, as both standards have it, never by `DoStep`); its bytes are
-//! [`crate::state`]'s checked fixed-size form.
+//! [`crate::state`]'s checked fixed-size form (format version and CRC-32 checksum: a corrupted
+//! state is refused). A size argument other than the state's is refused before any byte is read.
 
 use core::ffi::c_void;
 
@@ -43,9 +44,16 @@ macro_rules! saved_state {
                         .cast::<Model>()
                         .as_ref()
                         .ok_or_else(|| msg!("null state"))?;
+                    if model.units != i.model.units {
+                        return Err(msg!(
+                            "a state of the {:?} FMU cannot be set on the {:?} one",
+                            model.units,
+                            i.model.units
+                        ));
+                    }
                     i.model = *model;
-                    if let Some(s) = &i.model.stepper {
-                        i.last_time = s.time();
+                    if i.model.stepper.is_some() {
+                        i.last_time = i.model.time();
                         i.phase = Phase::Step;
                     }
                     Ok(status::OK)
@@ -111,15 +119,14 @@ macro_rules! saved_state {
                         .cast::<Model>()
                         .as_ref()
                         .ok_or_else(|| msg!("null state"))?;
-                    slice_mut(bytes, size)?
-                        .get_mut(..state::BYTES)
-                        .ok_or_else(|| {
-                            msg!(
-                                "buffer of {size} bytes is too small: {} needed",
-                                state::BYTES
-                            )
-                        })?
-                        .copy_from_slice(&state::serialize(model));
+                    if size < state::BYTES {
+                        return Err(msg!(
+                            "buffer of {size} bytes is too small: {} needed",
+                            state::BYTES
+                        ));
+                    }
+                    // Only the state's bytes are touched, whatever `size` says.
+                    slice_mut(bytes, state::BYTES)?.copy_from_slice(&state::serialize(model));
                     Ok(status::OK)
                 })
             }
@@ -139,8 +146,14 @@ macro_rules! saved_state {
         ) -> i32 {
             // SAFETY: caller's contract.
             unsafe {
-                with_instance(i, |_| {
-                    let model = state::deserialize(slice(bytes, size)?)?;
+                with_instance(i, |i| {
+                    if size != state::BYTES {
+                        return Err(msg!(
+                            "serialized FMU state has {size} bytes, expected {}",
+                            state::BYTES
+                        ));
+                    }
+                    let model = state::deserialize(slice(bytes, size)?, i.model.units)?;
                     let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
                     *slot = Box::into_raw(Box::new(model)).cast();
                     Ok(status::OK)

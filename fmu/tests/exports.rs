@@ -3,21 +3,24 @@
 //! library stepper's switch, serialization round trip, the model description generated from the
 //! parameter table.
 
+mod common;
+
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
-use std::ffi::{CStr, CString, c_char, c_void};
+use std::ffi::c_void;
 
+use common::{instantiate, step};
 use rotor_rub::{Parameter, Preset, Stepper, StepperConfig};
 use rotor_rub_fmu::description::{Version, guid, model_description};
 use rotor_rub_fmu::fmi3::*;
 use rotor_rub_fmu::instance::status;
 use rotor_rub_fmu::saved::*;
+use rotor_rub_fmu::units::Units;
 
 struct Counting;
 
 thread_local! {
     static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-    static LOGGED: Cell<usize> = const { Cell::new(0) };
 }
 
 fn allocations() -> usize {
@@ -40,67 +43,16 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-unsafe extern "C" fn logger(_: *mut c_void, _: i32, _: *const c_char, message: *const c_char) {
-    // SAFETY: the FMU passes a NUL-terminated message.
-    let text = unsafe { CStr::from_ptr(message) };
-    assert!(!text.to_bytes().is_empty());
-    LOGGED.with(|n| n.set(n.get() + 1));
-}
-
-fn instantiate(early_return: bool) -> *mut c_void {
-    let token = CString::new(guid()).unwrap();
-    // SAFETY: valid strings and callbacks.
-    let i = unsafe {
-        fmi3InstantiateCoSimulation(
-            c"test".as_ptr(),
-            token.as_ptr(),
-            std::ptr::null(),
-            false,
-            false,
-            false,
-            early_return,
-            std::ptr::null(),
-            0,
-            std::ptr::null_mut(),
-            Some(logger),
-            std::ptr::null(),
-        )
-    };
-    assert!(!i.is_null());
-    // SAFETY: a live instance.
-    unsafe {
-        assert_eq!(
-            fmi3EnterInitializationMode(i, false, 0.0, 0.0, false, 0.0),
-            status::OK
-        );
-        assert_eq!(fmi3ExitInitializationMode(i), status::OK);
-    }
-    i
-}
-
-unsafe fn step(i: *mut c_void, t: f64, h: f64) -> (i32, bool, f64) {
-    let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
-    // SAFETY: caller's contract.
-    let s = unsafe {
-        fmi3DoStep(
-            i,
-            t,
-            h,
-            false,
-            &mut event,
-            &mut terminate,
-            &mut early,
-            &mut last,
-        )
-    };
-    (s, early, last)
+fn logged() -> usize {
+    common::COUNT.with(Cell::get)
 }
 
 #[test]
 fn do_step_set_get_and_errors_allocate_nothing() {
     let i = instantiate(true);
     let before = allocations();
-    let logged = LOGGED.with(Cell::get);
+    common::RECORD.with(|r| r.set(false));
+    let logged_before = logged();
     let mut t = 0.0;
     let (fx, x) = (10u32, [1u32, 2, 3, 4]);
     let mut out = [0.0; 4];
@@ -123,12 +75,10 @@ fn do_step_set_get_and_errors_allocate_nothing() {
         assert_eq!(step(i, t, -1.0).0, status::ERROR);
         assert_eq!(step(i, t + 1.0, 1e-3).0, status::ERROR);
     }
-    assert_eq!(
-        allocations(),
-        before,
-        "an FMI call allocated after instantiation"
-    );
-    assert_eq!(LOGGED.with(Cell::get), logged + 3, "each error logged once");
+    let after = allocations();
+    assert_eq!(after, before, "an FMI call allocated after instantiation");
+    assert_eq!(logged(), logged_before + 3, "each error logged once");
+    common::RECORD.with(|r| r.set(true));
     // SAFETY: a live instance, freed once.
     unsafe { fmi3FreeInstance(i) };
 }
@@ -148,8 +98,7 @@ fn early_return_reports_the_stepper_switch_time() {
             .next()
             .map(|e| e.time);
     }
-    // SAFETY: a live instance.
-    let (s, early, last) = unsafe { step(i, 0.0, 10.0) };
+    let (s, early, last) = step(i, 0.0, 10.0);
     assert_eq!((s, early), (status::OK, true));
     // The FMU's internal steps are the same 1e-3 grid: the same switch, bit for bit.
     assert_eq!(Some(last), first);
@@ -212,8 +161,8 @@ fn a_serialized_state_restores_the_run() {
 #[test]
 fn the_descriptions_list_every_table_entry_with_its_range() {
     for version in [Version::Fmi2, Version::Fmi3] {
-        let xml = model_description(version);
-        assert!(xml.contains(&guid()));
+        let xml = model_description(version, Units::Dimensionless);
+        assert!(xml.contains(&guid(Units::Dimensionless)));
         for p in Parameter::ALL {
             let info = p.info();
             let name = match p {

@@ -1,29 +1,37 @@
 //! Project tasks. `cargo xtask fmu` builds the FMI co-simulation FMUs of the model:
 //!
 //! ```text
-//! cargo xtask fmu            # release build → target/fmu/rotor_rub_fmi3.fmu, rotor_rub_fmi2.fmu
+//! cargo xtask fmu            # portable release build → target/fmu/rotor_rub_fmi3.fmu, rotor_rub_fmi2.fmu,
+//!                            #   rotor_rub_si_fmi3.fmu, rotor_rub_si_fmi2.fmu
 //! cargo xtask fmu --debug    # the same from a debug build (faster to build, slower to run)
+//! cargo xtask fmu --host     # with the host's toolchain instead of cargo-zigbuild (not portable)
 //! ```
 //!
 //! Each archive holds `modelDescription.xml` (written by `rotor_rub_fmu::description` from the
-//! variable table, itself read off the parameter table) and the one binary that serves both
-//! versions (`rotor-rub-fmu`'s cdylib), under the host platform's FMI folder name
-//! (`binaries/x86_64-linux/` for FMI 3.0, `binaries/linux64/` for FMI 2.0 on x86_64 Linux).
-//! Other hosts get their own folder names; a host without an FMI 2.0 name gets the FMI 3.0 FMU
-//! only. The archive is a plain (stored) zip file written here, so the task needs no crate
-//! beyond the workspace.
+//! variable table, itself read off the parameter table), `documentation/index.html`
+//! (`rotor_rub_fmu::documentation`) and the one binary that serves both FMI versions and both
+//! unit systems (`rotor-rub-fmu`'s cdylib; `binary.rs` builds it portable and stripped), under
+//! the host platform's FMI folder name (`binaries/x86_64-linux/` for FMI 3.0,
+//! `binaries/linux64/` for FMI 2.0 on x86_64 Linux). Other hosts get their own folder names; a
+//! host without an FMI 2.0 name gets the FMI 3.0 FMUs only. The archive is a plain (stored)
+//! zip file written here, so the task needs no crate beyond the workspace.
 
+mod binary;
 mod zip;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitCode};
+use std::process::ExitCode;
 
-use rotor_rub_fmu::description::{MODEL_IDENTIFIER, Version, model_description};
+use rotor_rub_fmu::description::{MODEL_IDENTIFIER, Version, model_description, model_name};
+use rotor_rub_fmu::documentation::index_html;
+use rotor_rub_fmu::units::Units;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    let flag = |f: &str| args.iter().any(|a| a == f);
+    let known = args.iter().skip(1).all(|a| a == "--debug" || a == "--host");
     match args.first().map(String::as_str) {
-        Some("fmu") => match fmu(args.iter().any(|a| a == "--debug")) {
+        Some("fmu") if known => match fmu(flag("--debug"), flag("--host")) {
             Ok(paths) => {
                 for p in paths {
                     println!("{}", p.display());
@@ -37,7 +45,7 @@ fn main() -> ExitCode {
         },
         _ => {
             eprintln!(
-                "usage: cargo xtask fmu [--debug]   (builds target/fmu/rotor_rub_fmi3.fmu and rotor_rub_fmi2.fmu)"
+                "usage: cargo xtask fmu [--debug] [--host]   (builds target/fmu/rotor_rub{{,_si}}_fmi{{3,2}}.fmu)"
             );
             ExitCode::from(2)
         }
@@ -72,62 +80,58 @@ fn platform() -> Result<(Option<&'static str>, &'static str, &'static str), Stri
     Ok((fmi2, fmi3, ext))
 }
 
-fn fmu(debug: bool) -> Result<Vec<PathBuf>, String> {
+fn fmu(debug: bool, host: bool) -> Result<Vec<PathBuf>, String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
         .ok_or("no workspace root")?
         .to_path_buf();
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let mut build = Command::new(cargo);
-    build
-        .current_dir(&root)
-        .args(["build", "-p", "rotor-rub-fmu", "--lib"]);
-    if !debug {
-        build.arg("--release");
-    }
-    let status = build
-        .status()
-        .map_err(|e| format!("cannot run cargo: {e}"))?;
-    if !status.success() {
-        return Err(format!("cargo build failed ({status})"));
-    }
     let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
+        .map(|t| root.join(t))
         .unwrap_or_else(|| root.join("target"));
     let (fmi2, fmi3, ext) = platform()?;
     let lib_name = match ext {
         "dll" => format!("{MODEL_IDENTIFIER}.dll"),
         _ => format!("lib{MODEL_IDENTIFIER}.{ext}"),
     };
-    let profile = if debug { "debug" } else { "release" };
-    let lib = target.join(profile).join(&lib_name);
-    let binary = std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?;
+    let built = binary::build(&root, &target, &lib_name, debug, host)?;
+    let binary =
+        std::fs::read(&built.path).map_err(|e| format!("{}: {e}", built.path.display()))?;
     let out_dir = target.join("fmu");
     std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     let mut written = Vec::new();
-    let versions = [
-        (Version::Fmi3, Some(fmi3), "rotor_rub_fmi3.fmu"),
-        (Version::Fmi2, fmi2, "rotor_rub_fmi2.fmu"),
-    ];
-    for (version, platform, file) in versions {
-        let Some(platform) = platform else {
-            eprintln!("no FMI 2.0 platform name for this host: {file} not built");
-            continue;
-        };
-        let description = model_description(version);
-        let entries = [
-            ("modelDescription.xml".to_owned(), description.into_bytes()),
-            (
-                format!("binaries/{platform}/{MODEL_IDENTIFIER}.{ext}"),
-                binary.clone(),
-            ),
+    for units in [Units::Dimensionless, Units::Si] {
+        let versions = [
+            (Version::Fmi3, Some(fmi3), "fmi3"),
+            (Version::Fmi2, fmi2, "fmi2"),
         ];
-        let path = out_dir.join(file);
-        let tmp = out_dir.join(format!(".{file}.tmp"));
-        std::fs::write(&tmp, zip::stored(&entries))
-            .map_err(|e| format!("{}: {e}", tmp.display()))?;
-        std::fs::rename(&tmp, &path).map_err(|e| format!("{}: {e}", path.display()))?;
-        written.push(path);
+        for (version, platform, suffix) in versions {
+            let file = format!("{}_{suffix}.fmu", model_name(units));
+            let Some(platform) = platform else {
+                eprintln!("no FMI 2.0 platform name for this host: {file} not built");
+                continue;
+            };
+            let entries = [
+                (
+                    "modelDescription.xml".to_owned(),
+                    model_description(version, units).into_bytes(),
+                ),
+                (
+                    format!("binaries/{platform}/{MODEL_IDENTIFIER}.{ext}"),
+                    binary.clone(),
+                ),
+                (
+                    "documentation/index.html".to_owned(),
+                    index_html(units).into_bytes(),
+                ),
+            ];
+            let path = out_dir.join(&file);
+            let tmp = out_dir.join(format!(".{file}.tmp"));
+            std::fs::write(&tmp, zip::stored(&entries))
+                .map_err(|e| format!("{}: {e}", tmp.display()))?;
+            std::fs::rename(&tmp, &path).map_err(|e| format!("{}: {e}", path.display()))?;
+            written.push(path);
+        }
     }
+    eprintln!("cargo xtask fmu: {} ({} bytes)", built.note, binary.len());
     Ok(written)
 }

@@ -2,24 +2,8 @@
 //! and end record (APPNOTE 6.3, no zip64: each entry and the archive stay below 4 GiB). Enough
 //! for an FMU, which importers open with any zip reader.
 
-/// CRC-32 (IEEE, reflected, as zip uses it).
-fn crc32(data: &[u8]) -> u32 {
-    let mut table = [0u32; 256];
-    for (i, t) in table.iter_mut().enumerate() {
-        let mut c = i as u32;
-        for _ in 0..8 {
-            c = if c & 1 != 0 {
-                0xedb8_8320 ^ (c >> 1)
-            } else {
-                c >> 1
-            };
-        }
-        *t = c;
-    }
-    !data.iter().fold(!0u32, |c, &b| {
-        table[((c ^ u32::from(b)) & 0xff) as usize] ^ (c >> 8)
-    })
-}
+/// CRC-32 (IEEE, reflected, as zip uses it): the FMU's own (it checksums saved states).
+use rotor_rub_fmu::state::crc32;
 
 fn u16le(out: &mut Vec<u8>, v: u16) {
     out.extend_from_slice(&v.to_le_bytes());
