@@ -24,3 +24,4 @@ pub mod simulate;
 pub mod spectrum;
 pub mod sweep;
 pub mod trajectory;
+pub mod watch;
