@@ -146,7 +146,6 @@ def rust_simulate_seconds(
 _Event = Tuple[float, str, List[float]]
 
 @final
-@disjoint_base
 class StepperState:
     """The stepper's full internal state; reads as (x, y, vx, vy) when indexed."""
 
