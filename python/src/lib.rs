@@ -14,6 +14,7 @@ mod inputs;
 mod meta;
 mod runs;
 mod runup;
+mod runup_speed;
 mod stepper;
 mod stepper_state;
 mod sweep;

@@ -3,11 +3,10 @@
 //! (τ, η) points) on the variable-speed propagator, one row per forcing period and every switch,
 //! the same numbers as `rotor-rub runup`'s files, and each branch's jumps.
 
-use numpy::{IntoPyArray, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rotor_rub::params::Number;
-use rotor_rub::speed::{RunupPreset, SpeedPoint, SpeedProfile};
+use rotor_rub::speed::SpeedProfile;
 use rotor_rub::variable_speed::{
     DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SPEED_HOLDS_RANGE, SpeedDirection,
     VariableSpeedError, VariableSpeedOptions, VariableSpeedPropagator,
@@ -16,15 +15,15 @@ use rotor_rub::{Event, Method, State};
 use rotor_rub_cli::error::CliError;
 use rotor_rub_cli::limits::fits_memory;
 use rotor_rub_cli::options::{DefaultMethod, Survey};
-use rotor_rub_cli::problem::{ProblemArgs, parse_preset};
+use rotor_rub_cli::problem::ProblemArgs;
 use rotor_rub_cli::runup::analysis::Branch;
-use rotor_rub_cli::runup::program::{Program, SpeedArgs};
 
-use crate::args::{self, flag};
+use crate::args;
 use crate::errors::{cli, input};
 use crate::inputs::{self, KEYWORDS, MethodKeywords};
 use crate::meta;
 use crate::runs::{kind_code, states};
+use crate::runup_speed::{Ramp, programs, speed_program};
 use crate::watch::{self, Progress};
 
 type Any<'a, 'py> = Option<&'a Bound<'py, PyAny>>;
@@ -36,61 +35,6 @@ fn direction_code(d: SpeedDirection) -> u8 {
         SpeedDirection::Down => 1,
         SpeedDirection::Hold => 2,
     }
-}
-
-/// The run-up program and the rotor preset `preset` names: a program (its rotor), or a rotor
-/// preset (with the default program's ramp).
-fn programs(preset: Option<&str>) -> PyResult<(RunupPreset, Option<rotor_rub::Preset>)> {
-    let default = RunupPreset::PaperHysteresis;
-    match preset {
-        None => Ok((default, None)),
-        Some(name) => match RunupPreset::from_name(name) {
-            Some(program) => Ok((program, None)),
-            None => parse_preset(name).map(|p| (default, Some(p))).map_err(|_| {
-                input(format!(
-                    "unknown preset '{}': expected a run-up program ({}) or a rotor preset ({})",
-                    name.escape_debug(),
-                    RunupPreset::ALL.map(RunupPreset::name).join(", "),
-                    rotor_rub::Preset::ALL
-                        .map(rotor_rub::Preset::name)
-                        .join(", ")
-                ))
-            }),
-        },
-    }
-}
-
-/// A profile given as an (n, 2) array of (τ, η) rows, validated (errors name the row).
-fn profile_points(points: &PyReadonlyArray2<'_, f64>) -> PyResult<Program> {
-    let shape = points.shape();
-    if shape.get(1) != Some(&2) {
-        return Err(input(format!(
-            "profile: an array of {} columns, expected 2 (time, speed_ratio)",
-            shape.get(1).copied().unwrap_or(0)
-        )));
-    }
-    let array = points.as_array();
-    let list: Vec<SpeedPoint> = array
-        .rows()
-        .into_iter()
-        .map(|r| SpeedPoint::new(r[0], r[1]))
-        .collect();
-    if let Err(e) = SpeedProfile::new(&list) {
-        return Err(input(match e.index() {
-            Some(i) => format!("profile row {i}: {e}"),
-            None => format!("profile: {e}"),
-        }));
-    }
-    let description = format!(
-        "speed profile ({} points, τ {} to {})",
-        list.len(),
-        Number(list.first().map_or(0.0, |p| p.time)),
-        Number(list.last().map_or(0.0, |p| p.time))
-    );
-    Ok(Program {
-        points: list,
-        description,
-    })
 }
 
 /// The error of a run that cannot start, as the CLI's `runup` reports it.
@@ -175,49 +119,16 @@ pub fn runup<'py>(
         options,
         speed_holds,
     };
-    let ramp = [
-        ("from_speed", from_speed),
-        ("to_speed", to_speed),
-        ("rate", rate),
-        ("ramp_periods", ramp_periods),
-        ("settle", settle),
-        ("dwell", dwell),
-    ];
-    let given = |v: Any<'_, '_>| v.is_some_and(|v| !v.is_none());
-    let one_way = one_way
-        .filter(|o| !o.is_none())
-        .map(|o| flag("one_way", o))
-        .transpose()?;
-    if profile.is_some() || profile_path.is_some() {
-        if let Some((name, _)) = ramp.iter().find(|(_, v)| given(*v)) {
-            return Err(input(format!(
-                "{name}: a ramp option, not taken with a profile"
-            )));
-        }
-        if one_way.is_some() {
-            return Err(input("one_way: a ramp option, not taken with a profile"));
-        }
-    }
-    if given(rate) && given(ramp_periods) {
-        return Err(input(
-            "give rate or ramp_periods, not both (they both set the ramp's pace)",
-        ));
-    }
-    let number = |name: &str, v: Any<'_, '_>| args::real_opt(name, v);
-    let speed = SpeedArgs {
-        from: number("from_speed", from_speed)?,
-        to: number("to_speed", to_speed)?,
-        rate: number("rate", rate)?,
-        ramp_periods: number("ramp_periods", ramp_periods)?,
-        settle: number("settle", settle)?,
-        dwell: number("dwell", dwell)?,
-        one_way: one_way.unwrap_or(false),
-        profile: inputs::path(profile_path),
+    let ramp = Ramp {
+        from_speed,
+        to_speed,
+        rate,
+        ramp_periods,
+        settle,
+        dwell,
+        one_way,
     };
-    let speed = match &profile {
-        Some(points) => profile_points(points)?,
-        None => speed.program(program).map_err(cli)?,
-    };
+    let speed = speed_program(program, &ramp, profile.as_ref(), profile_path)?;
     let profile = SpeedProfile::new(&speed.points).map_err(|e| input(e.to_string()))?;
     problem.start_time = profile.start();
     let spp = samples_per_period.map_or(Ok(64), |s| args::count("samples_per_period", s, 8))?;
