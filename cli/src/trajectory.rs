@@ -45,7 +45,7 @@ pub fn advance_to(
     let mut stretches = tracker.budget().watch().map(|_| Stretches::new(time));
     loop {
         let stop = stretches
-            .as_ref()
+            .as_mut()
             .map_or(time, |s| s.stop_after(propagator.time()));
         while let Some(event) = propagator.advance(stop)? {
             tracker.switch(event.time)?;

@@ -103,11 +103,12 @@ impl Watch {
 }
 
 /// The stop times of one watched advance to `end`: stretches whose length adapts so that each
-/// takes about [`Stretches::SHORT`] to [`Stretches::LONG`] of wall time.
+/// takes about [`Stretches::SHORT`] to [`Stretches::LONG`] of wall time. The clock is read only
+/// once a stretch stops short of `end` (an advance within one stretch costs nothing more).
 pub struct Stretches {
     end: f64,
     length: f64,
-    started: Instant,
+    started: Option<Instant>,
 }
 
 impl Stretches {
@@ -123,25 +124,32 @@ impl Stretches {
         Stretches {
             end,
             length: Self::FIRST,
-            started: Instant::now(),
+            started: None,
         }
     }
 
     /// Where the stretch from `now` stops: `end` when it is within reach, never past it.
-    pub fn stop_after(&self, now: f64) -> f64 {
+    pub fn stop_after(&mut self, now: f64) -> f64 {
         let stop = now + self.length;
-        if stop < self.end { stop } else { self.end }
+        if stop < self.end {
+            self.started.get_or_insert_with(Instant::now);
+            stop
+        } else {
+            self.end
+        }
     }
 
-    /// A stretch ended: adapt the next one's length to the wall time this one took.
+    /// A stretch ended short of the end: adapt the next one's length to the wall time this one
+    /// took.
     pub fn ended(&mut self) {
-        let took = self.started.elapsed();
+        let now = Instant::now();
+        let took = self.started.map_or(Duration::ZERO, |s| now - s);
         if took < Self::SHORT {
             self.length *= 2.0;
         } else if took > Self::LONG {
             self.length = (self.length * 0.5).max(f64::MIN_POSITIVE);
         }
-        self.started = Instant::now();
+        self.started = Some(now);
     }
 }
 

@@ -128,19 +128,6 @@ def _path(config: Optional[PathLike]) -> Optional[str]:
     return None if config is None else os.fspath(config)
 
 
-def _given(**options: Any) -> Dict[str, Any]:
-    """The call's own settings for :attr:`Problem.options` (numbers as plain floats/ints)."""
-    out: Dict[str, Any] = {}
-    for key, value in options.items():
-        if isinstance(value, np.generic):
-            value = value.item()
-        if value is None or isinstance(value, (bool, int, float, str)):
-            out[key] = value
-        else:
-            out[key] = os.fspath(value) if isinstance(value, os.PathLike) else repr(value)
-    return out
-
-
 def simulate(
     *,
     preset: Optional[str] = None,
@@ -210,8 +197,8 @@ def simulate(
         max_work=max_work, progress=report, params=params), progress, "simulate", "periods",
         whole=False)
     time_free, time_contact, time_rolling = r["time_in"]
-    options = _given(preset=preset, config=config, t_end=t_end, periods=periods,
-                     samples=r["samples"], max_work=max_work)
+    options = {"preset": preset, "config": config, "t_end": t_end, "periods": periods,
+               "samples": r["samples"], "max_work": max_work}
     return Run(
         events=Events(r["event_time"], r["event_kind"], r["event_state"]),
         samples=Samples(r["sample_time"], r["sample_state"], r["sample_regime"]),
@@ -251,8 +238,8 @@ def poincare(
         preset=preset, config=_path(config), transient=transient, keep=keep,
         lyapunov=lyapunov, method=method, tol=tol, contact_scheme=contact_scheme, step=step,
         max_work=max_work, progress=report, params=params), progress, "poincare", "periods")
-    options = _given(preset=preset, config=config, transient=transient, keep=keep,
-                     lyapunov=lyapunov, max_work=max_work)
+    options = {"preset": preset, "config": config, "transient": transient, "keep": keep,
+               "lyapunov": lyapunov, "max_work": max_work}
     return Section(
         period=r["period"].astype(np.int64),
         state=r["state"],
@@ -289,8 +276,8 @@ def spectrum(
         samples_per_period=samples_per_period, whirl=whirl, method=method, tol=tol,
         contact_scheme=contact_scheme, step=step, max_work=max_work, progress=report,
         params=params), progress, "spectrum", "periods")
-    options = _given(preset=preset, config=config, transient=transient, periods=periods,
-                     samples_per_period=samples_per_period, whirl=whirl, max_work=max_work)
+    options = {"preset": preset, "config": config, "transient": transient, "periods": periods,
+               "samples_per_period": samples_per_period, "whirl": whirl, "max_work": max_work}
     return Spectrum(order=r["order"], x=r.get("x"), y=r.get("y"), whirl=r.get("whirl"),
                     problem=Problem._of(r["problem"], "spectrum", options))
 

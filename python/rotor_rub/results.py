@@ -68,7 +68,7 @@ class Problem:
         return {"params": dict(self.params), "method": self.method, "tol": self.tol,
                 "contact_scheme": self.contact_scheme, "step": self.step,
                 "method_text": self.method_text, "version": self.version, "call": self.call,
-                "options": dict(self.options)}
+                "options": {k: _plain(v) for k, v in self.options.items()}}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> "Problem":
@@ -81,7 +81,22 @@ class Problem:
 
     @classmethod
     def _of(cls, core: Mapping[str, Any], call: str, options: Mapping[str, Any]) -> "Problem":
-        return cls.from_dict({**core, "call": call, "options": dict(options)})
+        """The problem the compiled core reports (its dict is the problem's own)."""
+        return cls(core["params"], core["method"], core["tol"], core["contact_scheme"],
+                   core["step"], core["method_text"], core["version"], call, options)
+
+
+def _plain(value: Any) -> Any:
+    """An option's value as JSON takes it (numpy scalars as Python numbers, paths as text)."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return repr(value)
 
 
 @dataclass

@@ -39,16 +39,18 @@ fn type_name(value: &Bound<'_, PyAny>) -> String {
 /// Whether `value` is a bool (Python's or numpy's), which is never taken as a number.
 fn is_bool(value: &Bound<'_, PyAny>) -> bool {
     value.is_instance_of::<PyBool>()
-        || (!value.is_instance_of::<PyInt>() && value.extract::<bool>().is_ok())
+        || (!value.is_instance_of::<PyInt>()
+            && !value.is_instance_of::<PyFloat>()
+            && value.extract::<bool>().is_ok())
 }
 
 /// A real number: int, float, a numpy floating or integer scalar, any `numbers.Real`.
 pub fn real(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
     let py = value.py();
-    let accepted = !is_bool(value)
-        && (value.is_exact_instance_of::<PyFloat>()
-            || value.is_exact_instance_of::<PyInt>()
-            || value.is_instance(REAL.import(py, "numbers", "Real")?)?);
+    // Exact floats and ints first: the common case costs two type checks.
+    let accepted = value.is_exact_instance_of::<PyFloat>()
+        || value.is_exact_instance_of::<PyInt>()
+        || (!is_bool(value) && value.is_instance(REAL.import(py, "numbers", "Real")?)?);
     if !accepted {
         return Err(input(format!(
             "{name}: {} ({}) is not a number: give an int or a float",
@@ -75,9 +77,8 @@ pub fn real_opt(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option
 /// A count: an integer (int or a numpy integer) from `min` to `u64::MAX`.
 pub fn count(name: &str, value: &Bound<'_, PyAny>, min: u64) -> PyResult<u64> {
     let py = value.py();
-    let integral = !is_bool(value)
-        && (value.is_exact_instance_of::<PyInt>()
-            || value.is_instance(INTEGRAL.import(py, "numbers", "Integral")?)?);
+    let integral = value.is_exact_instance_of::<PyInt>()
+        || (!is_bool(value) && value.is_instance(INTEGRAL.import(py, "numbers", "Integral")?)?);
     if !integral {
         return Err(input(format!(
             "{name}: {} ({}) is not an integer",
