@@ -299,7 +299,8 @@ class Runup(Result):
     runup``'s CSV): ``direction`` (up, down, hold), ``period``, ``start``, ``end``, ``speed``
     (mean speed ratio), ``speed_change``, ``max_radius`` and ``min_radius`` (|q|, clearances),
     ``contact_fraction``, ``whirl`` (+1 one forward circle) and ``whirl_direction``, ``enters``,
-    ``exits``; ``events`` every switch with its speed; ``jumps`` each branch's jumps; ``program``
+    ``exits``; ``events`` every switch with its speed (those after the last whole forcing
+    period too, with ``period`` = the number of rows); ``jumps`` each branch's jumps; ``program``
     the speed program; ``elapsed`` the run time in seconds."""
 
     direction: StrArray

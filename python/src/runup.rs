@@ -11,7 +11,7 @@ use rotor_rub::variable_speed::{
     DEFAULT_SPEED_HOLDS, Revolution, Revolutions, SPEED_HOLDS_RANGE, SpeedDirection,
     VariableSpeedError, VariableSpeedOptions, VariableSpeedPropagator,
 };
-use rotor_rub::{Event, Method, State};
+use rotor_rub::{Event, Method, Propagate, State};
 use rotor_rub_cli::error::CliError;
 use rotor_rub_cli::limits::fits_memory;
 use rotor_rub_cli::options::{DefaultMethod, Survey};
@@ -138,8 +138,7 @@ pub fn runup<'py>(
         .map_err(|e| cli(cannot_start(e)))?;
     let samples = u32::try_from(spp).unwrap_or(u32::MAX);
     let phase = problem.params.phase;
-    let mut revolutions = Revolutions::new(&mut propagator, profile, phase, samples);
-    let count = revolutions.total();
+    let count = Revolutions::new(&mut propagator, profile, phase, samples).total();
     if count == 0 {
         return Err(input(
             "the speed program is shorter than one forcing period: nothing to tabulate",
@@ -170,6 +169,7 @@ pub fn runup<'py>(
         let mut events = Vec::new();
         let mut cursor = profile.first_piece(phase);
         let mut pending = Vec::new();
+        let mut revolutions = Revolutions::new(&mut propagator, profile, phase, samples);
         while let Some(row) = revolutions.next_with(|e| pending.push(*e)) {
             let row = row.map_err(|e| CliError::propagation("", e))?;
             for event in pending.drain(..) {
@@ -185,6 +185,27 @@ pub fn runup<'py>(
             done.store(row.index + 1, std::sync::atomic::Ordering::Relaxed);
             budget.check(row.end)?;
             rows.push(row);
+        }
+        // The switches after the last whole forcing period, in the partial one that has no row:
+        // every switch of the run is in the events (a remainder within 1e-9 turns of a whole
+        // turn was counted as that turn by `Revolutions`).
+        let start = propagator.time();
+        let phase_at = |t: f64| profile.piece_holding(cursor, t).phase_at(t);
+        if phase_at(profile.end()) - phase_at(start) > 1e-9 * std::f64::consts::TAU {
+            let speed_at = |t: f64| profile.piece_holding(cursor, t).speed_at(t);
+            let direction = match speed_at(profile.end()) - speed_at(start) {
+                c if c > 0.0 => SpeedDirection::Up,
+                c if c < 0.0 => SpeedDirection::Down,
+                _ => SpeedDirection::Hold,
+            };
+            while let Some(event) = propagator
+                .advance(profile.end())
+                .map_err(|e| CliError::propagation("", e))?
+            {
+                tracker.switch(event.time)?;
+                cursor = profile.piece_holding(cursor, event.time);
+                events.push((event, cursor.speed_at(event.time), count, direction));
+            }
         }
         Ok(Pass {
             rows,

@@ -31,13 +31,18 @@ def same_as_files(result: rr.Runup, directory: Path) -> None:
     assert list(result.whirl_direction) == list(rows["whirl_direction"])
     assert np.array_equal(result.enters, rows["enters"].astype(np.int64))
     assert np.array_equal(result.exits, rows["exits"].astype(np.int64))
+    # The switches of the whole forcing periods (a partial last period's switches are compared
+    # in test_the_partial_last_period_keeps_its_switches: this CLI may leave them out).
     e = result.events
-    assert e.time.tobytes() == events["time"].tobytes()
-    assert e.speed.tobytes() == events["speed_ratio"].tobytes()
-    assert np.array_equal(e.period, events["period"].astype(np.int64))
-    assert list(e.direction) == list(events["direction"])
-    assert list(e.kind) == list(events["kind"])
-    assert e.state.tobytes() == np.stack([events[c] for c in STATE], axis=1).tobytes()
+    ours = e.period < len(result)
+    theirs = events["period"] < len(result)
+    assert e.time[ours].tobytes() == events["time"][theirs].tobytes()
+    assert e.speed[ours].tobytes() == events["speed_ratio"][theirs].tobytes()
+    assert np.array_equal(e.period[ours], events["period"][theirs].astype(np.int64))
+    assert list(e.direction[ours]) == list(events["direction"][theirs])
+    assert list(e.kind[ours]) == list(events["kind"][theirs])
+    state = np.stack([events[c] for c in STATE], axis=1)[theirs]
+    assert e.state[ours].tobytes() == state.tobytes()
 
 
 def cli_jumps(report: str) -> List[tuple]:
@@ -77,6 +82,23 @@ def test_profile_file_and_array_equal_the_cli(cli: Path, tmp_path: Path) -> None
     same_as_files(from_file, tmp_path)
     same_as_files(from_array, tmp_path)
     assert set(from_file.direction) == {"hold", "up", "down"}
+
+
+def test_the_partial_last_period_keeps_its_switches() -> None:
+    """Issue 32 item 12's class: no switch dropped. A profile that ends inside a forcing period
+    reports that period's switches (period = the number of rows) — the same switches as a run
+    on the profile held on past that end."""
+    profile = np.array([[0.0, 2.5], [100.0, 2.5]])  # 39.8 turns: a partial 40th
+    longer = np.array([[0.0, 2.5], [100.0, 2.5], [130.0, 2.5]])
+    short = rr.runup(profile=profile, method="hybrid")
+    full = rr.runup(profile=longer, method="hybrid")
+    assert len(short) == 39
+    tail = short.events.period == 39
+    assert tail.any() and np.all(short.events.time[tail] <= 100.0)
+    assert set(short.events.direction[tail]) == {"hold"}
+    before = full.events.time <= 100.0
+    assert short.events.time.tobytes() == full.events.time[before].tobytes()
+    assert short.events.state.tobytes() == full.events.state[before].tobytes()
 
 
 def test_the_paper_program_and_its_hysteresis() -> None:
