@@ -3,6 +3,7 @@ resumable from its store."""
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 from typing import Iterator, List
 
@@ -134,16 +135,25 @@ def test_chunking_does_not_depend_on_the_workers(client: "distributed.Client",
 
 
 def test_a_sweep_right_after_scale_spreads_over_every_worker() -> None:
-    """Issue 33 item 4: started before any worker has joined, the sweep's tasks go to every
-    worker that joins — more than the 8 chunks the old worker-count rule made on an empty
-    cluster could ever reach."""
+    """Issue 33 item 4: a sweep submitted while no worker has joined yet (right after
+    `cluster.scale()`, workers still starting) goes to every worker that joins — more than the
+    8 chunks the old worker-count rule made on an empty cluster could ever reach."""
+    from concurrent.futures import ThreadPoolExecutor
+
     cluster = distributed.LocalCluster(n_workers=0, threads_per_worker=1, processes=False,
                                        dashboard_address=None)
-    with distributed.Client(cluster) as c:
-        cluster.scale(10)
+    with distributed.Client(cluster) as c, ThreadPoolExecutor(1) as pool:
         grid = {"speed_ratio": np.linspace(1.2, 3.4, 60)}
         with distributed.get_task_stream(c) as stream:
-            result = rdask.sweep(c, grid, transient=3000, keep=2, method="hybrid")
+            running = pool.submit(rdask.sweep, c, grid, transient=3000, keep=2,
+                                  method="hybrid")
+            deadline = time.monotonic() + 30
+            while not c.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks)):
+                assert time.monotonic() < deadline, "the sweep submitted nothing"
+                time.sleep(0.05)
+            assert not c.scheduler_info()["workers"]
+            cluster.scale(10)
+            result = running.result(timeout=120)
         workers = {t["worker"] for t in stream.data if str(t["key"]).startswith("rotor-rub")}
         assert len(workers) == 10, workers
         assert len(result.response) == 60
