@@ -262,8 +262,15 @@ impl PyStepper {
     }
 
     #[setter]
-    fn set_state(&mut self, state: PyRef<'_, PyStepperState>) -> PyResult<()> {
-        self.inner = state.restore()?;
+    fn set_state(&mut self, state: &Bound<'_, PyAny>) -> PyResult<()> {
+        let state = state.cast::<PyStepperState>().map_err(|_| {
+            input(format!(
+                "state: {} is not a StepperState (one read from Stepper.state); to start from \
+                 a position and velocity make a Stepper with x0=, y0=, vx0=, vy0=",
+                crate::args::shown(state)
+            ))
+        })?;
+        self.inner = state.get().restore()?;
         self.moved = true;
         self.sync();
         Ok(())

@@ -108,7 +108,10 @@ def test_state_restores_and_repeats_bit_for_bit() -> None:
         rr.StepperState.from_bytes(data))
     import pytest
 
-    for bad in (data[:-1], data[:20], b"nonsense" * 10, data[:40] + bytes([data[40] ^ 1]) + data[41:]):
+    with pytest.raises(ValueError, match="not a StepperState"):
+        stepper.state = [0.1, 0.1, 0.0, 0.0]  # type: ignore[assignment]
+    for bad in (data[:-1], data[:20], b"nonsense" * 10,
+                data[:40] + bytes([data[40] ^ 1]) + data[41:]):
         with pytest.raises(ValueError, match="StepperState"):
             rr.StepperState.from_bytes(bad)
 
