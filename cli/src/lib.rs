@@ -25,3 +25,4 @@ pub mod spectrum;
 pub mod stdio;
 pub mod sweep;
 pub mod trajectory;
+pub mod watch;

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use rotor_rub::{Options, Problem, State};
 
 use crate::analysis::classify::{POINT_TOLERANCE, Response, classify, distinct_points};
-use crate::analysis::lyapunov::largest_exponent;
+use crate::analysis::lyapunov::largest_exponent_checked;
 use crate::error::{Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory};
 use crate::options::{MethodArgs, Survey, describe};
@@ -157,7 +157,13 @@ pub fn section(
                 start_time: from,
                 ..*problem
             };
-            Some(largest_exponent(&start, options, period, keep)?)
+            Some(largest_exponent_checked(
+                &start,
+                options,
+                period,
+                keep,
+                |t| budget.check(t),
+            )?)
         }
         _ => None,
     };

@@ -7,6 +7,7 @@ use rotor_rub::{Event, EventKind, Options, Problem, Propagate, Propagator, Regim
 
 use crate::error::{CliError, Result};
 use crate::limits::{Tracker, fits_memory, memory_limit, reserve};
+use crate::watch::Stretches;
 
 /// What a pass saw.
 pub struct Pass {
@@ -32,16 +33,31 @@ pub fn start(problem: &Problem, options: &Options) -> Result<Propagator> {
 }
 
 /// Advance to `time`, charging each switch to `tracker` and passing it to `on_event`, and return
-/// the sample there. Stops with the budget's error as soon as the run exceeds it.
+/// the sample there. Stops with the budget's error as soon as the run exceeds it. Under a
+/// watched budget the advance goes in stretches with a poll after each ([`crate::watch`]; the
+/// same trajectory).
 pub fn advance_to(
     propagator: &mut Propagator,
     time: f64,
     tracker: &mut Tracker<'_>,
     mut on_event: impl FnMut(&Event) -> Result<()>,
 ) -> Result<Sample> {
-    while let Some(event) = propagator.advance(time)? {
-        tracker.switch(event.time)?;
-        on_event(&event)?;
+    let mut stretches = tracker.budget().watch().map(|_| Stretches::new(time));
+    loop {
+        let stop = stretches
+            .as_mut()
+            .map_or(time, |s| s.stop_after(propagator.time()));
+        while let Some(event) = propagator.advance(stop)? {
+            tracker.switch(event.time)?;
+            on_event(&event)?;
+        }
+        match stretches.as_mut() {
+            Some(s) if stop < time => {
+                tracker.budget().check(stop)?;
+                s.ended();
+            }
+            _ => break,
+        }
     }
     Ok(Sample {
         time: propagator.time(),

@@ -1,7 +1,7 @@
 """Type stubs of the compiled core (python/src/*.rs). The public API is rotor_rub/__init__.py."""
 
 from os import PathLike
-from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -11,11 +11,15 @@ __all__ = [
     "EVENT_KINDS",
     "PropagationError",
     "REGIMES",
+    "SPEED_DIRECTIONS",
     "Stepper",
+    "StepperState",
     "VERSION",
+    "WHIRL_DIRECTIONS",
     "parameters",
     "poincare",
     "presets",
+    "runup",
     "rust_simulate_seconds",
     "simulate",
     "spectrum",
@@ -24,11 +28,17 @@ __all__ = [
 
 EVENT_KINDS: List[str]
 REGIMES: List[str]
+SPEED_DIRECTIONS: List[str]
+WHIRL_DIRECTIONS: List[str]
 VERSION: str
 
 class PropagationError(RuntimeError): ...
 
 _Config = Optional[Union[str, "PathLike[str]"]]
+_Real = Union[float, int, np.floating[Any], np.integer[Any]]
+_Count = Union[int, np.integer[Any]]
+_Flag = Union[bool, np.bool_]
+_Report = Optional[Callable[[float, float], None]]
 
 def parameters() -> List[Dict[str, Any]]: ...
 def presets() -> Dict[str, Tuple[str, Dict[str, float]]]: ...
@@ -36,44 +46,47 @@ def simulate(
     *,
     preset: Optional[str] = None,
     config: _Config = None,
-    t_end: Optional[float] = None,
-    periods: Optional[float] = None,
+    t_end: Optional[_Real] = None,
+    periods: Optional[_Real] = None,
     method: Optional[str] = None,
-    tol: Optional[float] = None,
+    tol: Optional[_Real] = None,
     contact_scheme: Optional[str] = None,
-    step: Optional[float] = None,
-    samples: int = 1001,
-    max_work: Optional[float] = None,
-    params: Optional[Mapping[str, float]] = None,
+    step: Optional[_Real] = None,
+    samples: Optional[_Count] = None,
+    max_work: Optional[_Real] = None,
+    progress: _Report = None,
+    params: Optional[Mapping[str, _Real]] = None,
 ) -> Dict[str, Any]: ...
 def poincare(
     *,
     preset: Optional[str] = None,
     config: _Config = None,
-    transient: int = 200,
-    keep: int = 100,
-    lyapunov: bool = False,
+    transient: Optional[_Count] = None,
+    keep: Optional[_Count] = None,
+    lyapunov: Optional[_Flag] = None,
     method: Optional[str] = None,
-    tol: Optional[float] = None,
+    tol: Optional[_Real] = None,
     contact_scheme: Optional[str] = None,
-    step: Optional[float] = None,
-    max_work: Optional[float] = None,
-    params: Optional[Mapping[str, float]] = None,
+    step: Optional[_Real] = None,
+    max_work: Optional[_Real] = None,
+    progress: _Report = None,
+    params: Optional[Mapping[str, _Real]] = None,
 ) -> Dict[str, Any]: ...
 def spectrum(
     *,
     preset: Optional[str] = None,
     config: _Config = None,
-    transient: int = 100,
-    periods: int = 60,
-    samples_per_period: int = 64,
-    whirl: bool = False,
+    transient: Optional[_Count] = None,
+    periods: Optional[_Count] = None,
+    samples_per_period: Optional[_Count] = None,
+    whirl: Optional[_Flag] = None,
     method: Optional[str] = None,
-    tol: Optional[float] = None,
+    tol: Optional[_Real] = None,
     contact_scheme: Optional[str] = None,
-    step: Optional[float] = None,
-    max_work: Optional[float] = None,
-    params: Optional[Mapping[str, float]] = None,
+    step: Optional[_Real] = None,
+    max_work: Optional[_Real] = None,
+    progress: _Report = None,
+    params: Optional[Mapping[str, _Real]] = None,
 ) -> Dict[str, Any]: ...
 def sweep_points(
     names: List[str],
@@ -81,18 +94,43 @@ def sweep_points(
     *,
     preset: Optional[str] = None,
     config: _Config = None,
-    transient: int = 200,
-    keep: int = 50,
+    transient: Optional[_Count] = None,
+    keep: Optional[_Count] = None,
+    lyapunov: Optional[_Flag] = None,
+    line: Optional[_Count] = None,
     method: Optional[str] = None,
-    tol: Optional[float] = None,
+    tol: Optional[_Real] = None,
     contact_scheme: Optional[str] = None,
-    step: Optional[float] = None,
-    skip_errors: bool = False,
-    threads: Optional[int] = None,
-    max_work: Optional[float] = None,
-    params: Optional[Mapping[str, float]] = None,
+    step: Optional[_Real] = None,
+    skip_errors: Optional[_Flag] = None,
+    threads: Optional[_Count] = None,
+    max_work: Optional[_Real] = None,
+    progress: _Report = None,
+    params: Optional[Mapping[str, _Real]] = None,
 ) -> Dict[str, Any]: ...
-
+def runup(
+    *,
+    preset: Optional[str] = None,
+    config: _Config = None,
+    from_speed: Optional[_Real] = None,
+    to_speed: Optional[_Real] = None,
+    rate: Optional[_Real] = None,
+    ramp_periods: Optional[_Real] = None,
+    settle: Optional[_Real] = None,
+    dwell: Optional[_Real] = None,
+    one_way: Optional[_Flag] = None,
+    profile: Optional[npt.NDArray[np.float64]] = None,
+    profile_path: Optional[str] = None,
+    method: Optional[str] = None,
+    tol: Optional[_Real] = None,
+    contact_scheme: Optional[str] = None,
+    step: Optional[_Real] = None,
+    speed_holds: Optional[_Count] = None,
+    samples_per_period: Optional[_Count] = None,
+    max_work: Optional[_Real] = None,
+    progress: _Report = None,
+    params: Optional[Mapping[str, _Real]] = None,
+) -> Dict[str, Any]: ...
 def rust_simulate_seconds(
     repeats: int,
     rounds: int,
@@ -107,6 +145,28 @@ def rust_simulate_seconds(
 
 _Event = Tuple[float, str, List[float]]
 
+@final
+class StepperState:
+    """The stepper's full internal state; reads as (x, y, vx, vy) when indexed."""
+
+    def to_bytes(self) -> bytes: ...
+    @staticmethod
+    def from_bytes(data: bytes) -> "StepperState": ...
+    def __reduce__(self) -> Tuple[Any, ...]: ...
+    @property
+    def time(self) -> float: ...
+    @property
+    def vector(self) -> List[float]: ...
+    @property
+    def regime(self) -> str: ...
+    @property
+    def params(self) -> Dict[str, float]: ...
+    def __len__(self) -> int: ...
+    def __getitem__(self, key: int, /) -> float: ...
+    def __iter__(self) -> Iterator[float]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+
 @disjoint_base
 class Stepper:
     """Fixed-step propagation (the C ABI's stepper): exact free flight, contact sub-steps,
@@ -120,27 +180,32 @@ class Stepper:
         *,
         preset: Optional[str] = None,
         config: _Config = None,
-        dt: float = 1e-3,
+        dt: Optional[_Real] = None,
         contact_scheme: Optional[str] = None,
-        contact_substeps: int = 1,
-        max_substeps: int = 8,
-        **params: float,
+        contact_substeps: Optional[_Count] = None,
+        max_substeps: Optional[_Count] = None,
+        **params: _Real,
     ) -> "Stepper": ...
-    def step(self, dt: Optional[float] = None) -> Tuple[float, List[float], str, List[_Event]]:
+    def step(self, dt: Optional[_Real] = None) -> Tuple[float, List[float], str, List[_Event]]:
         """Advance one step; returns (time, state, regime, events)."""
-    def run(self, steps: int, dt: Optional[float] = None) -> Dict[str, Any]:
+    def run(
+        self, steps: _Count, dt: Optional[_Real] = None, progress: _Report = None
+    ) -> Dict[str, Any]:
         """Take ``steps`` steps with the GIL released: time, state, regime per step and every
         switch (event_time, event_kind, event_state), as numpy arrays."""
-    def set_params(self, **params: float) -> None:
+    def set_params(self, **params: _Real) -> None:
         """Change parameters between steps; state and time are kept."""
-    def set_input_force(self, fx: float, fy: float) -> None:
+    def set_input_force(self, fx: _Real, fy: _Real) -> None:
         """Apply the external force (fx, fy) from now on, held until the next call."""
-    def set_speed_ratio(self, speed_ratio: float) -> None:
+    def set_speed_ratio(self, speed_ratio: _Real) -> None:
         """Change the speed ratio from now on, the forcing phase kept continuous."""
+    def _problem(self) -> Dict[str, Any]: ...
+    @property
+    def state(self) -> StepperState: ...
+    @state.setter
+    def state(self, state: StepperState) -> None: ...
     @property
     def time(self) -> float: ...
-    @property
-    def state(self) -> List[float]: ...
     @property
     def regime(self) -> str: ...
     @property

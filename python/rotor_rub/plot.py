@@ -12,6 +12,11 @@ DejaVu fonts, never the system's.
 - :func:`poincare`: the points of a :class:`rotor_rub.Section` in the (x, y) plane.
 - :func:`spectrum`: a :class:`rotor_rub.Spectrum`; a whirl spectrum shades backward (negative
   orders) and forward whirl in two colours.
+- :func:`runup`: a :class:`rotor_rub.Runup`, the largest and smallest radius per forcing period
+  against the speed for the run-up and the coast-down, rubbing periods marked, jumps marked.
+
+Each takes what it needs from the result's :class:`rotor_rub.Problem` (the stator centre, the
+method, the swept parameter), so no extra argument is needed.
 """
 
 from __future__ import annotations
@@ -23,9 +28,9 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from . import Run, Section, Spectrum, Sweep
+    from . import Run, Runup, Section, Spectrum, Sweep
 
-__all__ = ["orbit", "bifurcation", "poincare", "spectrum"]
+__all__ = ["orbit", "bifurcation", "poincare", "spectrum", "runup"]
 
 #: Marker and colour per event kind (as the CLI's figures: starts red, ends green).
 EVENT_STYLE = {
@@ -50,15 +55,17 @@ def orbit(
     run: "Run",
     ax: Optional["Axes"] = None,
     *,
-    offset: Tuple[float, float] = (0.0, 0.0),
+    offset: Optional[Tuple[float, float]] = None,
     from_time: Optional[float] = None,
     events: bool = True,
     **line: Any,
 ) -> "Axes":
     """The orbit of ``run`` (its samples), the clearance circle of radius 1 around the stator
-    centre ``offset`` (the problem's ``offset_x``, ``offset_y``), and its switches marked by
-    kind. ``from_time`` drops what comes before (a transient)."""
+    centre (``offset``, default the run's problem's ``offset_x``, ``offset_y``), and its switches
+    marked by kind. ``from_time`` drops what comes before (a transient)."""
     ax = _axes(ax)
+    if offset is None:
+        offset = run.problem.offset
     t = run.samples.time
     keep = np.ones_like(t, dtype=bool) if from_time is None else t >= from_time
     state = run.samples.state[keep]
@@ -95,16 +102,22 @@ def bifurcation(sweep: "Sweep", ax: Optional["Axes"] = None, *, component: int =
     ax.scatter(sweep.value, sweep.state[:, component], linewidths=0, **points)
     ax.set_xlabel(sweep.params[0])
     ax.set_ylabel(["x", "y", "vx", "vy"][component] + " at the forcing-period boundaries")
-    ax.set_title(f"Bifurcation diagram over {sweep.params[0]}")
+    ax.set_title(f"Bifurcation diagram over {sweep.params[0]}, {sweep.problem.method_text}")
     return ax
 
 
-def poincare(section: "Section", ax: Optional["Axes"] = None, **points: Any) -> "Axes":
-    """The Poincaré section in the (x, y) plane, titled with its response class."""
+def poincare(section: "Section", ax: Optional["Axes"] = None, *, clearance: bool = False,
+             **points: Any) -> "Axes":
+    """The Poincaré section in the (x, y) plane, titled with its response class; with
+    ``clearance`` the clearance circle around the problem's stator centre too."""
     ax = _axes(ax)
     points.setdefault("s", 8)
     points.setdefault("color", "tab:blue")
     ax.scatter(section.state[:, 0], section.state[:, 1], **points)
+    if clearance:
+        cx, cy = section.problem.offset
+        angle = np.linspace(0.0, 2.0 * np.pi, 361)
+        ax.plot(cx + np.cos(angle), cy + np.sin(angle), color="0.5", lw=0.8, ls="--")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (clearances)")
     ax.set_ylabel("y (clearances)")
@@ -148,5 +161,40 @@ def spectrum(spec: "Spectrum", ax: Optional["Axes"] = None, *, max_order: float 
     ax.set_xlabel("order (multiples of the running speed)")
     ax.set_ylabel("amplitude (clearances)")
     ax.set_title("Whirl spectrum" if spec.whirl is not None else "Amplitude spectrum")
+    ax.legend(fontsize="small")
+    return ax
+
+
+#: Colours of the run-up and coast-down branches (as the CLI's run-up figure).
+BRANCH_COLOR = {"up": "tab:blue", "down": "tab:orange", "hold": "0.4"}
+
+
+def runup(result: "Runup", ax: Optional["Axes"] = None, *, jumps: bool = True) -> "Axes":
+    """Run-up diagram: the largest (thick) and smallest (thin) orbit radius per forcing period
+    against the mean speed, one colour per direction (run-up, coast-down), forcing periods with
+    contact shaded along the speed axis, jumps marked with triangles; titled with the program
+    and the method."""
+    ax = _axes(ax, (9.0, 5.5))
+    names = {"up": "run-up", "down": "coast-down", "hold": "held speed"}
+    for direction, color in BRANCH_COLOR.items():
+        sel = result.direction == direction
+        if not sel.any():
+            continue
+        speed = result.speed[sel]
+        ax.plot(speed, result.max_radius[sel], color=color, lw=1.4, label=names[direction])
+        ax.plot(speed, result.min_radius[sel], color=color, lw=0.6)
+        rubbing = result.contact_fraction[sel] > 0
+        if rubbing.any():
+            ax.scatter(speed[rubbing], np.zeros(int(rubbing.sum())), marker="|", color=color,
+                       s=30, alpha=0.5, label=f"rubs ({names[direction]})",
+                       transform=ax.get_xaxis_transform())
+    if jumps:
+        for j in result.jumps:
+            marker = "v" if j.after < j.before else "^"
+            ax.scatter([j.speed], [j.before], marker=marker, color=BRANCH_COLOR[j.direction],
+                       s=50, zorder=3, edgecolors="black", linewidths=0.5)
+    ax.set_xlabel("speed ratio η")
+    ax.set_ylabel("orbit radius |q| (clearances)")
+    ax.set_title(f"Run-up and coast-down: {result.program}\n{result.method}", fontsize="medium")
     ax.legend(fontsize="small")
     return ax

@@ -8,12 +8,18 @@ use rotor_rub::params::Number;
 use rotor_rub::{EventKind, Preset, Regime};
 use rotor_rub_cli::problem::settable;
 
+mod args;
 mod errors;
 mod inputs;
+mod meta;
 mod runs;
+mod runup;
+mod runup_speed;
 mod stepper;
+mod stepper_state;
 mod sweep;
 mod timing;
+mod watch;
 
 /// Every settable parameter of the table: name, symbol, default, range (min, max, min_open),
 /// the range as text, and meaning.
@@ -54,14 +60,20 @@ fn presets(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // NumPy's C API is loaded here, at import, not on the first array a call returns: loading
+    // it runs Python code, where a pending Ctrl-C would surface as a panic.
+    use numpy::IntoPyArray;
+    drop(Vec::<f64>::new().into_pyarray(m.py()));
     m.add_function(wrap_pyfunction!(parameters, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(runs::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(runs::poincare, m)?)?;
     m.add_function(wrap_pyfunction!(runs::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_points, m)?)?;
+    m.add_function(wrap_pyfunction!(runup::runup, m)?)?;
     m.add_function(wrap_pyfunction!(timing::rust_simulate_seconds, m)?)?;
     m.add_class::<stepper::PyStepper>()?;
+    m.add_class::<stepper_state::PyStepperState>()?;
     m.add(
         "PropagationError",
         m.py().get_type::<errors::PropagationError>(),
@@ -73,6 +85,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
             .map(Regime::name)
             .to_vec(),
     )?;
+    m.add("SPEED_DIRECTIONS", ["up", "down", "hold"])?;
+    m.add("WHIRL_DIRECTIONS", ["forward", "backward", "mixed"])?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,23 +1,34 @@
-//! Sweeps for Python: the Poincaré section at each point of a list of parameter points (one or
-//! more swept parameters), in parallel in Rust with the GIL released. The single-machine sweep and
-//! each Dask chunk call this same function; a point's result depends on that point alone, so any
-//! chunking gives the same bits.
+//! Sweeps for Python: the Poincaré section, its response class and optionally the largest
+//! Lyapunov exponent at each point of a list of parameter points (one or more swept
+//! parameters), in parallel on a thread pool of the call's own (fork-safe: no global pool) with
+//! the GIL released, under a watch (Ctrl-C, progress). The single-machine sweep and each Dask
+//! chunk call this same function; a point's result depends on that point alone, so any chunking
+//! gives the same bits — except in continuation, where each point of a line starts from the
+//! previous point's last section state.
 
-use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use numpy::{IntoPyArray, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rotor_rub::{Parameter, Problem, State};
+use rayon::prelude::*;
+use rotor_rub::{Options, Parameter, Problem, State};
 use rotor_rub_cli::error::{CliError, EXIT_INPUT, num};
-use rotor_rub_cli::limits::{add_counts, fits_memory};
+use rotor_rub_cli::limits::{Budget, add_counts, fits_memory};
 use rotor_rub_cli::options::{DefaultMethod, Survey};
+use rotor_rub_cli::poincare::{Section, section};
 use rotor_rub_cli::problem::parse_parameter;
-use rotor_rub_cli::sweep::sections;
+use rotor_rub_cli::watch::{EXIT_INTERRUPTED, Watch};
 
+use crate::args::{self, flag};
 use crate::errors::{cli, input};
-use crate::inputs;
+use crate::inputs::{self, MethodKeywords};
+use crate::meta;
 use crate::runs::states;
+use crate::watch::{self, Progress};
+
+type Any<'a, 'py> = Option<&'a Bound<'py, PyAny>>;
 
 /// `name = value, name = value` for messages.
 fn label(names: &[Parameter], values: &[f64]) -> String {
@@ -29,35 +40,109 @@ fn label(names: &[Parameter], values: &[f64]) -> String {
         .join(", ")
 }
 
-/// Poincaré points at every row of `points` (columns: the parameters `names`), from the same
-/// initial state: rows (point index, period, state) in point order, then period.
+/// What one sweep runs: every point's problem and the settings they share.
+struct Plan<'a> {
+    names: &'a [Parameter],
+    points: &'a [(Vec<f64>, Problem)],
+    options: Options,
+    transient: u64,
+    keep: usize,
+    lyapunov: bool,
+}
+
+impl Plan<'_> {
+    /// The section of point `i`, from `initial` when given (continuation).
+    fn point(
+        &self,
+        i: usize,
+        initial: Option<State>,
+        budget: &Budget,
+    ) -> Result<Section, CliError> {
+        let (values, problem) = &self.points[i];
+        let problem = Problem {
+            initial: initial.unwrap_or(problem.initial),
+            ..*problem
+        };
+        section(
+            &problem,
+            &self.options,
+            self.transient,
+            self.keep,
+            self.lyapunov,
+            budget,
+        )
+        .map_err(|e| e.context(&label(self.names, values)))
+    }
+
+    /// Points `first .. first + len` in order, each from the previous one's last section state
+    /// (the first from its own initial state); a failed point leaves the next to start from the
+    /// last good state.
+    fn line(
+        &self,
+        first: usize,
+        len: usize,
+        budget: &Budget,
+        done: &AtomicUsize,
+    ) -> Vec<Result<Section, CliError>> {
+        let mut initial = None;
+        (first..first + len)
+            .map(|i| {
+                let r = self.point(i, initial, budget);
+                if let Ok(s) = &r {
+                    initial = s.points.last().copied().or(initial);
+                }
+                done.fetch_add(1, Ordering::Relaxed);
+                r
+            })
+            .collect()
+    }
+}
+
+/// Poincaré points, response class and (with `lyapunov`) the largest Lyapunov exponent at every
+/// row of `points` (columns: the parameters `names`), each from the problem's initial state —
+/// or, with `line` = n, in consecutive lines of n points run in continuation.
 #[pyfunction]
-#[pyo3(signature = (names, points, *, preset=None, config=None, transient=200, keep=50,
-    method=None, tol=None, contact_scheme=None, step=None, skip_errors=false, threads=None,
-    max_work=None, params=None))]
+#[pyo3(signature = (names, points, *, preset=None, config=None, transient=None, keep=None,
+    lyapunov=None, line=None, method=None, tol=None, contact_scheme=None, step=None,
+    skip_errors=None, threads=None, max_work=None, progress=None, params=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn sweep_points<'py>(
     py: Python<'py>,
     names: Vec<String>,
     points: PyReadonlyArray2<'py, f64>,
     preset: Option<&str>,
-    config: Option<PathBuf>,
-    transient: i64,
-    keep: i64,
-    method: Option<&str>,
-    tol: Option<f64>,
-    contact_scheme: Option<&str>,
-    step: Option<f64>,
-    skip_errors: bool,
-    threads: Option<usize>,
-    max_work: Option<f64>,
+    config: Option<String>,
+    transient: Any<'_, 'py>,
+    keep: Any<'_, 'py>,
+    lyapunov: Any<'_, 'py>,
+    line: Any<'_, 'py>,
+    method: Any<'_, 'py>,
+    tol: Any<'_, 'py>,
+    contact_scheme: Any<'_, 'py>,
+    step: Any<'_, 'py>,
+    skip_errors: Any<'_, 'py>,
+    threads: Any<'_, 'py>,
+    max_work: Any<'_, 'py>,
+    progress: Any<'_, 'py>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let base = inputs::problem(preset, config, params)?;
-    let options = inputs::options(method, Survey::METHOD, tol, contact_scheme, step)?;
-    let transient = inputs::count("transient", transient, 0)?;
-    let keep = inputs::count("keep", keep, 1)?;
-    add_counts(("--transient", transient), ("--keep", keep)).map_err(cli)?;
+    let base = inputs::problem(preset, inputs::path(config), params)?;
+    let keywords = MethodKeywords {
+        method,
+        tol,
+        contact_scheme,
+        step,
+    };
+    let options = inputs::options(&keywords, Survey::METHOD)?;
+    let transient = transient.map_or(Ok(200), |t| args::count("transient", t, 0))?;
+    let keep = keep.map_or(Ok(50), |k| args::count("keep", k, 1))?;
+    let lyapunov = lyapunov.map_or(Ok(false), |l| flag("lyapunov", l))?;
+    let skip_errors = skip_errors.map_or(Ok(false), |s| flag("skip_errors", s))?;
+    let threads = match threads.filter(|t| !t.is_none()) {
+        None => None,
+        Some(t) => Some(args::count("threads", t, 1)?),
+    };
+    add_counts(("transient", transient), ("keep", keep)).map_err(cli)?;
     let names = names
         .iter()
         .map(|n| parse_parameter(n).map_err(input))
@@ -70,6 +155,11 @@ pub fn sweep_points<'py>(
             names.len()
         )));
     }
+    let line = match line.filter(|l| !l.is_none()) {
+        None => 1,
+        Some(l) => args::count("line", l, 1)?,
+    };
+    let line = usize::try_from(line).unwrap_or(usize::MAX).min(rows.max(1));
     let array = points.as_array();
     let problems = (0..rows)
         .map(|i| {
@@ -91,42 +181,66 @@ pub fn sweep_points<'py>(
         std::mem::size_of::<State>() + 16,
     )
     .map_err(cli)?;
+    let keep = usize::try_from(keep).unwrap_or(usize::MAX);
     let budget = inputs::budget(max_work)?;
-    budget.plan("points × keep", planned).map_err(cli)?;
+    let lyapunov_work = if lyapunov { planned } else { 0 };
+    budget
+        .plan("points × keep", planned.saturating_add(lyapunov_work))
+        .map_err(cli)?;
     rotor_rub_cli::trajectory::start(&base, &options).map_err(cli)?;
-    let run = || {
-        sections(
-            &problems,
-            &options,
-            transient,
-            keep,
-            &budget,
-            |values| label(&names, values),
-            || {},
-        )
+    let plan = Plan {
+        names: &names,
+        points: &problems,
+        options,
+        transient,
+        keep,
+        lyapunov,
     };
-    let results: Vec<Result<Vec<State>, CliError>> = py
-        .detach(|| match threads {
-            None => Ok(run()),
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
+    let done = AtomicUsize::new(0);
+    let progress = Progress::new(progress, rows as f64);
+    let results = watch::beside(
+        py,
+        progress,
+        || done.load(Ordering::Relaxed) as f64,
+        |watch: Arc<Watch>| {
+            let budget = budget.watched(watch);
+            // A pool per call: rayon's global pool does not survive a fork.
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads.map_or(0, |n| usize::try_from(n).unwrap_or(usize::MAX)))
                 .build()
-                .map(|pool| pool.install(run))
-                .map_err(|e| format!("cannot start {n} threads: {e}")),
-        })
-        .map_err(input)?;
-    let (mut index, mut period, mut kept, mut skipped) = (vec![], vec![], vec![], vec![]);
+                .map_err(|e| CliError::input(format!("threads: cannot start them: {e}")))?;
+            let starts: Vec<usize> = (0..rows).step_by(line).collect();
+            let lines: Vec<Vec<Result<Section, CliError>>> = pool.install(|| {
+                starts
+                    .par_iter()
+                    .map(|&first| plan.line(first, line.min(rows - first), &budget, &done))
+                    .collect()
+            });
+            Ok(lines.into_iter().flatten().collect::<Vec<_>>())
+        },
+    )?;
+    let (mut index, mut period, mut kept, mut skipped, mut failed) =
+        (vec![], vec![], vec![], vec![], vec![]);
+    let mut responses: Vec<Option<String>> = Vec::with_capacity(rows);
+    let mut exponents: Vec<f64> = Vec::with_capacity(rows);
     for (i, r) in results.into_iter().enumerate() {
         match r {
-            Ok(points) => {
-                for (s, k) in points.into_iter().zip(transient..) {
+            Ok(s) => {
+                for (state, k) in s.points.iter().zip(transient..) {
                     index.push(i as u64);
                     period.push(k);
-                    kept.push(s);
+                    kept.push(*state);
                 }
+                responses.push(Some(s.response.to_string()));
+                exponents.push(s.lyapunov.unwrap_or(f64::NAN));
             }
             // A refused run (over max_work) stops the sweep even with skip_errors, as in the CLI.
-            Err(e) if skip_errors && e.code != EXIT_INPUT => skipped.push(e.message),
+            Err(e) if skip_errors && e.code != EXIT_INPUT && e.code != EXIT_INTERRUPTED => {
+                skipped.push(crate::errors::keywords(&e.message));
+                failed.push(i as u64);
+                responses.push(None);
+                exponents.push(f64::NAN);
+            }
             Err(e) => return Err(cli(e)),
         }
     }
@@ -135,5 +249,9 @@ pub fn sweep_points<'py>(
     out.set_item("period", period.into_pyarray(py))?;
     out.set_item("state", states(py, &kept)?)?;
     out.set_item("skipped", skipped)?;
+    out.set_item("failed", failed.into_pyarray(py))?;
+    out.set_item("response", responses)?;
+    out.set_item("lyapunov", lyapunov.then(|| exponents.into_pyarray(py)))?;
+    out.set_item("problem", meta::problem(py, &base, &options)?)?;
     Ok(out)
 }

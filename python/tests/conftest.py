@@ -63,3 +63,26 @@ def cli_error(cli: Path, args: Sequence[str], cwd: Path) -> str:
     line = out.stderr.strip().splitlines()[0]
     assert line.startswith("error: "), out.stderr
     return line[len("error: "):]
+
+
+#: The CLI's flags and the Python keywords that say the same (python/src/errors.rs).
+KEYWORD_OF_FLAG = [
+    ("--samples-per-period", "samples_per_period"), ("--sample-count", "samples"),
+    ("--contact-scheme", "contact_scheme"), ("--speed-holds", "speed_holds"),
+    ("--ramp-periods", "ramp_periods"), ("--max-work", "max_work"),
+    ("--transient", "transient"), ("--periods", "periods"), ("--profile", "profile"),
+    ("--method", "method"), ("--config", "config"), ("--settle", "settle"),
+    ("--dwell", "dwell"), ("--t-end", "t_end"), ("--keep", "keep"), ("--step", "step"),
+    ("--tol", "tol"),
+]
+
+
+def as_keywords(message: str) -> str:
+    """A CLI message as Python says it: keywords where the CLI names flags, "keyword
+    arguments" where it says --set."""
+    import re
+
+    message = message.replace("(from --set)", "(from keyword arguments)")
+    for flag, keyword in KEYWORD_OF_FLAG:
+        message = re.sub(re.escape(flag) + r"(?![\w-])", keyword, message)
+    return message

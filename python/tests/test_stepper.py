@@ -18,6 +18,7 @@ def test_run_equals_a_loop_of_steps() -> None:
     assert np.array_equal(out.samples.state, np.array(states))
     assert list(out.events.kind) == kinds
     assert a.time == b.time and a.state == b.state and a.regime == b.regime
+    assert list(a.state) == a.state.vector == out.samples.state[-1].tolist()
     assert out.samples.time[-1] == a.time
     assert out.samples.regime[-1] == a.regime
 
@@ -41,7 +42,8 @@ def test_set_params_keeps_state_and_time() -> None:
     stepper.run(100)
     time, state = stepper.time, stepper.state
     stepper.set_params(speed_ratio=2.0)
-    assert stepper.time == time and stepper.state == state
+    assert stepper.time == time and stepper.state.vector == state.vector
+    assert stepper.state != state  # the parameters are part of the full state
     other = rr.Stepper(dt=1e-3)
     other.run(100)
     stepper.run(500)
@@ -73,3 +75,65 @@ def test_input_force_and_speed_between_steps() -> None:
             assert "force" in str(e)
         else:
             raise AssertionError("accepted")
+
+
+def test_state_restores_and_repeats_bit_for_bit() -> None:
+    """Stepper.state is the full internal state: set back, the stepper repeats its run bit for
+    bit (through contact: the paper preset rubs at η = 2.5); a copy and a pickled stepper step
+    on identically, independently of the original."""
+    import copy
+    import pickle
+
+    stepper = rr.Stepper(dt=1e-2, speed_ratio=2.5)
+    stepper.run(300)
+    saved = stepper.state
+    assert isinstance(saved, rr.StepperState)
+    assert saved.time == stepper.time and saved.regime == stepper.regime
+    first = stepper.run(2000)
+    assert len(first.events) > 0
+    stepper.state = saved
+    again = stepper.run(2000)
+    assert again.samples.state.tobytes() == first.samples.state.tobytes()
+    assert again.events.time.tobytes() == first.events.time.tobytes()
+    stepper.state = saved
+    for other in (copy.copy(stepper), copy.deepcopy(stepper), pickle.loads(pickle.dumps(stepper))):
+        assert isinstance(other, rr.Stepper) and other.state == saved
+        out = other.run(2000)
+        assert out.samples.state.tobytes() == first.samples.state.tobytes()
+    assert stepper.state == saved  # the copies did not move the original
+    # The state's bytes round-trip and are checked.
+    data = saved.to_bytes()
+    assert rr.StepperState.from_bytes(data) == saved
+    assert pickle.loads(pickle.dumps(saved)) == saved and hash(saved) == hash(
+        rr.StepperState.from_bytes(data))
+    import pytest
+
+    with pytest.raises(ValueError, match="not a StepperState"):
+        stepper.state = [0.1, 0.1, 0.0, 0.0]  # type: ignore[assignment]
+    for bad in (data[:-1], data[:20], b"nonsense" * 10,
+                data[:40] + bytes([data[40] ^ 1]) + data[41:]):
+        with pytest.raises(ValueError, match="StepperState"):
+            rr.StepperState.from_bytes(bad)
+
+
+def test_start_values_are_fixed_once_stepped() -> None:
+    """As the FMU: x0, y0, vx0, vy0 and the phase may change before the first step (the stepper
+    starts from them), not after (ValueError, nothing changed)."""
+    import pytest
+
+    fresh = rr.Stepper(dt=1e-3)
+    fresh.set_params(x0=0.5, phase=0.3)
+    same = rr.Stepper(dt=1e-3, x0=0.5, phase=0.3)
+    assert fresh.state == same.state
+    assert fresh.run(500).samples.state.tobytes() == same.run(500).samples.state.tobytes()
+    before = fresh.state
+    for name in ("x0", "y0", "vx0", "vy0", "phase"):
+        with pytest.raises(ValueError, match=f"{name}: the start values"):
+            fresh.set_params(**{name: 0.25})
+    assert fresh.state == before
+    restored = rr.Stepper()
+    restored.state = before
+    with pytest.raises(ValueError, match="x0"):
+        restored.set_params(x0=0.0)
+    fresh.set_params(damping_ratio=0.1)  # a model parameter still changes
+    assert fresh.state.params["damping_ratio"] == 0.1

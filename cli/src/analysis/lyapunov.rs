@@ -24,12 +24,25 @@ pub fn largest_exponent(
     interval: f64,
     intervals: usize,
 ) -> Result<f64, PropagationError> {
+    largest_exponent_checked(problem, options, interval, intervals, |_| Ok(()))
+}
+
+/// [`largest_exponent`], calling `check` with the time before each interval: its error ends the
+/// estimate (a caller's interrupt, [`crate::watch`]).
+pub fn largest_exponent_checked<E: From<PropagationError>>(
+    problem: &Problem,
+    options: &Options,
+    interval: f64,
+    intervals: usize,
+    mut check: impl FnMut(f64) -> Result<(), E>,
+) -> Result<f64, E> {
     let mut reference = Propagator::new(problem, options)?;
     let mut direction = [1.0, 1.0, 1.0, 1.0];
     let mut t = problem.start_time;
     let mut sum = 0.0;
     let mut averaged = 0;
     for k in 0..SKIPPED_INTERVALS.saturating_add(intervals) {
+        check(t)?;
         let base = reference.state().to_array();
         let perturbed_start = State::from_array(core::array::from_fn(|i| {
             base[i] + SEPARATION * direction[i]

@@ -5,11 +5,14 @@
 
 mod memory;
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
 
 pub use memory::{MemoryShare, reserve, share as memory_share};
 
 use crate::error::{CliError, Result, num};
+use crate::watch::Watch;
 
 /// Switches after which a run's switch rate is extrapolated to its end (the early refusal of a
 /// contact-heavy run that would take days): a hundredth of the limit, from 100 to 1e5.
@@ -49,6 +52,8 @@ impl LimitArgs {
         Budget {
             limit: self.max_work,
             used: AtomicU64::new(0),
+            name: "--max-work",
+            watch: None,
         }
     }
 }
@@ -58,14 +63,38 @@ impl LimitArgs {
 pub struct Budget {
     limit: u64,
     used: AtomicU64,
+    /// How messages name the limit (`--max-work`; the Python keyword `max_work`).
+    name: &'static str,
+    watch: Option<Arc<Watch>>,
 }
 
-fn too_much(what: String, limit: u64) -> CliError {
+/// The refusal of a run over the limit `name` = `limit`; `time` the run's estimated length when
+/// it was measured.
+fn too_much(what: String, name: &str, limit: u64, time: Option<f64>) -> CliError {
+    let time = time.map_or(String::new(), |s| {
+        format!(" (about {} of work)", duration(s))
+    });
     CliError::input(format!(
-        "{what}, more than --max-work {} (a run of hours to days); shorten the run or raise \
-         --max-work to run it anyway",
+        "{what}, more than {name} {}{time}; shorten the run or raise {name} to run it anyway",
         num(limit as f64)
     ))
+}
+
+/// A duration for a message, in the largest unit that keeps it >= 1: `40 ms`, `3 s`, `12 min`,
+/// `5 h`, `3 days`.
+pub fn duration(seconds: f64) -> String {
+    let units = [
+        (86_400.0, "days"),
+        (3_600.0, "h"),
+        (60.0, "min"),
+        (1.0, "s"),
+    ];
+    for (size, unit) in units {
+        if seconds >= size {
+            return format!("{:.0} {unit}", seconds / size);
+        }
+    }
+    format!("{:.0} ms", (seconds * 1e3).max(1.0))
 }
 
 impl Budget {
@@ -75,7 +104,9 @@ impl Budget {
         if used > self.limit {
             return Err(too_much(
                 format!("{what} asks for {count} samples and points"),
+                self.name,
                 self.limit,
+                None,
             ));
         }
         Ok(())
@@ -93,6 +124,34 @@ impl Budget {
             start,
             end,
             switches: 0,
+            started: Instant::now(),
+        }
+    }
+
+    /// The same budget with its messages naming the limit `name` (a caller's own name for
+    /// `--max-work`).
+    pub fn named(self, name: &'static str) -> Self {
+        Budget { name, ..self }
+    }
+
+    /// The same budget with `watch` polled by every run charged to it ([`crate::watch`]).
+    pub fn watched(self, watch: Arc<Watch>) -> Self {
+        Budget {
+            watch: Some(watch),
+            ..self
+        }
+    }
+
+    /// The watch on this budget's runs, if any.
+    pub fn watch(&self) -> Option<&Watch> {
+        self.watch.as_deref()
+    }
+
+    /// A run got to `time`: polls the watch (an error once it is stopped); nothing without one.
+    pub fn check(&self, time: f64) -> Result<()> {
+        match &self.watch {
+            Some(watch) => watch.poll(time),
+            None => Ok(()),
         }
     }
 }
@@ -105,15 +164,26 @@ pub struct Tracker<'a> {
     start: f64,
     end: f64,
     switches: u64,
+    started: Instant,
 }
 
 impl Tracker<'_> {
+    /// The budget this run charges.
+    pub fn budget(&self) -> &Budget {
+        self.budget
+    }
+
     /// Count a switch at `time`.
     pub fn switch(&mut self, time: f64) -> Result<()> {
+        self.budget.check(time)?;
         self.switches += 1;
         let used = self.budget.add(1);
         let limit = self.budget.limit;
+        let elapsed = time - self.start;
+        let seconds = self.started.elapsed().as_secs_f64();
         if used > limit {
+            // The whole run at the pace so far (in simulated time).
+            let estimate = (elapsed > 0.0).then(|| seconds / elapsed * (self.end - self.start));
             return Err(too_much(
                 format!(
                     "the run located {} contact switches by τ = {} of {}",
@@ -121,13 +191,15 @@ impl Tracker<'_> {
                     num(time),
                     num(self.end)
                 ),
+                self.budget.name,
                 limit,
+                estimate,
             ));
         }
-        let elapsed = time - self.start;
         if self.switches == pilot(limit) && elapsed > 0.0 {
             let projected = self.switches as f64 / elapsed * (self.end - self.start);
             if projected > limit as f64 {
+                let estimate = seconds / self.switches as f64 * projected;
                 return Err(too_much(
                     format!(
                         "at the rate of its first {} contact switches (up to τ = {}), the run \
@@ -137,7 +209,9 @@ impl Tracker<'_> {
                         num(self.end),
                         num(projected.round())
                     ),
+                    self.budget.name,
                     limit,
+                    Some(estimate),
                 ));
             }
         }

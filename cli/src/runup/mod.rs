@@ -4,11 +4,11 @@
 //! both directions on one chart with the rubbing speeds shaded and the jumps marked
 //! (`docs/MODEL.md` §14).
 
-mod analysis;
+pub mod analysis;
 mod figure;
 mod files;
-mod profile_csv;
-mod program;
+pub mod profile_csv;
+pub mod program;
 mod report;
 
 use std::fmt::Write as _;
