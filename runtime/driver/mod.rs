@@ -106,6 +106,19 @@ pub trait Solvers {
     }
 }
 
+/// A caller's solvers, borrowed: a driver run over solvers that outlive it (the stepper's, built
+/// once per step on its stack, with a sub-step slot too large to move).
+impl<S: Solvers + ?Sized> Solvers for &mut S {
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver {
+        (**self).solver(regime)
+    }
+
+    #[inline]
+    fn locate(&mut self, regime: Regime, target: f64) -> Located {
+        (**self).locate(regime, target)
+    }
+}
+
 /// A free-flight solver, a contact solver and a rolling solver (rolling occurs only under
 /// friction).
 pub struct ByRegime<F, C, R> {

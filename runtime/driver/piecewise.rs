@@ -63,6 +63,31 @@ impl<S: Solvers> Piecewise<S> {
         })
     }
 
+    /// A propagation already under way: at `(time, state)` in `regime` with slip direction
+    /// `slip`, the solvers' solver of `regime` already started there (a fixed-step caller that
+    /// keeps the position between its steps and runs the driver over each, `crate::stepper`).
+    /// Nothing is validated: the caller's position is one the driver reached.
+    #[inline]
+    pub fn resume(
+        params: &Params,
+        time: f64,
+        state: State,
+        regime: Regime,
+        slip: f64,
+        solvers: S,
+    ) -> Self {
+        Piecewise {
+            solvers,
+            params: *params,
+            budget: None,
+            time,
+            state,
+            regime,
+            slip,
+            failure: None,
+        }
+    }
+
     /// The slip direction σ of the current contact segment (±1 while slipping under friction, 0
     /// otherwise).
     pub fn slip(&self) -> f64 {
