@@ -233,7 +233,7 @@ typedef struct RotorRubStepper {
 typedef struct RotorRubEvent {
   // Switch time τ.
   double time;
-  // `ROTOR_RUB_EVENT_ENTER` or `ROTOR_RUB_EVENT_EXIT`.
+  // `ROTOR_RUB_EVENT_ENTER`, `_EXIT`, or under friction `_REVERSE`, `_ROLL`, `_SLIP`.
   int32_t kind;
   // The state at the switch (on z = 1).
   struct RotorRubState state;
@@ -245,7 +245,7 @@ typedef struct RotorRubStepResult {
   double time;
   // State at the step end.
   struct RotorRubState state;
-  // `ROTOR_RUB_REGIME_FREE` or `ROTOR_RUB_REGIME_CONTACT` at the step end.
+  // `ROTOR_RUB_REGIME_FREE`, `_CONTACT` or (friction) `_ROLLING` at the step end.
   int32_t regime;
   // Switches stored in `events` (<= ROTOR_RUB_EVENT_CAPACITY).
   uint32_t event_count;
