@@ -5,7 +5,7 @@
 
 use super::friction::Slip;
 use super::report::StepReport;
-use super::solvers::{Frame, StepSolvers};
+use super::solvers::{Frame, carried_slip, step_solvers};
 use super::{Stepper, StepperError};
 use crate::analytic::schemes::SubStep;
 use crate::driver::Piecewise;
@@ -27,7 +27,7 @@ impl Stepper {
         let frame = Frame::new(&self.params, &self.config, &self.transition, t0, dt);
         // The contact sub-steps' slot, on this stack (a sub-step is too large to move).
         let mut sub = SubStep::zeroed();
-        let mut solvers = StepSolvers::new(&frame, &mut sub, self.regime, self.state, self.slip);
+        let mut solvers = step_solvers(&frame, &mut sub, self.regime, self.state, self.slip);
         let mut driver = Piecewise::resume(
             &self.params,
             t0,
@@ -49,7 +49,7 @@ impl Stepper {
             }
         };
         let (state, mut regime) = (driver.state(), driver.regime());
-        let mut slip = solvers.slip(regime);
+        let mut slip = carried_slip(&solvers, regime);
         frame.report_into(report);
         if stopped.is_none() && frame.exhausted() {
             // The budget ran out before the end: the last sub-step went there unsearched, so

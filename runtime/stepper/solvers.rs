@@ -6,10 +6,11 @@
 //!
 //! * [`FreePieces`]: the exact free piece from s to the step end, searched for the next contact
 //!   with the capped kernel (`search::locate_with`);
-//! * [`ContactSubsteps`]: equal contact sub-steps of exprb43/exprb2 of at most dt /
+//! * [`Substeps`] of [`Contact`]: equal contact sub-steps of exprb43/exprb2 of at most dt /
 //!   `contact_substeps` over the rest of the step, each searched for the exit and (slipping) the
 //!   slip velocity's zero; the budget's last sub-step covers the rest without a search;
-//! * [`RollingSubsteps`]: rolling sub-steps, one explicit DOP853 step each (`friction.rs`).
+//! * [`Substeps`] of [`Rolling`]: rolling sub-steps, one explicit DOP853 step each
+//!   (`friction.rs`).
 //!
 //! The solvers count in local time (the frame's cursor is the local time of the current
 //! segment's start), so that every piece and sub-step has the lengths and times the step's grid
@@ -26,7 +27,7 @@ use crate::analytic::linear::ContactConstants;
 use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
 use crate::analytic::segment::{Point, Segment};
 use crate::analytic::switch::{Direction, Search};
-use crate::driver::{Located, SegmentSolver, Solvers, within_bounds};
+use crate::driver::{ByRegime, Located, SegmentSolver, within_bounds};
 use crate::geometry;
 use crate::params::{Params, State};
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
@@ -270,32 +271,40 @@ impl Progress {
     }
 }
 
-/// Contact sub-steps from the cursor to the step's end.
-pub(super) struct ContactSubsteps<'f, 'a> {
-    frame: &'f Frame<'a>,
-    slip: Slip,
-    progress: Progress,
-    /// The sub-steps' slot (on the step's stack, written in place: a sub-step is too large to
-    /// move around).
-    sub: &'f mut SubStep,
+/// One kind of sub-step: how a sub-step of length `h` from `state` at local time `s` is taken,
+/// with its end state and (when `search`) the first switch in it.
+pub(super) trait SubstepKind {
+    fn take(
+        &mut self,
+        frame: &Frame<'_>,
+        slip: &Slip,
+        from: (f64, State, f64),
+        search: bool,
+    ) -> Result<(State, Option<SwitchIn>), PropagationError>;
 }
 
-impl ContactSubsteps<'_, '_> {
-    /// One contact sub-step of the configured scheme from `state` at local time `s` over `h`,
-    /// into the slot.
-    fn substep(&mut self, s: f64, state: State, h: f64) -> Result<(), PropagationError> {
-        let f = self.frame;
+/// Contact sub-steps of exprb43/exprb2, written into a slot on the step's stack (a sub-step is
+/// too large to move around).
+pub(super) struct Contact<'f>(&'f mut SubStep);
+
+impl SubstepKind for Contact<'_> {
+    fn take(
+        &mut self,
+        f: &Frame<'_>,
+        slip: &Slip,
+        (s, state, h): (f64, State, f64),
+        search: bool,
+    ) -> Result<(State, Option<SwitchIn>), PropagationError> {
         let t = f.t0 + s;
         // The contact constants are built per sub-step rather than kept in the stepper: a copy
         // of the parameters and one generated gain (a few ns against a sub-step's hundreds),
         // where a kept copy made every stepper 112 bytes larger, two cache lines that each cold
         // step and parameter change pays (`benches/stepper.rs`).
         let contact = &ContactConstants::new(f.params);
-        let sigma = self.slip.sigma;
-        let sub = &mut *self.sub;
+        let sub = &mut *self.0;
         match f.config.scheme {
-            ContactScheme::Exprb2 => exprb2_with(contact, sigma, t, state, h, sub),
-            ContactScheme::Exprb43 => exprb43_with(contact, sigma, t, state, h, 1.0, sub),
+            ContactScheme::Exprb2 => exprb2_with(contact, slip.sigma, t, state, h, sub),
+            ContactScheme::Exprb43 => exprb43_with(contact, slip.sigma, t, state, h, 1.0, sub),
         }
         .map_err(|_| PropagationError::SingularContact { time: t })?;
         if !within_bounds(&sub.end) {
@@ -305,84 +314,58 @@ impl ContactSubsteps<'_, '_> {
             });
         }
         f.counted(sub.error);
-        Ok(())
-    }
-
-    /// The contact exit on the sub-step's continuous extension from `state`, if any.
-    fn exit_in(&self, state: State) -> Option<(f64, Point)> {
-        let f = self.frame;
+        if !search {
+            return Ok((sub.end, None));
+        }
+        // The exit on the sub-step's continuous extension, then the slip velocity's zero before it.
         let model = f.transition.constants().model();
-        let start = geometry::point(model, state);
-        let end = geometry::point(model, self.sub.end);
-        let found = locate_with(
-            &self.sub.segment,
-            (0.0, start),
-            (self.sub.length, end),
-            Direction::Down,
-            self.sub.length,
-            f.config.budget(),
+        let (start, end) = (
+            geometry::point(model, state),
+            geometry::point(model, sub.end),
         );
-        f.resolve(found)
-    }
-}
-
-impl SegmentSolver for ContactSubsteps<'_, '_> {
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
-        let f = self.frame;
-        self.slip = Slip::of(f.params, regime, time, &state, slip);
-        self.progress = Progress::at(f.cursor.get(), state);
-        Ok(())
-    }
-
-    fn locate(&mut self, _target: f64) -> Located {
-        self.progress.locate(self.frame)
-    }
-
-    fn step(&mut self) -> Result<(), PropagationError> {
-        let f = self.frame;
-        let next = self.progress.advance(f);
-        let (s, state) = (self.progress.s, self.progress.state);
-        let rem = f.dt - s;
-        let Some(h) = next else {
-            // Budget spent: one last sub-step to the end, no switch search.
-            self.substep(s, state, rem)?;
-            self.progress.current = Some((rem, true));
-            self.progress.end = self.sub.end;
-            self.progress.found = None;
-            return Ok(());
-        };
-        self.substep(s, state, h)?;
-        let exit = self
-            .exit_in(state)
+        let exit = f
+            .resolve(locate_with(
+                &sub.segment,
+                (0.0, start),
+                (sub.length, end),
+                Direction::Down,
+                sub.length,
+                f.config.budget(),
+            ))
             .map(|(sx, p)| (sx, p.state, EventKind::Exit));
-        let limit = exit.map_or(self.sub.length, |(sx, _, _)| sx);
-        let t = f.t0 + s;
-        let slip = slip_in(self.sub, t, state, &self.slip, limit, f.config.budget());
-        self.progress.current = Some((h, h == rem));
-        self.progress.end = self.sub.end;
-        self.progress.found = slip.or(exit);
-        Ok(())
-    }
-
-    fn computed_to(&self) -> f64 {
-        self.progress.computed_to(self.frame)
+        let limit = exit.map_or(sub.length, |(sx, _, _)| sx);
+        let slipped = slip_in(sub, t, state, slip, limit, f.config.budget());
+        Ok((sub.end, slipped.or(exit)))
     }
 }
 
-/// Rolling sub-steps from the cursor to the step's end.
-pub(super) struct RollingSubsteps<'f, 'a> {
+/// Rolling sub-steps: one explicit DOP853 step each (`friction.rs`).
+pub(super) struct Rolling;
+
+impl SubstepKind for Rolling {
+    fn take(
+        &mut self,
+        f: &Frame<'_>,
+        slip: &Slip,
+        (s, state, h): (f64, State, f64),
+        search: bool,
+    ) -> Result<(State, Option<SwitchIn>), PropagationError> {
+        let (end, found) = rolling_substep(f.params, f.t0 + s, state, h, slip)?;
+        f.counted(0.0);
+        Ok((end, if search { found } else { None }))
+    }
+}
+
+/// Contact or rolling sub-steps from the cursor to the step's end: equal sub-steps of at most
+/// the nominal one, the budget's last covering the rest unsearched.
+pub(super) struct Substeps<'f, 'a, K> {
     frame: &'f Frame<'a>,
     slip: Slip,
     progress: Progress,
+    kind: K,
 }
 
-impl SegmentSolver for RollingSubsteps<'_, '_> {
+impl<K: SubstepKind> SegmentSolver for Substeps<'_, '_, K> {
     fn start(
         &mut self,
         regime: Regime,
@@ -405,17 +388,12 @@ impl SegmentSolver for RollingSubsteps<'_, '_> {
         let next = self.progress.advance(f);
         let (s, state) = (self.progress.s, self.progress.state);
         let rem = f.dt - s;
-        let t = f.t0 + s;
-        let (h, search) = match next {
-            Some(h) => (h, true),
-            // Budget spent: one last sub-step to the end, its switches not taken.
-            None => (rem, false),
-        };
-        let (end, found) = rolling_substep(f.params, t, state, h, &self.slip)?;
-        f.counted(0.0);
+        // Budget spent: one last sub-step to the end, its switches not searched.
+        let (h, search) = next.map_or((rem, false), |h| (h, true));
+        let (end, found) = self.kind.take(f, &self.slip, (s, state, h), search)?;
         self.progress.current = Some((h, !search || h == rem));
         self.progress.end = end;
-        self.progress.found = if search { found } else { None };
+        self.progress.found = found;
         Ok(())
     }
 
@@ -425,72 +403,45 @@ impl SegmentSolver for RollingSubsteps<'_, '_> {
 }
 
 /// The stepper's solvers of one step, by regime.
-pub(super) struct StepSolvers<'f, 'a> {
-    pub(super) free: FreePieces<'f, 'a>,
-    pub(super) contact: ContactSubsteps<'f, 'a>,
-    pub(super) rolling: RollingSubsteps<'f, 'a>,
-}
+pub(super) type StepSolvers<'f, 'a> =
+    ByRegime<FreePieces<'f, 'a>, Substeps<'f, 'a, Contact<'f>>, Substeps<'f, 'a, Rolling>>;
 
-impl<'f, 'a> StepSolvers<'f, 'a> {
-    /// The solvers of the step framed by `frame`, the one of `regime` starting at its start in
-    /// `state` with the segment's carried `slip`; contact sub-steps are written into `sub`.
-    pub(super) fn new(
-        frame: &'f Frame<'a>,
-        sub: &'f mut SubStep,
-        regime: Regime,
-        state: State,
-        slip: Slip,
-    ) -> Self {
-        let at = Progress::at(0.0, state);
-        let (contact_slip, rolling_slip) = match regime {
-            Regime::Contact => (slip, Slip::NONE),
-            Regime::Rolling => (Slip::NONE, slip),
-            Regime::Free => (Slip::NONE, Slip::NONE),
-        };
-        StepSolvers {
-            free: FreePieces {
-                frame,
-                start: (0.0, state),
-            },
-            contact: ContactSubsteps {
-                frame,
-                slip: contact_slip,
-                progress: at,
-                sub,
-            },
-            rolling: RollingSubsteps {
-                frame,
-                slip: rolling_slip,
-                progress: at,
-            },
-        }
-    }
-
-    /// The slip of the segment in progress in `regime` (carried to the next step).
-    pub(super) fn slip(&self, regime: Regime) -> Slip {
-        match regime {
-            Regime::Contact => self.contact.slip,
-            Regime::Rolling => self.rolling.slip,
-            Regime::Free => Slip::NONE,
-        }
+/// The solvers of the step framed by `frame`, the one of `regime` starting at its start in
+/// `state` with the segment's carried `slip`; contact sub-steps are written into `sub`.
+pub(super) fn step_solvers<'f, 'a>(
+    frame: &'f Frame<'a>,
+    sub: &'f mut SubStep,
+    regime: Regime,
+    state: State,
+    slip: Slip,
+) -> StepSolvers<'f, 'a> {
+    let at = Progress::at(0.0, state);
+    let carried = |r: Regime| if r == regime { slip } else { Slip::NONE };
+    ByRegime {
+        free: FreePieces {
+            frame,
+            start: (0.0, state),
+        },
+        contact: Substeps {
+            frame,
+            slip: carried(Regime::Contact),
+            progress: at,
+            kind: Contact(sub),
+        },
+        rolling: Substeps {
+            frame,
+            slip: carried(Regime::Rolling),
+            progress: at,
+            kind: Rolling,
+        },
     }
 }
 
-impl Solvers for StepSolvers<'_, '_> {
-    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver {
-        match regime {
-            Regime::Free => &mut self.free,
-            Regime::Contact => &mut self.contact,
-            Regime::Rolling => &mut self.rolling,
-        }
-    }
-
-    #[inline]
-    fn locate(&mut self, regime: Regime, target: f64) -> Located {
-        match regime {
-            Regime::Free => self.free.locate(target),
-            Regime::Contact => self.contact.locate(target),
-            Regime::Rolling => self.rolling.locate(target),
-        }
+/// The slip of the segment in progress in `regime` (carried to the next step).
+pub(super) fn carried_slip(solvers: &StepSolvers<'_, '_>, regime: Regime) -> Slip {
+    match regime {
+        Regime::Contact => solvers.contact.slip,
+        Regime::Rolling => solvers.rolling.slip,
+        Regime::Free => Slip::NONE,
     }
 }
