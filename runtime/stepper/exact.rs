@@ -29,7 +29,7 @@ impl Stepper {
         let mut sub = SubStep::zeroed();
         let mut solvers = step_solvers(&frame, &mut sub, self.regime, self.state, self.slip);
         let mut driver = Piecewise::resume(
-            &self.params,
+            self.params,
             t0,
             self.state,
             self.regime,
