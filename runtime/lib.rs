@@ -44,6 +44,7 @@ pub mod geometry;
 pub mod hybrid;
 pub mod linalg;
 pub mod math;
+pub mod matrix;
 pub mod method;
 pub mod params;
 pub mod propagate;

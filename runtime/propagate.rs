@@ -105,6 +105,8 @@ pub struct Event<S = State> {
 pub enum PropagationError {
     /// The problem failed validation.
     InvalidProblem(ParamError),
+    /// A rotor from matrices that cannot be stated or decomposed (`crate::matrix`).
+    InvalidModel(crate::matrix::MatrixError),
     /// A target time before the current time, or not finite.
     InvalidTarget {
         /// The requested time.
@@ -149,6 +151,7 @@ impl fmt::Display for PropagationError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             PropagationError::InvalidProblem(e) => write!(f, "invalid problem: {e}"),
+            PropagationError::InvalidModel(e) => write!(f, "invalid model: {e}"),
             PropagationError::InvalidTarget { target, current } => write!(
                 f,
                 "target time {target:e} is invalid: it must be finite and not before the current time {current:e}"
@@ -180,6 +183,12 @@ impl fmt::Display for PropagationError {
 }
 
 impl core::error::Error for PropagationError {}
+
+impl From<crate::matrix::MatrixError> for PropagationError {
+    fn from(e: crate::matrix::MatrixError) -> Self {
+        PropagationError::InvalidModel(e)
+    }
+}
 
 impl From<ParamError> for PropagationError {
     fn from(e: ParamError) -> Self {

@@ -126,6 +126,20 @@ pub struct RotorRubParams {
     pub force_x: f64,
     /// u_y: external input force, y.
     pub force_y: f64,
+    /// m̂: stator ring mass over disk mass (0: the paper's massless ring).
+    pub stator_mass_ratio: f64,
+    /// k̂_c: rotor–ring contact stiffness (with a ring mass only).
+    pub contact_stiffness: f64,
+    /// ĉ: ring support damping (with a ring mass only).
+    pub stator_damping: f64,
+    /// x̃s0: initial ring position x (with a ring mass only).
+    pub xs0: f64,
+    /// ỹs0: initial ring position y (with a ring mass only).
+    pub ys0: f64,
+    /// x̃s0': initial ring velocity x (with a ring mass only).
+    pub vxs0: f64,
+    /// ỹs0': initial ring velocity y (with a ring mass only).
+    pub vys0: f64,
 }
 
 /// A state (x, y, x', y').

@@ -36,7 +36,7 @@ mod boundary;
 mod piecewise;
 mod system;
 
-pub(crate) use boundary::start_side;
+pub(crate) use boundary::{motion_side, start_side};
 
 /// `impl Propagate for $ty` by delegation to the [`Piecewise`] it wraps (field 0): a method's
 /// propagator is a newtype over the driver, and this is all its `Propagate` says.
