@@ -416,6 +416,16 @@ pub const GROUPS: &[Group] = &[
         ],
         external: None,
     },
+    Group {
+        ty: "DriveRate",
+        arg: "drive_rate",
+        doc: "The rate a' of a rub station's offset acceleration from every force but the contact's (`docs/MODEL.md` §17).",
+        fields: &[
+            ("drive_rate_u", "au_rate", "(u'')' without contact forces"),
+            ("drive_rate_v", "av_rate", "(v'')' without contact forces"),
+        ],
+        external: None,
+    },
 ];
 
 /// Symbols that only live inside derivations (unknowns, variables substituted away).
