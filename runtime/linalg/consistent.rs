@@ -82,8 +82,7 @@ pub(crate) fn solve_consistent<T: Scalar, const CAP: usize>(
     }
     let scale = x.iter().map(|v| v.magnitude()).fold(0.0, f64::max);
     let tolerance = CONSISTENCY * n as f64 * f64::EPSILON * scale;
-    if x
-        .iter()
+    if x.iter()
         .skip(rank)
         .any(|v| v.magnitude().is_nan() || v.magnitude() > tolerance)
     {

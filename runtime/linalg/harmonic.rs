@@ -124,8 +124,10 @@ impl<const CAP: usize> HarmonicResponse<CAP> {
                 Ok(lu) => lu.solve(&mut constant),
                 // Singular: a static deflection exists when u does not push along the free
                 // rigid-body mode (`consistent.rs`).
-                Err(LinalgError::Singular { .. }) => solve_consistent(rotor.stiffness, &mut constant)
-                    .map_err(|column| LinalgError::StaticSingular { column })?,
+                Err(LinalgError::Singular { .. }) => {
+                    solve_consistent(rotor.stiffness, &mut constant)
+                        .map_err(|column| LinalgError::StaticSingular { column })?
+                }
                 Err(other) => return Err(other),
             }
         }

@@ -145,8 +145,11 @@ impl<const CAP: usize> Flight<CAP> {
         let mut particular = [0.0; CAP];
         d.particular(model, self.t0 + s, &mut particular);
         let out = y.as_mut_slice();
-        d.modal
-            .state(self.motion.modal_coordinates(), s, out.get_mut(..m).unwrap_or(&mut []));
+        d.modal.state(
+            self.motion.modal_coordinates(),
+            s,
+            out.get_mut(..m).unwrap_or(&mut []),
+        );
         for (o, &p) in out.iter_mut().zip(&particular) {
             *o += p;
         }

@@ -260,8 +260,8 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
     }
 }
 
-impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize>
-    SegmentSolver<MatrixState<CAP>> for ExactFree<M, CAP>
+impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> SegmentSolver<MatrixState<CAP>>
+    for ExactFree<M, CAP>
 {
     /// A free segment from `(time, state)` (any regime is taken as free flight: this solver
     /// serves the free regime).
