@@ -20,8 +20,11 @@
 use core::ops::Deref;
 
 use super::error::MatrixError;
+use super::free::ExactFree;
 use super::model::MatrixModel;
-use super::numerical::{NumericalFree, NumericalSolver};
+use super::numerical::NumericalSolver;
+#[cfg(doc)]
+use super::numerical::NumericalFree;
 use super::state::MatrixState;
 use super::taylor::TaylorContact;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
@@ -29,9 +32,10 @@ use crate::method::{ContactScheme, Method, Options};
 use crate::propagate::{Event, Propagate, PropagationError, Regime};
 use crate::reference::{Dop853, REFERENCE_BUDGET, Rk45, Scheme};
 
-/// The free flight of `hybrid`, `taylor` and `analytic`: the one line to change when the exact
-/// free-flight solver lands (`ExactFree<M, CAP>`, `runtime/matrix/free/`; same constructor).
-pub type FreeFlight<M, const CAP: usize> = NumericalFree<M, CAP>;
+/// The free flight of `hybrid`, `taylor` and `analytic`: exact ([`ExactFree`],
+/// `runtime/matrix/free/`). [`NumericalFree`] (DOP853 at [`super::STAND_IN_TOLERANCE`]) has
+/// the same constructor and stands in for it in tests of the contact solvers alone.
+pub type FreeFlight<M, const CAP: usize> = ExactFree<M, CAP>;
 
 /// A free-flight solver and a contact solver (which serves rolling too: a segment of either
 /// starts it afresh).

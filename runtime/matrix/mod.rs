@@ -10,6 +10,7 @@
 //! - `field.rs`: the regime fields and the station's quantities (generated station law).
 //! - `system.rs`: the model as a [`crate::driver::System`] (start side, slip, divergence).
 //! - `ring.rs`: the stator ring with mass from the parameter table.
+//! - `free/`: exact free flight and its contact search ([`ExactFree`]).
 //! - `error.rs`: [`MatrixError`].
 //! - `switches.rs`: the switch functions with their rates ([`MatrixSwitches`]).
 //! - `numerical.rs`: DOP853 and Dormand–Prince 5(4) on the whole system, every regime
@@ -21,6 +22,7 @@
 
 mod error;
 mod field;
+pub mod free;
 mod methods;
 mod model;
 mod numerical;
@@ -33,6 +35,7 @@ mod taylor;
 
 pub use error::MatrixError;
 pub use field::StationMotion;
+pub use free::{ExactFree, FreeWork};
 pub use methods::{
     FreeFlight, HybridPropagator, MatrixPropagator, NumericalPropagator, Split, TaylorPropagator,
     hybrid, numerical, taylor,

@@ -7,8 +7,8 @@
 //!
 //! One [`NumericalSolver`] serves every regime (a switch restarts it on the next regime's
 //! field): it is the whole of the `dop853` and `rk45` methods, the contact and rolling solver
-//! of `hybrid`, and — at a tight tolerance — the stand-in free flight of the methods whose free
-//! flight is exact ([`NumericalFree`], until the exact one is wired in).
+//! of `hybrid`, and — at a tight tolerance — a numerical free flight ([`NumericalFree`]) that
+//! can stand in for the exact one ([`super::ExactFree`]) to test the contact solvers alone.
 //!
 //! Tolerance semantics: rtol = atol = tol per step in Hairer's mixed norm over the 2n entries
 //! of y ([`OdeSystem::dimension`]), as for the planar model.
