@@ -11,4 +11,5 @@
 mod reliability {
     pub mod chatter;
     pub mod common;
+    pub mod stiff;
 }
