@@ -11,5 +11,6 @@
 mod reliability {
     pub mod chatter;
     pub mod common;
+    pub mod grazing;
     pub mod stiff;
 }
