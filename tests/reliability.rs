@@ -12,5 +12,6 @@ mod reliability {
     pub mod chatter;
     pub mod common;
     pub mod grazing;
+    pub mod restarts;
     pub mod stiff;
 }
