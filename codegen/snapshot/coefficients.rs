@@ -32,6 +32,10 @@
 //                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 // contact_particular           before:   111 add   290 mul    6 div   0 sqrt   0 trans
 //                               after:    23 add    87 mul    2 div   0 sqrt   0 trans
+// contact_particular_residual  before:    20 add    32 mul    0 div   0 sqrt   0 trans
+//                               after:    20 add    29 mul    0 div   0 sqrt   0 trans
+// contact_particular_correction before:   144 add   360 mul    6 div   0 sqrt   0 trans
+//                               after:    36 add   108 mul    2 div   0 sqrt   0 trans
 // contact_particular_eval      before:     6 add    12 mul    0 div   0 sqrt   0 trans
 //                               after:     6 add    12 mul    0 div   0 sqrt   0 trans
 // contact_modes                before:     7 add    12 mul    0 div   0 sqrt   0 trans
@@ -352,6 +356,22 @@ pub struct ContactParticular {
     pub c55: f64,
     /// c66, constant of y: −(Kl⁻¹ Fd)_y
     pub c66: f64,
+}
+/// What the linearized contact equations leave at particular constants: their cos θ, sin θ and constant parts (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ParticularResidual {
+    /// cos θ part of the x equation
+    pub x_cos: f64,
+    /// sin θ part of the x equation
+    pub x_sin: f64,
+    /// constant part of the x equation
+    pub x_constant: f64,
+    /// cos θ part of the y equation
+    pub y_cos: f64,
+    /// sin θ part of the y equation
+    pub y_sin: f64,
+    /// constant part of the y equation
+    pub y_constant: f64,
 }
 /// Initial state of the homogeneous part of a contact segment (state minus particular).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -1132,6 +1152,115 @@ pub fn contact_particular(
                         + 2.0 * speed_ratio * damping_ratio * fb2 * t2)),
         c55: t12 * (fb1 * fd2 - fa2 * fd1),
         c66: t12 * (fb2 * fd1 - fa1 * fd2),
+    }
+}
+/// Residual of particular constants c11 … c66 in the linearized contact equations with the input force (cos θ, sin θ and constant parts of the x and y equations): zero for the exact constants.
+///
+/// Source: docs/MODEL.md §5 (particular part), §15.
+/// Derivation: the harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd − F(cos θ, sin θ) − u, split by partial derivatives in cos θ, sin θ and the rest.
+#[inline]
+#[must_use]
+pub fn contact_particular_residual(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    particular: &ContactParticular,
+) -> ParticularResidual {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
+    let c11 = particular.c11;
+    let c22 = particular.c22;
+    let c33 = particular.c33;
+    let c44 = particular.c44;
+    let c55 = particular.c55;
+    let c66 = particular.c66;
+    let t0 = -unbalance_force;
+    let t1 = speed_ratio * speed_ratio;
+    ParticularResidual {
+        x_cos: t0 + c11 * fa1 + c33 * fb1 + 2.0 * speed_ratio * damping_ratio * c22
+            - t1 * c11,
+        x_sin: c22 * fa1 + c44 * fb1 - t1 * c22
+            - 2.0 * speed_ratio * damping_ratio * c11,
+        x_constant: fd1 + c55 * fa1 + c66 * fb1 - force_x,
+        y_cos: c11 * fb2 + c33 * fa2 + 2.0 * speed_ratio * damping_ratio * c44
+            - t1 * c33,
+        y_sin: t0 + c22 * fb2 + c44 * fa2 - t1 * c44
+            - 2.0 * speed_ratio * damping_ratio * c33,
+        y_constant: fd2 + c55 * fb2 + c66 * fa2 - force_y,
+    }
+}
+/// Correction δ of particular constants from their residual r (`contact_particular_residual`): M δ + r = 0, the equations' matrix M without forcing; c + δ is one step of iterative refinement.
+///
+/// Source: docs/MODEL.md §5 (particular part).
+/// Derivation: the ansatz substituted into q'' + 2νq' + Kl q with no forcing and no Fd, the residual added to each of the six equations, solved by Cramer's rule as for the particular constants.
+#[inline]
+#[must_use]
+pub fn contact_particular_correction(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    residual: &ParticularResidual,
+) -> ContactParticular {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let x_cos = residual.x_cos;
+    let x_sin = residual.x_sin;
+    let x_constant = residual.x_constant;
+    let y_cos = residual.y_cos;
+    let y_sin = residual.y_sin;
+    let y_constant = residual.y_constant;
+    let t0 = speed_ratio * speed_ratio;
+    let t1 = -t0;
+    let t2 = t1 + fa1;
+    let t3 = damping_ratio * damping_ratio;
+    let t4 = t1 + fa2;
+    let t5 = 4.0 * t0 * t3 + t4 * t4;
+    let t6 = t2 * t5 - fb1 * fb2 * t4;
+    let t7 = -(2.0 * speed_ratio * damping_ratio * t5)
+        - 2.0 * speed_ratio * damping_ratio * fb1 * fb2;
+    let t8 = fb2 * fb2;
+    let t9 = 4.0 * t0 * t3 * fb2 + fb1 * t8 - fb2 * t2 * t4;
+    let t10 = 1.0 / (t2 * t6 + fb1 * t9 - 2.0 * speed_ratio * damping_ratio * t7);
+    let t11 = t4 * y_sin;
+    let t12 = fb1 * (2.0 * speed_ratio * damping_ratio * y_cos + t11) - t5 * x_sin;
+    let t13 = 2.0 * speed_ratio * damping_ratio * fb2 * x_sin;
+    let t14 = 2.0 * speed_ratio * damping_ratio * y_sin - t4 * y_cos;
+    let t15 = t2 * t14;
+    let t16 = fb1 * fb2 * y_cos;
+    let t17 = fb2 * t4 * x_sin;
+    let t18 = t17 - 2.0 * speed_ratio * damping_ratio * t14 - fb1 * fb2 * y_sin;
+    let t19 = -(t11) - 2.0 * speed_ratio * damping_ratio * y_cos;
+    let t20 = 1.0 / (fa1 * fa2 - fb1 * fb2);
+    ContactParticular {
+        c11: t10
+            * (fb1 * (t13 - t15 - t16) - t6 * x_cos
+                - 2.0 * speed_ratio * damping_ratio * t12),
+        c22: t10 * (t2 * t12 + t7 * x_cos + fb1 * t18),
+        c33: t10
+            * (t2 * (t15 + t16 - 2.0 * speed_ratio * damping_ratio * fb2 * x_sin)
+                - 2.0 * speed_ratio * damping_ratio * t18 - t9 * x_cos),
+        c44: t10
+            * (t2 * (t17 + t2 * t19)
+                + fb1
+                    * (fb2 * t2 * y_sin - 2.0 * speed_ratio * damping_ratio * fb2 * y_cos
+                        - t8 * x_sin)
+                + (2.0 * speed_ratio * damping_ratio * fb2 * t4
+                    + 2.0 * speed_ratio * damping_ratio * fb2 * t2) * x_cos
+                - 2.0 * speed_ratio * damping_ratio
+                    * (t13 - 2.0 * speed_ratio * damping_ratio * t19)),
+        c55: t20 * (fb1 * y_constant - fa2 * x_constant),
+        c66: t20 * (fb2 * x_constant - fa1 * y_constant),
     }
 }
 /// Outputs of [`contact_particular_eval`].

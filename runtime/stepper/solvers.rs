@@ -271,16 +271,16 @@ impl Progress {
     }
 }
 
+/// A sub-step's start: local time `s`, `state` there, length `h`.
+pub(super) type Substart = (f64, State, f64);
+
+/// A sub-step taken: its end state and (when searched) the first switch in it.
+pub(super) type Taken = Result<(State, Option<SwitchIn>), PropagationError>;
+
 /// One kind of sub-step: how a sub-step of length `h` from `state` at local time `s` is taken,
 /// with its end state and (when `search`) the first switch in it.
 pub(super) trait SubstepKind {
-    fn take(
-        &mut self,
-        frame: &Frame<'_>,
-        slip: &Slip,
-        from: (f64, State, f64),
-        search: bool,
-    ) -> Result<(State, Option<SwitchIn>), PropagationError>;
+    fn take(&mut self, frame: &Frame<'_>, slip: &Slip, from: Substart, search: bool) -> Taken;
 }
 
 /// Contact sub-steps of exprb43/exprb2, written into a slot on the step's stack (a sub-step is
@@ -288,13 +288,7 @@ pub(super) trait SubstepKind {
 pub(super) struct Contact<'f>(&'f mut SubStep);
 
 impl SubstepKind for Contact<'_> {
-    fn take(
-        &mut self,
-        f: &Frame<'_>,
-        slip: &Slip,
-        (s, state, h): (f64, State, f64),
-        search: bool,
-    ) -> Result<(State, Option<SwitchIn>), PropagationError> {
+    fn take(&mut self, f: &Frame<'_>, slip: &Slip, (s, state, h): Substart, search: bool) -> Taken {
         let t = f.t0 + s;
         // The contact constants are built per sub-step rather than kept in the stepper: a copy
         // of the parameters and one generated gain (a few ns against a sub-step's hundreds),
@@ -343,13 +337,7 @@ impl SubstepKind for Contact<'_> {
 pub(super) struct Rolling;
 
 impl SubstepKind for Rolling {
-    fn take(
-        &mut self,
-        f: &Frame<'_>,
-        slip: &Slip,
-        (s, state, h): (f64, State, f64),
-        search: bool,
-    ) -> Result<(State, Option<SwitchIn>), PropagationError> {
+    fn take(&mut self, f: &Frame<'_>, slip: &Slip, (s, state, h): Substart, search: bool) -> Taken {
         let (end, found) = rolling_substep(f.params, f.t0 + s, state, h, slip)?;
         f.counted(0.0);
         Ok((end, if search { found } else { None }))

@@ -91,3 +91,33 @@ fn the_jeffcott_rotor_enters_where_the_planar_30_digit_reference_does() {
         event.time
     );
 }
+
+/// A segment's start counts as inside free flight: a start on z = 1 (to rounding, either side)
+/// moving inward, as after a contact's exit, is not reported as a contact; the next contact is
+/// the one an independent sampling sees.
+#[test]
+fn a_start_on_the_clearance_moving_inward_is_not_a_contact() {
+    let case = Case::load("jeffcott_contact");
+    let model = case.model();
+    for dz in [0.0, 2e-16, -2e-16, 1e-15] {
+        // P = ε̂ + (1 + dz)(cos a, sin a), velocity inward.
+        let a: f64 = 0.4;
+        let (c, s) = (a.cos(), a.sin());
+        let q = [
+            case.offset.0 + (1.0 + dz) * c,
+            case.offset.1 + (1.0 + dz) * s,
+        ];
+        let v = [-0.8 * c + 0.3 * s, -0.8 * s - 0.3 * c];
+        let y0 = State::new(&q, &v).unwrap();
+        let mut free = started(&model, 0.0, y0);
+        let first = contact(&mut free, 6.0).map(|e| e.time);
+        let end = first.unwrap_or(6.0);
+        assert!(end > 1e-3, "dz = {dz:e}: contact reported at {end}");
+        let y: Vec<f64> = y0.as_slice().to_vec();
+        for k in 1..200 {
+            let t = end * k as f64 / 200.0;
+            let h = station_h(&case, &augmented_state(&case, 0.0, &y, t));
+            assert!(h <= 1e-9, "dz = {dz:e}: h = {h:e} at {t} before {first:?}");
+        }
+    }
+}

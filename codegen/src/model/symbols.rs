@@ -216,6 +216,20 @@ pub const GROUPS: &[Group] = &[
         external: None,
     },
     Group {
+        ty: "ParticularResidual",
+        arg: "residual",
+        doc: "What the linearized contact equations leave at particular constants: their cos θ, sin θ and constant parts (`docs/MODEL.md` §5).",
+        fields: &[
+            ("pr_xc", "x_cos", "cos θ part of the x equation"),
+            ("pr_xs", "x_sin", "sin θ part of the x equation"),
+            ("pr_x0", "x_constant", "constant part of the x equation"),
+            ("pr_yc", "y_cos", "cos θ part of the y equation"),
+            ("pr_ys", "y_sin", "sin θ part of the y equation"),
+            ("pr_y0", "y_constant", "constant part of the y equation"),
+        ],
+        external: None,
+    },
+    Group {
         ty: "HomogeneousInitial",
         arg: "initial",
         doc: "Initial state of the homogeneous part of a contact segment (state minus particular).",
