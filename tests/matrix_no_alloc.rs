@@ -75,7 +75,12 @@ fn every_method_runs_without_allocating() {
         let after = ALLOCATIONS.load(Ordering::SeqCst);
         COUNTED.with(|c| c.set(false));
         // The one Box holding the propagator is the test's.
-        assert_eq!(after - before, 1, "{method:?} allocated {} times", after - before - 1);
+        assert_eq!(
+            after - before,
+            1,
+            "{method:?} allocated {} times",
+            after - before - 1
+        );
         assert!(events > 100, "{method:?}: {events} events");
     }
 }

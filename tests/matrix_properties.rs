@@ -11,7 +11,10 @@
 //!   slipping, λ rolling, from the oracle's hand-written law, `matrix_oracle/ring.rs`) —
 //!   integrated by Simpson's rule between events (spacing ≤ 2e-3), to 1e-7 of the energy.
 
-#[allow(dead_code, reason = "the properties use the oracle's law, not its runs")]
+#[allow(
+    dead_code,
+    reason = "the properties use the oracle's law, not its runs"
+)]
 mod matrix_oracle {
     pub mod ring;
 }
