@@ -16,8 +16,11 @@ use std::sync::OnceLock;
 
 use matrix_oracle::cases::{CASES, Case, PERIODS};
 use matrix_oracle::ring::{self, OracleRun};
+use rotor_rub::Propagate;
 use rotor_rub::events;
-use rotor_rub::matrix::{MatrixPropagator, RingModel, ring_model, ring_start};
+use rotor_rub::matrix::{
+    MatrixPropagator, MatrixState, NumericalFree, RingModel, hybrid, ring_model, ring_start, taylor,
+};
 use rotor_rub::method::{Method, Options};
 
 /// The oracle's run of each case, computed once for every test of this file.
@@ -47,26 +50,41 @@ fn model(case: &Case) -> RingModel {
 /// Run `method` at `tol` on every case and compare with the oracle: same kinds, times within
 /// `time_bound`, states within `state_bound`; the largest time difference is returned.
 fn against_oracle(method: Method, tol: Option<f64>, time_bound: f64, state_bound: f64) -> f64 {
+    let options = Options {
+        tol,
+        ..Options::with_method(method)
+    };
+    runs_against_oracle(
+        &format!("{method:?}"),
+        &|model, start| {
+            Box::new(MatrixPropagator::new(model, 0.0, start, &options).expect("the method starts"))
+        },
+        time_bound,
+        state_bound,
+    )
+}
+
+/// A run of one method on a ring model from a start.
+type Run<'r> =
+    dyn for<'a> Fn(&'a RingModel, MatrixState<8>) -> Box<dyn Propagate<MatrixState<8>> + 'a> + 'r;
+
+/// [`against_oracle`] for any way of running the ring (`method` names it in messages).
+fn runs_against_oracle(method: &str, run: &Run<'_>, time_bound: f64, state_bound: f64) -> f64 {
     let mut worst_all = 0.0f64;
     for (index, case) in CASES.iter().enumerate() {
         let problem = case.problem();
         let model = model(case);
-        let options = Options {
-            tol,
-            ..Options::with_method(method)
-        };
         let end = PERIODS * problem.params.forcing_period();
-        let mut propagator = MatrixPropagator::new(&model, 0.0, ring_start(&problem), &options)
-            .expect("the method starts");
-        let got: Vec<_> = events(&mut propagator, end)
+        let mut propagator = run(&model, ring_start(&problem));
+        let got: Vec<_> = events(&mut *propagator, end)
             .collect::<Result<_, _>>()
-            .unwrap_or_else(|e| panic!("{}: {method:?} failed: {e}", case.name));
+            .unwrap_or_else(|e| panic!("{}: {method} failed: {e}", case.name));
         let want = &oracle(index).events;
         if case.compared == usize::MAX {
             assert_eq!(
                 got.len(),
                 want.len(),
-                "{} ({}): {method:?} finds {} switches, the oracle {}",
+                "{} ({}): {method} finds {} switches, the oracle {}",
                 case.name,
                 case.covers,
                 got.len(),
@@ -78,7 +96,7 @@ fn against_oracle(method: Method, tol: Option<f64>, time_bound: f64, state_bound
             assert_eq!(
                 a.kind.name(),
                 b.kind,
-                "{}: event {k} at {} is {:?} for {method:?}, {} at {} for the oracle",
+                "{}: event {k} at {} is {:?} for {method}, {} at {} for the oracle",
                 case.name,
                 a.time,
                 a.kind,
@@ -95,7 +113,7 @@ fn against_oracle(method: Method, tol: Option<f64>, time_bound: f64, state_bound
                 .fold(0.0, f64::max);
             assert!(
                 dt <= time_bound && dy <= state_bound,
-                "{}: event {k} ({}) at {}: {method:?} differs from the oracle by {dt:e} in time, {dy:e} in state",
+                "{}: event {k} ({}) at {}: {method} differs from the oracle by {dt:e} in time, {dy:e} in state",
                 case.name,
                 b.kind,
                 b.time
@@ -103,7 +121,7 @@ fn against_oracle(method: Method, tol: Option<f64>, time_bound: f64, state_bound
             worst = (worst.0.max(dt), worst.1.max(dy));
         }
         println!(
-            "{method:?} {}: {} switches compared, worst time {:.1e}, state {:.1e}",
+            "{method} {}: {} switches compared, worst time {:.1e}, state {:.1e}",
             case.name,
             got.len().min(case.compared),
             worst.0,
@@ -137,6 +155,30 @@ fn taylor_agrees_with_the_oracle() {
 #[test]
 fn analytic_agrees_with_the_oracle_at_its_default_tolerance() {
     against_oracle(Method::Analytic, None, 1e-6, 1e-4);
+}
+
+/// The contact solvers alone: hybrid's DOP853 and taylor's Taylor contact behind a numerical
+/// free flight (`NumericalFree`, DOP853 at 1e-14) instead of the exact one.
+#[test]
+fn the_contact_solvers_with_a_numerical_free_flight_agree_with_the_oracle() {
+    runs_against_oracle(
+        "hybrid (numerical free flight)",
+        &|model, start| {
+            let free = NumericalFree::new(model).expect("the free flight starts");
+            Box::new(hybrid(model, free, 0.0, start, 1e-13).expect("the method starts"))
+        },
+        1e-8,
+        1e-6,
+    );
+    runs_against_oracle(
+        "taylor (numerical free flight)",
+        &|model, start| {
+            let free = NumericalFree::new(model).expect("the free flight starts");
+            Box::new(taylor(model, free, 0.0, start, 1e-13).expect("the method starts"))
+        },
+        1e-8,
+        1e-6,
+    );
 }
 
 #[test]
