@@ -51,6 +51,7 @@ mod speed;
 pub mod symbols;
 mod taylor;
 mod tools;
+mod variational;
 
 use std::collections::HashMap;
 
@@ -84,6 +85,7 @@ pub fn derive_all() -> Model {
     speed::derive(&mut m);
     taylor::derive(&mut m);
     regimes::derive(&mut m);
+    variational::derive(&mut m);
     m
 }
 
