@@ -26,6 +26,7 @@ pub mod hybrid;
 pub mod linalg;
 pub mod math;
 pub mod method;
+pub mod orbit;
 pub mod params;
 pub mod propagate;
 pub mod reference;
