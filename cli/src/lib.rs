@@ -12,6 +12,7 @@ pub mod friction_fig;
 pub mod limits;
 pub mod merge;
 pub mod options;
+pub mod orbit;
 pub mod output;
 pub mod params;
 pub mod plot;
