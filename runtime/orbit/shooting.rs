@@ -53,8 +53,10 @@ pub struct Shot {
     pub orbit: PeriodicOrbit,
     /// |P^k(s) − s|∞ at each iterate, the start first (the first `iterations` entries).
     pub residuals: [f64; MAX_ITERATIONS],
-    /// The number of map evaluations made (iterates whose residual is recorded).
+    /// The number of Newton iterates (whose residuals are recorded), the start included.
     pub iterations: usize,
+    /// The number of map evaluations made (a damped step tries more than one).
+    pub evaluations: usize,
 }
 
 impl Shot {
@@ -138,19 +140,15 @@ pub fn shoot_observed(
         ..settings.map
     };
     let mut residuals = [0.0; MAX_ITERATIONS];
+    let mut evaluations = 1;
     let mut s = guess.to_array();
-    let mut last = f64::INFINITY;
+    let mut point = stroboscopic_map(params, guess, periods, &newton, &mut ())?;
+    let mut r = difference(&point.state, s);
+    let mut last = norm(r);
     for (k, slot) in residuals.iter_mut().enumerate() {
-        let state = State::from_array(s);
-        let point = stroboscopic_map(params, state, periods, &newton, &mut ())?;
-        let r: [f64; 4] = core::array::from_fn(|i| {
-            let (a, b) = (point.state.to_array(), s);
-            a.get(i).copied().unwrap_or(0.0) - b.get(i).copied().unwrap_or(0.0)
-        });
-        let size = norm(r);
-        *slot = size;
-        last = size;
-        if size <= settings.tolerance * (1.0 + norm(s)) {
+        *slot = last;
+        if last <= settings.tolerance * (1.0 + norm(s)) {
+            let state = State::from_array(s);
             let point = if settings.map.extrema {
                 let observed = MapSettings {
                     jacobian: false,
@@ -165,26 +163,58 @@ pub fn shoot_observed(
             } else {
                 point
             };
-            let orbit = PeriodicOrbit::new(params, state, size, &point)?;
+            let orbit = PeriodicOrbit::new(params, state, last, &point)?;
             return Ok(Shot {
                 orbit,
                 residuals,
                 iterations: k + 1,
+                evaluations,
             });
         }
         if k + 1 >= iterations {
             break;
         }
         let delta = newton_step(&point.monodromy, r)?;
-        for (si, di) in s.iter_mut().zip(delta) {
-            *si += di;
+        // The full step, or a fraction of it where the full one would raise the residual
+        // (far from the orbit); near it the full step is taken and the convergence is
+        // quadratic.
+        let mut accepted = None;
+        for fraction in DAMPING {
+            let trial: [f64; 4] = core::array::from_fn(|i| {
+                s.get(i).copied().unwrap_or(0.0) + fraction * delta.get(i).copied().unwrap_or(0.0)
+            });
+            if !trial.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            evaluations += 1;
+            let Ok(p) =
+                stroboscopic_map(params, State::from_array(trial), periods, &newton, &mut ())
+            else {
+                continue;
+            };
+            let rt = difference(&p.state, trial);
+            let size = norm(rt);
+            if size < last || Some(&fraction) == DAMPING.last() {
+                accepted = Some((trial, p, rt, size));
+                break;
+            }
         }
-        if !s.iter().all(|v| v.is_finite()) {
+        let Some((trial, p, rt, size)) = accepted else {
             break;
-        }
+        };
+        (s, point, r, last) = (trial, p, rt, size);
     }
     Err(OrbitError::NotConverged {
         iterations: settings.max_iterations,
         residual: last,
     })
+}
+
+/// The fractions of the Newton step tried in turn.
+const DAMPING: [f64; 5] = [1.0, 0.5, 0.25, 0.125, 0.0625];
+
+/// P^k(s) − s.
+fn difference(image: &State, s: [f64; 4]) -> [f64; 4] {
+    let a = image.to_array();
+    core::array::from_fn(|i| a.get(i).copied().unwrap_or(0.0) - s.get(i).copied().unwrap_or(0.0))
 }

@@ -259,7 +259,7 @@ fn report(
         r,
         "Newton: residual |P^k(s) - s| {} ({} map evaluations, {:.3} s)",
         residuals.join(", "),
-        found.shot.iterations,
+        found.shot.evaluations,
         elapsed.as_secs_f64()
     );
     let st = orbit.state;
