@@ -7,6 +7,7 @@ mod fig2;
 mod friction;
 mod inputs;
 mod memory;
+mod orbit;
 mod messages;
 mod pipes;
 mod profiles;
