@@ -12,6 +12,7 @@ mod args;
 mod errors;
 mod inputs;
 mod meta;
+mod orbit;
 mod runs;
 mod runup;
 mod runup_speed;
@@ -71,6 +72,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_points, m)?)?;
     m.add_function(wrap_pyfunction!(runup::runup, m)?)?;
+    m.add_function(wrap_pyfunction!(orbit::orbit, m)?)?;
+    m.add_function(wrap_pyfunction!(orbit::continuation, m)?)?;
     m.add_function(wrap_pyfunction!(timing::rust_simulate_seconds, m)?)?;
     m.add_class::<stepper::PyStepper>()?;
     m.add_class::<stepper_state::PyStepperState>()?;
