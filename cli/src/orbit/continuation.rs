@@ -107,6 +107,7 @@ pub fn follow(
     );
     let first = out.points.len();
     let mut current = start;
+    let mut previous: Option<(Vector5, Vector5)> = None;
     let mut h = settings.step;
     out.points
         .push(BranchPoint::new(branch, current.clone(), None));
@@ -120,7 +121,21 @@ pub fn follow(
         }
         let u = current.u();
         let t = current.tangent;
-        let predicted: Vector5 = std::array::from_fn(|i| u[i] + h * t[i]);
+        // The tangent predictor with the branch's curvature from the last step (the change of
+        // the tangent over its length): an error of O(h³) instead of O(h²), fewer corrections.
+        let bend: Vector5 = match previous {
+            Some((p, pt)) => {
+                let d: Vector5 = std::array::from_fn(|i| u[i] - p[i]);
+                let length = norm5(&d);
+                if length > 0.0 {
+                    std::array::from_fn(|i| (t[i] - pt[i]) / length)
+                } else {
+                    [0.0; 5]
+                }
+            }
+            None => [0.0; 5],
+        };
+        let predicted: Vector5 = std::array::from_fn(|i| u[i] + h * t[i] + 0.5 * h * h * bend[i]);
         let plane = (t, dot5(&t, &predicted));
         let outcome = correct(
             ev,
@@ -187,8 +202,8 @@ pub fn follow(
             .push(BranchPoint::new(branch, next.clone(), None));
         count += 1;
         h = match next.iterations {
-            0..=4 => (1.5 * h).min(settings.max_step),
-            5 | 6 => h,
+            0..=5 => (1.5 * h).min(settings.max_step),
+            6 => h,
             _ => (0.6 * h).max(settings.min_step),
         };
         // A closed branch: back at one of its earlier points, going the same way.
@@ -204,6 +219,7 @@ pub fn follow(
         if count > 10 && back {
             return Ok("it closed on itself".into());
         }
+        previous = Some((current.u(), current.tangent));
         current = next;
     }
 }
