@@ -1,4 +1,4 @@
-//! Periodic orbits by shooting (`rotor_rub::orbit`, `docs/MODEL.md` §17), checked by what needs
+//! Periodic orbits by shooting (`rotor_rub::orbit`, `docs/MODEL.md` §18), checked by what needs
 //! no trust in the code: the monodromy matrix from the segments (closed-form free flight,
 //! variational equations in contact, saltation at the switches) against central differences of
 //! the stroboscopic map computed by DOP853 at tol 1e-13 — on orbits and on stretches with every

@@ -1,4 +1,4 @@
-//! The paper rotor's branches (`rotor_rub_cli::orbit`, `docs/MODEL.md` §17), checked against what
+//! The paper rotor's branches (`rotor_rub_cli::orbit`, `docs/MODEL.md` §18), checked against what
 //! needs no trust in the continuation: the free orbit's grazing points against the steady free
 //! response in closed form; a fold against the vertex of the branch's own parameter around it;
 //! a period doubling and a Neimark–Sacker point against multipliers from shooting at fixed

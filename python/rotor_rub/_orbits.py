@@ -3,7 +3,7 @@ the stroboscopic map, with the monodromy matrix from the segments), with its Flo
 multipliers and stability; :func:`continuation` follows branches of them over a parameter and
 locates their folds, period doublings (switching to the period-2k branch), Neimark–Sacker and
 grazing points. The numbers of ``rotor-rub orbit`` and ``rotor-rub continue``
-(``docs/MODEL.md`` §17)."""
+(``docs/MODEL.md`` §18)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 //! What an orbit does between its switches, measured on each segment's own solution (the free
 //! closed form, the contact segment's dense output): the local extrema of the distance z from
 //! the stator centre (where a contact appears, vanishes or splits as a parameter moves: grazing,
-//! `docs/MODEL.md` §17) and of the radius |q| from the rotor's rest position (the orbit's size, as
+//! `docs/MODEL.md` §18) and of the radius |q| from the rotor's rest position (the orbit's size, as
 //! the run-up measures it, `docs/MODEL.md` §14), with the time spent in contact and the switches.
 //!
 //! A segment is sampled on a grid; where the rate of z² (h' = 2 d·q') or of |q|² (2 q·q') changes

@@ -1,4 +1,4 @@
-//! A periodic orbit and its Floquet multipliers (`docs/MODEL.md` §17): the eigenvalues of the
+//! A periodic orbit and its Floquet multipliers (`docs/MODEL.md` §18): the eigenvalues of the
 //! monodromy matrix of P^k at the orbit. The orbit is stable when all lie inside the unit circle.
 
 use super::MAX_PERIOD;

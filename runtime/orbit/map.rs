@@ -1,4 +1,4 @@
-//! The stroboscopic map P^k (`docs/MODEL.md` §17): a state on the section τ = 0 (mod the forcing
+//! The stroboscopic map P^k (`docs/MODEL.md` §18): a state on the section τ = 0 (mod the forcing
 //! period T = 2π/η) carried over k forcing periods by a propagation method, with its monodromy
 //! matrix ∂P^k/∂s assembled from the segments the propagation found: the product, in time order,
 //! of each segment's transition matrix ([`super::segments`]) and, at each switch, its saltation

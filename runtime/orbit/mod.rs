@@ -1,4 +1,4 @@
-//! Periodic orbits and their stability (`docs/MODEL.md` §17): a period-k orbit is a fixed point of
+//! Periodic orbits and their stability (`docs/MODEL.md` §18): a period-k orbit is a fixed point of
 //! the stroboscopic map P^k (k forcing periods from the section τ = 0 mod 2π/η); it is found by
 //! Newton's method on P^k(s) − s (shooting) with the monodromy matrix ∂P^k/∂s from the segments,
 //! and its Floquet multipliers are the monodromy's eigenvalues.

@@ -1,4 +1,4 @@
-//! Saltation matrices (`docs/MODEL.md` §17): how a perturbation crosses a switch. A switch at
+//! Saltation matrices (`docs/MODEL.md` §18): how a perturbation crosses a switch. A switch at
 //! h(s) = 0 from the field f⁻ to f⁺ moves with the start state, and the perturbation after it is
 //!
 //! ```text

@@ -1,4 +1,4 @@
-//! Shooting (`docs/MODEL.md` §17): Newton's method on R(s) = P^k(s) − s,
+//! Shooting (`docs/MODEL.md` §18): Newton's method on R(s) = P^k(s) − s,
 //!
 //! ```text
 //! (M − I) δ = −R(s),     s ← s + δ,     M = ∂P^k/∂s (the monodromy from the segments),

@@ -1,4 +1,4 @@
-//! The variational equations of a contact segment (`docs/MODEL.md` §17): the state s and its
+//! The variational equations of a contact segment (`docs/MODEL.md` §18): the state s and its
 //! state-transition matrix Φ = ∂s(τ)/∂s(τ0) integrated together,
 //!
 //! ```text

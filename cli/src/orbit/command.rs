@@ -1,4 +1,4 @@
-//! `rotor-rub orbit`: one periodic orbit by shooting (`docs/MODEL.md` §17): its state on the
+//! `rotor-rub orbit`: one periodic orbit by shooting (`docs/MODEL.md` §18): its state on the
 //! section τ = 0 mod the forcing period, its period, Floquet multipliers and stability, Newton's
 //! residuals, and optionally the orbit sampled over its period.
 

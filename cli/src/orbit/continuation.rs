@@ -1,4 +1,4 @@
-//! Pseudo-arclength continuation of a branch of period-k orbits (`docs/MODEL.md` §17): from a
+//! Pseudo-arclength continuation of a branch of period-k orbits (`docs/MODEL.md` §18): from a
 //! point u = (s, p) with unit tangent t, the predictor u + h t is corrected on the hyperplane
 //! t·(u − u_pred) = 0 (so the branch is followed through folds, where p turns back), the step h
 //! grows after quick corrections and shrinks after slow or failed ones and where the tangent

@@ -1,5 +1,5 @@
 //! `rotor-rub continue`: the branches of periodic orbits over a range of one parameter
-//! (`docs/MODEL.md` §17): the branch CSV ([`super::files`]), the diagram
+//! (`docs/MODEL.md` §18): the branch CSV ([`super::files`]), the diagram
 //! ([`crate::plot::branch`]), optionally over a sweep's points, and a summary of the branches and
 //! the bifurcations located.
 

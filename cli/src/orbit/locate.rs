@@ -1,4 +1,4 @@
-//! Bifurcations between two consecutive points of a branch (`docs/MODEL.md` §17): detected by a
+//! Bifurcations between two consecutive points of a branch (`docs/MODEL.md` §18): detected by a
 //! test function's sign change, located by the Illinois secant along the step (each trial point
 //! corrected onto the branch on the hyperplane t·(u − u_a) = σ), to `locate_tolerance` in the
 //! parameter.

@@ -1,4 +1,4 @@
-//! Periodic orbits, their stability and their branches (`docs/MODEL.md` §17), on top of the
+//! Periodic orbits, their stability and their branches (`docs/MODEL.md` §18), on top of the
 //! runtime's shooting (`rotor_rub::orbit`): the start of a search from a simulated state,
 //! pseudo-arclength continuation in any parameter of the table with the bifurcations located
 //! (fold, period doubling with a switch to the period-2k branch, Neimark–Sacker, grazing), and

@@ -1,4 +1,4 @@
-//! What the monodromy matrix of a periodic orbit needs of the model (`docs/MODEL.md` §17): the
+//! What the monodromy matrix of a periodic orbit needs of the model (`docs/MODEL.md` §18): the
 //! Jacobian of each contact regime's field, for the variational equations Φ' = J(τ, s) Φ
 //! integrated along a contact segment, and the gradients of the switching functions, for the
 //! saltation matrices S = I + (f⁺ − f⁻) ∇hᵀ / (∇h·f⁻) at the switches where the field jumps.
@@ -100,7 +100,7 @@ fn field_jacobians(m: &mut Model) {
         m.add_formula(
             name,
             summary,
-            "docs/MODEL.md §10, §17",
+            "docs/MODEL.md §10, §18",
             "partial derivatives of the regime's field (the model's acceleration with the regime's stiffness term and the forcing) with respect to x, y, x', y'.",
             "FieldJacobian",
             outputs,
@@ -133,7 +133,7 @@ fn switching_gradient(m: &mut Model) {
     m.add_formula(
         "switching_gradient",
         "The gradient ∇h = ∂h/∂(x, y, x', y') of the switching function h = z² − 1: the normal of the contact surface in the state space, for the saltation matrix of a switch whose field jumps (rolling's exit).",
-        "docs/MODEL.md §1, §17",
+        "docs/MODEL.md §1, §18",
         "partial derivatives of the model's `boundary`.",
         "StateGradient",
         outputs,
@@ -149,7 +149,7 @@ fn slip_velocity_gradient(m: &mut Model) {
     m.add_formula(
         "slip_velocity_gradient",
         "The gradient ∇w = ∂w/∂(x, y, x', y') of the slip velocity w = q'·t + ρ_R η: the normal of friction's switching surface w = 0 in the state space, for the saltation matrices at `reverse` and `roll`.",
-        "docs/MODEL.md §10, §17",
+        "docs/MODEL.md §10, §18",
         "partial derivatives of the model's `slip_velocity`.",
         "StateGradient",
         outputs,
