@@ -438,3 +438,44 @@ fn bad_settings_are_refused_with_the_value_and_the_range() {
     );
     assert!(e.is_err() || e.unwrap().orbit.state.is_finite());
 }
+
+#[test]
+fn a_rolling_orbit_has_a_zero_multiplier_and_matches_finite_differences() {
+    // The paper rotor with μ = 0.6, ρ_R = 1 at η = 2 settles on a period-2 orbit whose contacts
+    // roll and slip again: saltation at `roll` maps every perturbation into the surface w = 0
+    // (rolling keeps w), so the monodromy is singular, with a multiplier 0 (docs/MODEL.md §18).
+    let mut params = paper(2.0);
+    params.friction_coefficient = 0.6;
+    params.radius_ratio = 1.0;
+    let guess = State::new(-0.4616, -0.0371, -0.2521, 2.1573);
+    let orbit = shoot(&params, guess, 2, &ShootingSettings::default())
+        .expect("converges")
+        .orbit;
+    let point =
+        stroboscopic_map(&params, orbit.state, 2, &MapSettings::default(), &mut ()).unwrap();
+    let switches = [
+        EventKind::Enter,
+        EventKind::Roll,
+        EventKind::Slip,
+        EventKind::Exit,
+    ]
+    .map(|k| point.summary.count(k));
+    let fd = difference_monodromy(&params, orbit.state, 2);
+    let entries = matrix_gap(&orbit.monodromy, &fd);
+    let fd_multipliers = rotor_rub::orbit::eigenvalues_of(&fd).unwrap();
+    let multipliers = spectrum_gap(&orbit.multipliers, &fd_multipliers);
+    let smallest = orbit
+        .multipliers
+        .iter()
+        .map(|m| m.abs())
+        .fold(f64::INFINITY, f64::min);
+    println!(
+        "rolling orbit: (enter, roll, slip, exit) {switches:?}, monodromy vs differences {entries:.1e}, multipliers {multipliers:.1e}, smallest |λ| {smallest:.1e}, stable {}",
+        orbit.stable()
+    );
+    assert!(switches.iter().all(|&n| n > 0), "{switches:?}");
+    assert!(entries <= 1e-6, "monodromy off by {entries:e}");
+    assert!(multipliers <= 1e-6, "multipliers off by {multipliers:e}");
+    assert!(smallest <= 1e-9, "no zero multiplier: {smallest:e}");
+    assert!(orbit.stable() && orbit.minimal_period(1e-6) == 2);
+}

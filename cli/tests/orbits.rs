@@ -5,8 +5,8 @@
 //! parameter values either side; the run-up's and the coast-down's jumps (the `paper-hysteresis`
 //! program, `docs/runup.png`) each past the bifurcation of the branch it leaves and approaching
 //! it as the ramp rate falls (three rates); period doubling where the sweep's response turns
-//! period-2; the response class on stable orbits; continuation with friction and in another
-//! parameter. Each continuation covers a short range: seconds in all.
+//! period-2; the response class on stable orbits; continuation with slipping friction, through
+//! rolling (a torus located on a rolling branch) and in another parameter. Each continuation covers a short range: seconds in all.
 
 use rotor_rub::linalg::Complex;
 use rotor_rub::orbit::{ShootingSettings, shoot};
@@ -431,4 +431,63 @@ fn friction_and_other_parameters_continue_too() {
     at.damping_ratio = p.value();
     let again = shoot(&at, p.state(), 1, &ShootingSettings::default()).unwrap();
     assert!(again.iterations == 1, "{:?}", again.residuals());
+}
+
+#[test]
+fn a_rolling_branch_continues_and_its_torus_is_located() {
+    // Rolling is supported: the paper rotor with μ = 0.6, ρ_R = 1 has a stable period-2 orbit
+    // at η = 2 whose contacts roll (a multiplier 0: rolling's saltation is singular); followed
+    // to η = 2.2, it loses stability to a torus at η ≈ 2.1301, located to 1e-8 (checked by the
+    // complex pair's modulus from shooting either side), past where its rolling stops.
+    let mut params = paper(2.0);
+    params.friction_coefficient = 0.6;
+    params.radius_ratio = 1.0;
+    let mut settings = ContinuationSettings::new(Parameter::SpeedRatio, 2.0, 2.2, 2);
+    settings.max_period = 2;
+    let c = run_with(
+        params,
+        &settings,
+        State::new(-0.4616, -0.0371, -0.2521, 2.1573),
+    );
+    assert!(
+        c.branches[0].end.contains("left the range"),
+        "{}",
+        c.branches[0].end
+    );
+    let smallest = |p: &BranchPoint| {
+        p.solution
+            .multipliers
+            .iter()
+            .map(|m| m.abs())
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!(smallest(&c.points[0]) < 1e-9 && c.points[0].stable());
+    // Rolling stops near η = 2.06: the multiplier 0 leaves (0.12 at η = 2.2).
+    assert!(smallest(c.points.last().unwrap()) > 1e-2);
+    let tori = located(&c, Kind::NeimarkSacker);
+    assert_eq!(tori.len(), 1, "{:?}", c.bifurcations);
+    let p = tori[0];
+    let d = 1e-7;
+    let pair_modulus = |eta: f64| {
+        let mut at = params;
+        at.speed_ratio = eta;
+        shoot(&at, p.state(), 2, &ShootingSettings::default())
+            .unwrap()
+            .orbit
+            .multipliers
+            .iter()
+            .filter(|z| z.im.abs() > 1e-9)
+            .map(|z| z.abs() - 1.0)
+            .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap()
+    };
+    let eta = p.value();
+    let (a, b) = (pair_modulus(eta - d), pair_modulus(eta + d));
+    let zero = eta - d + 2.0 * d * a / (a - b);
+    println!(
+        "rolling branch: torus at η = {eta:.12}, from shooting either side {zero:.12} ({:.1e}); {} points",
+        eta - zero,
+        c.points.len()
+    );
+    assert!(a * b < 0.0 && (eta - zero).abs() <= 1e-8);
 }
