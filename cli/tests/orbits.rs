@@ -6,7 +6,8 @@
 //! program, `docs/runup.png`) each past the bifurcation of the branch it leaves and approaching
 //! it as the ramp rate falls (three rates); period doubling where the sweep's response turns
 //! period-2; the response class on stable orbits; continuation with slipping friction, through
-//! rolling (a torus located on a rolling branch) and in another parameter. Each continuation covers a short range: seconds in all.
+//! rolling (a torus located on a rolling branch) and in another parameter. Each continuation
+//! covers a short range: seconds in all.
 
 use rotor_rub::linalg::Complex;
 use rotor_rub::orbit::{ShootingSettings, shoot};
