@@ -152,7 +152,14 @@ pub fn stroboscopic_map(
                 Regime::Contact | Regime::Rolling => {
                     summary.contact_time += t1 - t;
                     let mut found = |e: &Extremum| observer.extremum(e);
-                    segments::contact(&ctx, field, regime, (t, state, t1), &mut summary, &mut found)?
+                    segments::contact(
+                        &ctx,
+                        field,
+                        regime,
+                        (t, state, t1),
+                        &mut summary,
+                        &mut found,
+                    )?
                 }
             };
             if settings.jacobian {
