@@ -93,6 +93,16 @@ fn shift(c: &mut [f64; CAPACITY], d: usize, a: f64) {
     }
 }
 
+/// A crossing of a switch polynomial: where the function reaches 0 and where it has fallen
+/// through the rounding band below it (local times, `at` ≤ `past`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// The root: the last point before `past` where the function is ≥ 0.
+    pub at: f64,
+    /// Where the function falls through −band: the side the motion takes is resolved there.
+    pub past: f64,
+}
+
 /// The first local time s ∈ [0, h] where the polynomial Σ c_k s^k (degree `degree`) leaves the
 /// regime, or `None` when it stays above −band over the step.
 ///
@@ -107,7 +117,7 @@ pub fn first_exit(
     h: f64,
     scale: f64,
     segment_start: bool,
-) -> Option<f64> {
+) -> Option<Crossing> {
     let mut p = Poly {
         c: [0.0; CAPACITY],
         degree: degree.min(CAPACITY - 1),
@@ -125,7 +135,7 @@ pub fn first_exit(
     let p0 = p.c.first().copied().unwrap_or(0.0);
     if p0 < -band {
         if !segment_start {
-            return Some(0.0);
+            return Some(Crossing { at: 0.0, past: 0.0 });
         }
         // The segment's start is inside by definition: measure from it.
         if let Some(c0) = p.c.first_mut() {
@@ -142,7 +152,10 @@ pub fn first_exit(
     }
     let (a, b) = isolate(&lowered)?;
     let below = polish(&lowered, a, b);
-    Some(h * crossing_before(&p, below, band))
+    Some(Crossing {
+        at: h * crossing_before(&p, below, band),
+        past: h * below,
+    })
 }
 
 /// Whether the polynomial is positive on [0, 1] for sure: its value at 0 exceeds the sum of its
@@ -287,16 +300,16 @@ mod tests {
         // (t − 0.3)(t − 0.3 − 1e-5)(t − 0.8), negative leading sign so that p(0) > 0: the first
         // root to the conditioning of a root pair 1e-5 apart (rounding / |p'| ≈ 1e-11).
         let c = poly(&[0.3, 0.3 + 1e-5, 0.8], -1.0);
-        let t = first_exit(&c, 3, 1.0, 1.0, false);
+        let t = first_exit(&c, 3, 1.0, 1.0, false).map(|c| c.at);
         assert!(t.is_some_and(|t| (t - 0.3).abs() < 1e-10), "{t:?}");
         // 1e-7 apart: the dip between them (−1e-15) is below the band (64 ulps): a touch at
         // rounding level, not a switch; the next crossing is 0.8.
         let c = poly(&[0.3, 0.3 + 1e-7, 0.8], -1.0);
-        let t = first_exit(&c, 3, 1.0, 1.0, false);
+        let t = first_exit(&c, 3, 1.0, 1.0, false).map(|c| c.at);
         assert!(t.is_some_and(|t| (t - 0.8).abs() < 1e-12), "{t:?}");
         // 1e-6 apart: a dip of −1.3e-13, a real excursion, found at its first root.
         let c = poly(&[0.3, 0.3 + 1e-6, 0.8], -1.0);
-        let t = first_exit(&c, 3, 1.0, 1.0, false);
+        let t = first_exit(&c, 3, 1.0, 1.0, false).map(|c| c.at);
         assert!(t.is_some_and(|t| (t - 0.3).abs() < 1e-9), "{t:?}");
     }
 
@@ -304,11 +317,11 @@ mod tests {
     fn a_start_on_the_surface_finds_the_next_crossing() {
         // t (t − 1e-10)·(−1): zero at the start, positive until 1e-10, then negative.
         let c = poly(&[0.0, 1e-10], -1.0);
-        let t = first_exit(&c, 2, 1.0, 1.0, false).unwrap();
+        let t = first_exit(&c, 2, 1.0, 1.0, false).unwrap().at;
         assert!((t - 1e-10).abs() < 1e-24, "{t}");
         // Leaving at once: −t (t + 1), found within rounding of the start.
         let c = poly(&[0.0, -1.0], -1.0);
-        let t = first_exit(&c, 2, 1.0, 1.0, false);
+        let t = first_exit(&c, 2, 1.0, 1.0, false).map(|c| c.at);
         assert!(t.is_some_and(|t| t < 1e-13), "{t:?}");
         // A double zero at the start that only dips by rounding: t² − 1e-18 t (after `slip`).
         let mut c = [0.0; CAPACITY];
@@ -333,7 +346,7 @@ mod tests {
         let mut c = [0.0; CAPACITY];
         c[0] = 1.0;
         c[1] = -4.0;
-        let s = first_exit(&c, 1, 0.5, 1.0, false).unwrap();
+        let s = first_exit(&c, 1, 0.5, 1.0, false).unwrap().at;
         assert!((s - 0.25).abs() < 1e-16);
     }
 }

@@ -3,7 +3,7 @@
 //! polynomials ([`super::roots`]), targets served from the same polynomials.
 
 use super::expansion::{Expansion, Switch, order_for};
-use super::roots::first_exit;
+use super::roots::{Crossing, first_exit};
 use crate::coefficients::ModelParams;
 use crate::driver::{Located, SegmentSolver};
 use crate::field::{self, SlipZero};
@@ -60,22 +60,45 @@ impl TaylorContact {
         (p.ct, p.st)
     }
 
-    /// The earliest switch in the current expansion over `[0, h]`: local time and which.
-    fn earliest(&self, h: f64, skip: Option<Switch>) -> Option<(f64, Switch)> {
-        let mut first: Option<(f64, Switch)> = None;
+    /// The earliest switch in the current expansion over `[0, h]`: where and which.
+    fn earliest(&self, h: f64, skip: Option<Switch>) -> Option<(Crossing, Switch)> {
+        let mut first: Option<(Crossing, Switch)> = None;
         for &sw in self.expansion.switches() {
             if Some(sw) == skip {
                 continue;
             }
             let c = self.expansion.switch_polynomial(sw);
             let scale = self.expansion.rounding_scale(sw, &self.model);
-            if let Some(s) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
-                && first.is_none_or(|(f, _)| s < f)
+            if let Some(x) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
+                && first.is_none_or(|(f, _)| x.at < f.at)
             {
-                first = Some((s, sw));
+                first = Some((x, sw));
             }
         }
         first
+    }
+
+    /// What a zero of the slip velocity at local time `crossing.at` is ([`field::at_slip_zero`]
+    /// there). A touch there only to rounding of the friction cone — σw falls through its
+    /// rounding band just after, so the motion does leave σw ≥ 0 — is decided where the fall is
+    /// resolved (`crossing.past`): at a start on w = 0 with |λ| = μN to rounding the margin's
+    /// rate says roll or reverse, and a touch there would restart the search on the same zero at
+    /// no distance, step after step (issue 32 item 3's sibling: a start on the cone's edge).
+    fn slip_zero(&self, crossing: Crossing, state: &State) -> Option<EventKind> {
+        let decide = |s: f64, state: &State| {
+            let time = self.origin + (self.local + s);
+            let phasor = field::phasor(&self.model, time);
+            match field::at_slip_zero(&self.model, &phasor, state, self.slip) {
+                SlipZero::Roll => Some(EventKind::Roll),
+                SlipZero::Reverse => Some(EventKind::Reverse),
+                SlipZero::Touch => None,
+            }
+        };
+        decide(crossing.at, state).or_else(|| {
+            (crossing.past > crossing.at)
+                .then(|| decide(crossing.past, &self.expansion.state_at(crossing.past)))
+                .flatten()
+        })
     }
 }
 
@@ -136,26 +159,19 @@ impl SegmentSolver for TaylorContact {
         // A touch of w = 0 ends the step there (the next one starts on it); one found at the
         // step start itself is rounding and looked past.
         for _ in 0..2 {
-            let Some((s, sw)) = self.earliest(h, skip) else {
+            let Some((crossing, sw)) = self.earliest(h, skip) else {
                 break;
             };
             let s = match sw {
-                Switch::Boundary => self.expansion.polish_boundary(&self.model, s, h),
-                _ => s,
+                Switch::Boundary => self.expansion.polish_boundary(&self.model, crossing.at, h),
+                _ => crossing.at,
             };
             let time = self.origin + (self.local + s);
             let state = self.expansion.state_at(s);
             let kind = match sw {
                 Switch::Boundary => Some(EventKind::Exit),
                 Switch::ConeUpper | Switch::ConeLower => Some(EventKind::Slip),
-                Switch::SlipVelocity => {
-                    let phasor = field::phasor(&self.model, time);
-                    match field::at_slip_zero(&self.model, &phasor, &state, self.slip) {
-                        SlipZero::Roll => Some(EventKind::Roll),
-                        SlipZero::Reverse => Some(EventKind::Reverse),
-                        SlipZero::Touch => None,
-                    }
-                }
+                Switch::SlipVelocity => self.slip_zero(crossing, &state),
             };
             match kind {
                 Some(kind) => {
