@@ -2615,13 +2615,13 @@ pub mod contact_taylor {
         s[13][0] = 1.0 - s[12][0];
         s[14][0] = s[6][0] * s[13][0];
         s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] - s[0][0];
-        s[17][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0];
+        s[16][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[14][0]
+            + k.k5 * s[15][0];
+        s[17][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[14][0]
+            + k.k9 * s[15][0];
         s[18][0] = k.k10 * s[5][0];
         s[19][0] = k.k11 * s[4][0];
-        s[20][0] = s[7][0] + s[9][0] - 1.0;
+        s[20][0] = -1.0 + s[7][0] + s[9][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
         s[2][1] = s[16][0];
@@ -2656,11 +2656,11 @@ pub mod contact_taylor {
         ts::set(&mut s[14], N, v);
         let v = ts::product::<N>(&s[8], &s[13]);
         ts::set(&mut s[15], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[14], N) + k.k5 * ts::at(&s[15], N);
         ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N);
         ts::set(&mut s[17], N, v);
         let v = k.k10 * ts::at(&s[5], N);
         ts::set(&mut s[18], N, v);
@@ -2680,6 +2680,23 @@ pub mod contact_taylor {
         ts::set(&mut s[4], N + 1, v);
         let v = ts::at(&s[19], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[20], N, v);
     }
 }
 /// Slipping contact in direction σ: the frictionless contact field minus μσN t.
@@ -2811,17 +2828,17 @@ pub mod slipping_taylor {
         s[21][0] = s[16][0] * s[20][0];
         s[22][0] = s[19][0] + s[21][0];
         s[23][0] = s[16][0] * s[22][0];
-        s[24][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] + k.k7 * s[23][0] - s[0][0];
+        s[24][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[14][0]
+            + k.k5 * s[15][0] + k.k7 * s[23][0];
         s[25][0] = s[17][0] * s[22][0];
-        s[26][0] = k.k12 + k.k1 * s[5][0] + k.k13 * s[14][0] + k.k14 * s[15][0]
-            + k.k6 * s[3][0] + k.k15 * s[25][0] - s[1][0];
+        s[26][0] = k.k12 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k13 * s[14][0]
+            + k.k14 * s[15][0] + k.k15 * s[25][0];
         s[27][0] = k.k16 * s[5][0];
         s[28][0] = k.k17 * s[4][0];
-        s[29][0] = s[7][0] + s[9][0] - 1.0;
+        s[29][0] = -1.0 + s[7][0] + s[9][0];
         s[30][0] = s[2][0] * s[16][0];
         s[31][0] = s[3][0] * s[17][0];
-        s[32][0] = k.k18 + s[31][0] - s[30][0];
+        s[32][0] = k.k18 - s[30][0] + s[31][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
         s[2][1] = s[24][0];
@@ -2872,15 +2889,15 @@ pub mod slipping_taylor {
         ts::set(&mut s[22], N, v);
         let v = ts::product::<N>(&s[16], &s[22]);
         ts::set(&mut s[23], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N)
-            + k.k7 * ts::at(&s[23], N) - ts::at(&s[0], N);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[14], N) + k.k5 * ts::at(&s[15], N)
+            + k.k7 * ts::at(&s[23], N);
         ts::set(&mut s[24], N, v);
         let v = ts::product::<N>(&s[17], &s[22]);
         ts::set(&mut s[25], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k13 * ts::at(&s[14], N)
-            + k.k14 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N)
-            + k.k15 * ts::at(&s[25], N) - ts::at(&s[1], N);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N)
+            + k.k15 * ts::at(&s[25], N);
         ts::set(&mut s[26], N, v);
         let v = k.k16 * ts::at(&s[5], N);
         ts::set(&mut s[27], N, v);
@@ -2892,7 +2909,7 @@ pub mod slipping_taylor {
         ts::set(&mut s[30], N, v);
         let v = ts::product::<N>(&s[3], &s[17]);
         ts::set(&mut s[31], N, v);
-        let v = ts::at(&s[31], N) - ts::at(&s[30], N);
+        let v = -ts::at(&s[30], N) + ts::at(&s[31], N);
         ts::set(&mut s[32], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
@@ -2906,6 +2923,39 @@ pub mod slipping_taylor {
         ts::set(&mut s[4], N + 1, v);
         let v = ts::at(&s[28], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        ts::set(&mut s[12], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[29], N, v);
+        let v = ts::product::<N>(&s[2], &s[16]);
+        ts::set(&mut s[30], N, v);
+        let v = ts::product::<N>(&s[3], &s[17]);
+        ts::set(&mut s[31], N, v);
+        let v = -ts::at(&s[30], N) + ts::at(&s[31], N);
+        ts::set(&mut s[32], N, v);
     }
 }
 /// Rolling contact: the frictionless contact field minus λ t, λ the tangential force that keeps w = 0.
@@ -3023,38 +3073,38 @@ pub mod rolling_taylor {
         s[14][0] = s[6][0] * s[13][0];
         s[15][0] = s[8][0] * s[13][0];
         s[16][0] = s[8][0] * s[12][0];
-        s[17][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] - s[0][0];
+        s[17][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[14][0]
+            + k.k5 * s[15][0];
         s[18][0] = s[16][0] * s[17][0];
         s[19][0] = s[6][0] * s[12][0];
-        s[20][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0];
+        s[20][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[14][0]
+            + k.k9 * s[15][0];
         s[21][0] = s[19][0] * s[20][0];
         s[22][0] = s[2][0] * s[16][0];
         s[23][0] = s[3][0] * s[19][0];
-        s[24][0] = s[23][0] - s[22][0];
+        s[24][0] = -s[22][0] + s[23][0];
         s[25][0] = s[12][0] * s[24][0];
         s[26][0] = s[2][0] * s[19][0];
         s[27][0] = s[3][0] * s[16][0];
         s[28][0] = s[26][0] + s[27][0];
         s[29][0] = s[25][0] * s[28][0];
-        s[30][0] = s[21][0] - s[18][0] - s[29][0];
+        s[30][0] = -s[18][0] + s[21][0] - s[29][0];
         s[31][0] = s[16][0] * s[30][0];
-        s[32][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] + s[31][0] - s[0][0];
+        s[32][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[14][0]
+            + k.k5 * s[15][0] + s[31][0];
         s[33][0] = s[19][0] * s[30][0];
-        s[34][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0] - s[33][0];
+        s[34][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[14][0]
+            + k.k9 * s[15][0] - s[33][0];
         s[35][0] = k.k10 * s[5][0];
         s[36][0] = k.k11 * s[4][0];
-        s[37][0] = s[7][0] + s[9][0] - 1.0;
+        s[37][0] = -1.0 + s[7][0] + s[9][0];
         s[38][0] = k.k13 * s[14][0] + k.k14 * s[15][0];
         s[39][0] = s[19][0] * s[38][0];
         s[40][0] = k.k15 * s[14][0] + k.k16 * s[15][0];
         s[41][0] = s[16][0] * s[40][0];
         s[42][0] = s[39][0] + s[41][0];
-        s[43][0] = s[18][0] + s[29][0] + k.k12 * s[42][0] - s[21][0];
-        s[44][0] = s[21][0] + k.k12 * s[42][0] - s[18][0] - s[29][0];
+        s[43][0] = s[18][0] - s[21][0] + s[29][0] + k.k12 * s[42][0];
+        s[44][0] = -s[18][0] + s[21][0] - s[29][0] + k.k12 * s[42][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
         s[2][1] = s[32][0];
@@ -3091,15 +3141,15 @@ pub mod rolling_taylor {
         ts::set(&mut s[15], N, v);
         let v = ts::product::<N>(&s[8], &s[12]);
         ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[14], N) + k.k5 * ts::at(&s[15], N);
         ts::set(&mut s[17], N, v);
         let v = ts::product::<N>(&s[16], &s[17]);
         ts::set(&mut s[18], N, v);
         let v = ts::product::<N>(&s[6], &s[12]);
         ts::set(&mut s[19], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N);
         ts::set(&mut s[20], N, v);
         let v = ts::product::<N>(&s[19], &s[20]);
         ts::set(&mut s[21], N, v);
@@ -3107,7 +3157,7 @@ pub mod rolling_taylor {
         ts::set(&mut s[22], N, v);
         let v = ts::product::<N>(&s[3], &s[19]);
         ts::set(&mut s[23], N, v);
-        let v = ts::at(&s[23], N) - ts::at(&s[22], N);
+        let v = -ts::at(&s[22], N) + ts::at(&s[23], N);
         ts::set(&mut s[24], N, v);
         let v = ts::product::<N>(&s[12], &s[24]);
         ts::set(&mut s[25], N, v);
@@ -3119,19 +3169,17 @@ pub mod rolling_taylor {
         ts::set(&mut s[28], N, v);
         let v = ts::product::<N>(&s[25], &s[28]);
         ts::set(&mut s[29], N, v);
-        let v = ts::at(&s[21], N) - ts::at(&s[18], N) - ts::at(&s[29], N);
+        let v = -ts::at(&s[18], N) + ts::at(&s[21], N) - ts::at(&s[29], N);
         ts::set(&mut s[30], N, v);
         let v = ts::product::<N>(&s[16], &s[30]);
         ts::set(&mut s[31], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) + ts::at(&s[31], N)
-            - ts::at(&s[0], N);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[14], N) + k.k5 * ts::at(&s[15], N) + ts::at(&s[31], N);
         ts::set(&mut s[32], N, v);
         let v = ts::product::<N>(&s[19], &s[30]);
         ts::set(&mut s[33], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N)
-            - ts::at(&s[33], N);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N) - ts::at(&s[33], N);
         ts::set(&mut s[34], N, v);
         let v = k.k10 * ts::at(&s[5], N);
         ts::set(&mut s[35], N, v);
@@ -3149,11 +3197,11 @@ pub mod rolling_taylor {
         ts::set(&mut s[41], N, v);
         let v = ts::at(&s[39], N) + ts::at(&s[41], N);
         ts::set(&mut s[42], N, v);
-        let v = ts::at(&s[18], N) + ts::at(&s[29], N) + k.k12 * ts::at(&s[42], N)
-            - ts::at(&s[21], N);
+        let v = ts::at(&s[18], N) - ts::at(&s[21], N) + ts::at(&s[29], N)
+            + k.k12 * ts::at(&s[42], N);
         ts::set(&mut s[43], N, v);
-        let v = ts::at(&s[21], N) + k.k12 * ts::at(&s[42], N) - ts::at(&s[18], N)
-            - ts::at(&s[29], N);
+        let v = -ts::at(&s[18], N) + ts::at(&s[21], N) - ts::at(&s[29], N)
+            + k.k12 * ts::at(&s[42], N);
         ts::set(&mut s[44], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
@@ -3167,6 +3215,81 @@ pub mod rolling_taylor {
         ts::set(&mut s[4], N + 1, v);
         let v = ts::at(&s[36], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        ts::set(&mut s[12], N, v);
+        let v = -ts::at(&s[12], N);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[6], &s[13]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[13]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[16], N, v);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[14], N) + k.k5 * ts::at(&s[15], N);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[16], &s[17]);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[19], N, v);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[19], &s[20]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[2], &s[16]);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[3], &s[19]);
+        ts::set(&mut s[23], N, v);
+        let v = -ts::at(&s[22], N) + ts::at(&s[23], N);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[12], &s[24]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[2], &s[19]);
+        ts::set(&mut s[26], N, v);
+        let v = ts::product::<N>(&s[3], &s[16]);
+        ts::set(&mut s[27], N, v);
+        let v = ts::at(&s[26], N) + ts::at(&s[27], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[25], &s[28]);
+        ts::set(&mut s[29], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[37], N, v);
+        let v = k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N);
+        ts::set(&mut s[38], N, v);
+        let v = ts::product::<N>(&s[19], &s[38]);
+        ts::set(&mut s[39], N, v);
+        let v = k.k15 * ts::at(&s[14], N) + k.k16 * ts::at(&s[15], N);
+        ts::set(&mut s[40], N, v);
+        let v = ts::product::<N>(&s[16], &s[40]);
+        ts::set(&mut s[41], N, v);
+        let v = ts::at(&s[39], N) + ts::at(&s[41], N);
+        ts::set(&mut s[42], N, v);
+        let v = ts::at(&s[18], N) - ts::at(&s[21], N) + ts::at(&s[29], N)
+            + k.k12 * ts::at(&s[42], N);
+        ts::set(&mut s[43], N, v);
+        let v = -ts::at(&s[18], N) + ts::at(&s[21], N) - ts::at(&s[29], N)
+            + k.k12 * ts::at(&s[42], N);
+        ts::set(&mut s[44], N, v);
     }
 }
 /// The most series any Taylor system uses (the runtime's storage size).

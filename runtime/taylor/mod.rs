@@ -18,6 +18,7 @@ pub mod expansion;
 pub mod kernels;
 pub mod roots;
 mod solver;
+mod step;
 
 pub use solver::TaylorContact;
 

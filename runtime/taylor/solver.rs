@@ -7,8 +7,11 @@ use super::roots::{Crossing, first_exit};
 use crate::coefficients::ModelParams;
 use crate::driver::{Located, SegmentSolver};
 use crate::field::{self, SlipZero};
+use crate::math;
 use crate::params::{Params, State};
-use crate::propagate::{Event, EventKind, PropagationError, Regime, within_bounds};
+use crate::propagate::{
+    DIVERGENCE_RADIUS, Event, EventKind, PropagationError, Regime, within_bounds,
+};
 
 /// A contact regime's solver: Taylor steps on the regime's field.
 pub struct TaylorContact {
@@ -67,9 +70,12 @@ impl TaylorContact {
             if Some(sw) == skip {
                 continue;
             }
-            let c = self.expansion.switch_polynomial(sw);
+            let (c, sign) = self.expansion.switch_series(sw);
             let scale = self.expansion.rounding_scale(sw, &self.model);
-            if let Some(x) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
+            // An exit is refined on the step's state polynomial afterwards (`polish_boundary`).
+            let precise = sw != Switch::Boundary;
+            let (order, start) = (self.expansion.order(), self.first_step);
+            if let Some(x) = first_exit(c, sign, order, h, scale, start, precise)
                 && first.is_none_or(|(f, _)| x.at < f.at)
             {
                 first = Some((x, sw));
@@ -188,7 +194,9 @@ impl SegmentSolver for TaylorContact {
         }
         let end = self.expansion.state_at(self.length);
         self.end = end;
-        if !within_bounds(&end) {
+        // |x| + |y| ≥ |q|: within it the state is within bounds without a `hypot` per step.
+        let near = end.is_finite() && math::abs(end.x) + math::abs(end.y) <= DIVERGENCE_RADIUS;
+        if !near && !within_bounds(&end) {
             return Err(PropagationError::Diverged {
                 time: self.origin + (self.local + self.length),
                 state: end,
