@@ -167,6 +167,16 @@ impl Expansion {
         State::new(v(0), v(1), v(2), v(3))
     }
 
+    /// The rotor state and the forcing phasor at local time `s`: the six state polynomials in
+    /// one pass (where the next step starts). The same values as [`Expansion::state_at`] and
+    /// [`Expansion::phasor_at`], bit for bit.
+    pub fn point_at(&self, s: f64) -> (State, (f64, f64)) {
+        const NONE: &[f64; CAPACITY] = &[0.0; CAPACITY];
+        let series = [0, 1, 2, 3, 4, 5].map(|i| self.series.get(i).unwrap_or(NONE));
+        let [x, y, vx, vy, ct, st] = kernels::evaluate_many(series, self.order, s);
+        (State::new(x, y, vx, vy), (ct, st))
+    }
+
     /// The switch function's polynomial coefficients (positive inside the regime).
     pub fn switch_polynomial(&self, switch: Switch) -> [f64; CAPACITY] {
         let (series, sign) = self.switch_series(switch);

@@ -174,6 +174,38 @@ pub fn power<const N: usize>(a: &[f64; CAPACITY], r: &[f64; CAPACITY], p: i32) -
     acc / (nf * a[0])
 }
 
+/// Coefficient N ≥ 1 of r = a^{k/2} (k = `halves`, a_0 > 0), r's lower coefficients given: from
+/// a·r' = (k/2) a'·r, N a_0 r_N = Σ_{j=1}^{N} ((k/2 + 1) j − N) a_j r_{N−j}; the weights are
+/// constants of the order (N and k are), the terms ordered as in the convolutions (a_N r_0,
+/// the newest, last) and 1/(N a_0) off the chain.
+#[inline]
+#[allow(
+    clippy::indexing_slicing,
+    reason = "j ≤ N < CAPACITY, asserted at compile time; the lane is below LANES"
+)]
+pub fn half_power<const N: usize>(a: &[f64; CAPACITY], r: &[f64; CAPACITY], halves: i32) -> f64 {
+    const { assert!(N < CAPACITY) };
+    let (p1, nf) = (0.5 * f64::from(halves) + 1.0, N as f64);
+    let weight = |j: usize| p1 * j as f64 - nf;
+    let mut acc = [-0.0; LANES];
+    let mut j = 2;
+    while j + 2 <= N {
+        acc[j % LANES] += weight(j) * a[j] * r[N - j];
+        j += 1;
+    }
+    let mut sum = total(acc);
+    if N >= 2 {
+        sum += weight(1) * a[1] * r[N - 1];
+    }
+    if N >= 3 {
+        sum += weight(N - 1) * a[N - 1] * r[1];
+    }
+    if N >= 1 {
+        sum += weight(N) * r[0] * a[N];
+    }
+    sum * (1.0 / (nf * a[0]))
+}
+
 /// Coefficient N ≥ 1 of r = √a (a_0 > 0), r's lower coefficients given:
 /// r_N = (a_N − Σ_{j=1}^{N−1} r_j r_{N−j}) / (2 r_0).
 #[inline]
@@ -204,6 +236,19 @@ pub fn evaluate(c: &[f64; CAPACITY], degree: usize, s: f64) -> f64 {
         .iter()
         .rev()
         .fold(0.0, |acc, &ck| acc * s + ck)
+}
+
+/// The polynomials `c[m]` (each Σ_{k ≤ degree} c_k s^k) at `s`, by Horner in one pass: M
+/// independent chains side by side.
+#[inline]
+pub fn evaluate_many<const M: usize>(c: [&[f64; CAPACITY]; M], degree: usize, s: f64) -> [f64; M] {
+    let mut acc = [0.0; M];
+    for k in (0..=degree.min(CAPACITY - 1)).rev() {
+        for (a, series) in acc.iter_mut().zip(c) {
+            *a = *a * s + series.get(k).copied().unwrap_or(0.0);
+        }
+    }
+    acc
 }
 
 /// Coefficients 0 ..= `degree` of `c` (all of them beyond the capacity).
@@ -258,6 +303,11 @@ mod tests {
             q[0] = a[0].sqrt();
             let sum: f64 = (1..N).map(|j| q[j] * q[N - j]).sum();
             close(sqrt::<N>(&a, &q) * 2.0 * q[0], a[N] - sum, N, "sqrt");
+            // 1/√a: N a_0 r_N = Σ (j/2 − N) a_j r_{N−j}.
+            let mut h = series(0.05);
+            h[0] = 1.0 / a[0].sqrt();
+            let want: f64 = (1..=N).map(|j| (0.5 * j as f64 - N as f64) * a[j] * h[N - j]).sum();
+            close(half_power::<N>(&a, &h, -1) * N as f64 * a[0], want, N, "half power");
         })+};
     }
 

@@ -26,8 +26,9 @@ pub struct TaylorContact {
     local: f64,
     length: f64,
     start: State,
-    /// The state at the step's end (the next step's start).
+    /// The state and the forcing phasor at the step's end (the next step's start).
     end: State,
+    end_phasor: (f64, f64),
     stepped: bool,
     /// Whether the current step is the segment's first (its start counts as inside).
     first_step: bool,
@@ -50,6 +51,7 @@ impl TaylorContact {
             length: 0.0,
             start: s0,
             end: s0,
+            end_phasor: (1.0, 0.0),
             stepped: false,
             first_step: true,
             exit: None,
@@ -145,7 +147,7 @@ impl SegmentSolver for TaylorContact {
         // The forcing phasor from the time at a segment's start, then carried by its series.
         let phasor = if self.stepped {
             self.start = self.end;
-            let phasor = self.expansion.phasor_at(self.length);
+            let phasor = self.end_phasor;
             self.local += self.length;
             phasor
         } else {
@@ -192,8 +194,9 @@ impl SegmentSolver for TaylorContact {
                 None => skip = Some(sw),
             }
         }
-        let end = self.expansion.state_at(self.length);
+        let (end, end_phasor) = self.expansion.point_at(self.length);
         self.end = end;
+        self.end_phasor = end_phasor;
         // |x| + |y| ≥ |q|: within it the state is within bounds without a `hypot` per step.
         let near = end.is_finite() && math::abs(end.x) + math::abs(end.y) <= DIVERGENCE_RADIUS;
         if !near && !within_bounds(&end) {

@@ -94,7 +94,7 @@ fn observed_closure(program: &Program) -> Vec<bool> {
             Op::State => {}
             Op::Linear { terms, .. } => stack.extend(terms.iter().map(|t| t.1)),
             Op::Product(a, b) => stack.extend([*a, *b]),
-            Op::Square(a) | Op::Power(a, _) | Op::Sqrt(a) => stack.push(*a),
+            Op::Square(a) | Op::Power(a, _) | Op::Sqrt(a) | Op::HalfPower(a, _) => stack.push(*a),
         }
     }
     needed
@@ -168,6 +168,14 @@ fn order_body(
                 fixed.add += 1;
                 let (a, r) = (sr(*a), sr(i));
                 quote!(ts::sqrt::<N>(#a, #r))
+            }
+            Op::HalfPower(a, p) => {
+                per_n.mul += 2;
+                per_n.add += 1;
+                fixed.div += 1;
+                let (a, r) = (sr(*a), sr(i));
+                let p = Literal::i32_unsuffixed(*p);
+                quote!(ts::half_power::<N>(#a, #r, #p))
             }
         };
         let i = index(i);
@@ -271,6 +279,19 @@ pub fn emit_system(
                 c0.sqrt += 1;
                 let a = at(*a);
                 quote!(m::sqrt(#a))
+            }
+            Op::HalfPower(a, -1) => {
+                c0.sqrt += 1;
+                c0.div += 1;
+                let a = at(*a);
+                quote!(1.0 / m::sqrt(#a))
+            }
+            Op::HalfPower(a, p) => {
+                c0.sqrt += 1;
+                c0.transcendental += 1;
+                let a = at(*a);
+                let p = Literal::i32_unsuffixed(*p);
+                quote!(ts::powi(m::sqrt(#a), #p))
             }
         };
         let i = index(i);
