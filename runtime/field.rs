@@ -127,7 +127,7 @@ pub struct Friction {
 
 impl Friction {
     /// Whether rolling holds: w = 0 exactly and |λ| ≤ μN.
-    fn rolls(&self) -> bool {
+    pub fn rolls(&self) -> bool {
         self.slip_velocity == 0.0 && self.within_cone()
     }
 
@@ -139,6 +139,31 @@ impl Friction {
     /// sign λ as a slip direction (+1 when λ = 0).
     pub fn lambda_direction(&self) -> f64 {
         if self.lambda < 0.0 { -1.0 } else { 1.0 }
+    }
+
+    /// The slip direction σ of slipping contact starting here after a switch of kind `cause`
+    /// (`docs/MODEL.md` §10): on entering contact (or a start in contact) sign w, or sign λ
+    /// where w = 0 exactly; after `reverse` or `slip` (w = 0, where w's own sign is rounding)
+    /// sign λ. The one rule for every model.
+    pub fn slip_direction(&self, cause: Option<EventKind>) -> f64 {
+        match cause {
+            Some(EventKind::Reverse | EventKind::Slip) => self.lambda_direction(),
+            _ if self.slip_velocity > 0.0 => 1.0,
+            _ if self.slip_velocity < 0.0 => -1.0,
+            _ => self.lambda_direction(),
+        }
+    }
+
+    /// The decision where w reaches 0 while slipping in direction `slip` ([`SlipZero`]): the one
+    /// rule for every model.
+    pub fn at_slip_zero(&self, slip: f64) -> SlipZero {
+        if self.within_cone() {
+            SlipZero::Roll
+        } else if self.lambda_direction() == slip {
+            SlipZero::Touch
+        } else {
+            SlipZero::Reverse
+        }
     }
 }
 
@@ -209,14 +234,7 @@ pub enum SlipZero {
 /// The decision at w = 0 while slipping in direction `slip`, with the forcing direction
 /// `phasor`.
 pub fn at_slip_zero(model: &ModelParams, phasor: &Phasor, state: &State, slip: f64) -> SlipZero {
-    let f = friction_with_phasor(model, phasor, state);
-    if f.within_cone() {
-        SlipZero::Roll
-    } else if f.lambda_direction() == slip {
-        SlipZero::Touch
-    } else {
-        SlipZero::Reverse
-    }
+    friction_with_phasor(model, phasor, state).at_slip_zero(slip)
 }
 
 /// The slip direction σ of slipping contact starting at `state` (`docs/MODEL.md` §10): 0 when no
@@ -226,11 +244,5 @@ pub fn slip_direction(params: &Params, tau: f64, state: &State, cause: Option<Ev
     if params.friction_coefficient <= 0.0 {
         return 0.0;
     }
-    let f = friction_at(params, tau, state);
-    match cause {
-        Some(EventKind::Reverse | EventKind::Slip) => f.lambda_direction(),
-        _ if f.slip_velocity > 0.0 => 1.0,
-        _ if f.slip_velocity < 0.0 => -1.0,
-        _ => f.lambda_direction(),
-    }
+    friction_at(params, tau, state).slip_direction(cause)
 }

@@ -1,7 +1,26 @@
 //! rotor-rub: a Jeffcott rotor rubbing on an anisotropically supported stator, propagated segment
 //! by segment with closed forms derived at build time.
 //!
-//! `#![no_std]`, no heap, no panics on finite input. See `ARCHITECTURE.md` for the map.
+//! `#![no_std]`, no heap, no panics on finite input. `ARCHITECTURE.md` is the map; the modules:
+//!
+//! - [`params`]: the parameter table (`entries.rs`, read by the generator too), validation,
+//!   presets. [`coefficients`]: every generated formula. [`geometry`], [`field`]: the contact
+//!   geometry and each regime's field from them. [`rounding`], [`refine`]: the rounding bands and
+//!   the one refinement of a bracketed switch.
+//! - [`propagate`]: the `Propagate` trait and its consumers (`events`, `samples`, `advance_to`,
+//!   `poincare`). [`driver`]: `Piecewise`, the state machine every method runs on.
+//!   [`registration`]: what a method tells the registry; [`method`]: the registry (`Method`,
+//!   `Options`, `Propagator`). [`compare`]: matching two runs' events, and how deep a contact only one run has reaches against what both resolve.
+//! - The methods: [`analytic`] (exact free flight, closed-form contact by exprb43/exprb2, the
+//!   switch kernel that proves intervals free), [`hybrid`] (exact free flight + DOP853 in
+//!   contact), [`taylor`] (generated Taylor recurrences, switches as polynomial roots),
+//!   [`reference`](mod@reference) (DOP853, RK45, events on dense output).
+//! - [`stepper`]: fixed steps for rigs and the C ABI (a precomputed free map, the exact path on
+//!   the driver, caps on the work of a step, inputs between steps, snapshots).
+//! - [`speed`], [`variable_speed`]: a speed that changes (profiles, ramps, held steps) and
+//!   propagation on it, one row per forcing period, jumps.
+//! - [`linalg`]: dense linear algebra for matrix models (modal exponential, bounds, harmonic
+//!   response), caller-sized and heap-free.
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -25,6 +44,7 @@ pub mod geometry;
 pub mod hybrid;
 pub mod linalg;
 pub mod math;
+pub mod matrix;
 pub mod method;
 pub mod params;
 pub mod propagate;

@@ -87,14 +87,17 @@ impl EventKind {
 
 /// A switch: time, kind and the state at the switch (where z = 1 for `enter`/`exit`, w = 0 for
 /// `reverse`/`roll`, |λ| = μN for `slip`).
+///
+/// `S` is the model's state: the paper's planar [`State`] by default, a matrix model's
+/// `crate::matrix::MatrixState` for a rotor from matrices.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Event {
+pub struct Event<S = State> {
     /// Switch time τ.
     pub time: f64,
     /// Entry or exit.
     pub kind: EventKind,
     /// State at the switch.
-    pub state: State,
+    pub state: S,
 }
 
 /// Why a propagation stopped early.
@@ -102,6 +105,8 @@ pub struct Event {
 pub enum PropagationError {
     /// The problem failed validation.
     InvalidProblem(ParamError),
+    /// A rotor from matrices that cannot be stated or decomposed (`crate::matrix`).
+    InvalidModel(crate::matrix::MatrixError),
     /// A target time before the current time, or not finite.
     InvalidTarget {
         /// The requested time.
@@ -114,7 +119,8 @@ pub enum PropagationError {
     Diverged {
         /// When the limit was passed.
         time: f64,
-        /// The state then.
+        /// The state then (for a matrix model: the rub station's relative displacement d and
+        /// its rate d', the contact's own coordinates).
         state: State,
     },
     /// The linearized contact stiffness is singular (det Kl = 0, `docs/MODEL.md` §6 case 9) or the
@@ -145,6 +151,7 @@ impl fmt::Display for PropagationError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             PropagationError::InvalidProblem(e) => write!(f, "invalid problem: {e}"),
+            PropagationError::InvalidModel(e) => write!(f, "invalid model: {e}"),
             PropagationError::InvalidTarget { target, current } => write!(
                 f,
                 "target time {target:e} is invalid: it must be finite and not before the current time {current:e}"
@@ -177,6 +184,12 @@ impl fmt::Display for PropagationError {
 
 impl core::error::Error for PropagationError {}
 
+impl From<crate::matrix::MatrixError> for PropagationError {
+    fn from(e: crate::matrix::MatrixError) -> Self {
+        PropagationError::InvalidModel(e)
+    }
+}
+
 impl From<ParamError> for PropagationError {
     fn from(e: ParamError) -> Self {
         PropagationError::InvalidProblem(e)
@@ -194,12 +207,13 @@ pub fn within_bounds(state: &State) -> bool {
     state.is_finite() && crate::math::hypot(state.x, state.y) <= DIVERGENCE_RADIUS
 }
 
-/// A propagation method: analytic, hybrid or a reference integrator.
-pub trait Propagate {
+/// A propagation method: analytic, hybrid or a reference integrator. `S` is the model's state
+/// (the paper's planar [`State`] by default).
+pub trait Propagate<S = State> {
     /// The current time τ.
     fn time(&self) -> f64;
     /// The state at [`Propagate::time`].
-    fn state(&self) -> State;
+    fn state(&self) -> S;
     /// The regime at [`Propagate::time`] (after any switch reported at that time).
     fn regime(&self) -> Regime;
     /// Advance to `target` or to the next switch, whichever comes first.
@@ -207,7 +221,7 @@ pub trait Propagate {
     /// Returns `Ok(Some(event))` with `time() == event.time` when a switch at or before `target`
     /// stopped it, `Ok(None)` with `time() == target` otherwise. A target equal to the current
     /// time returns `Ok(None)` at once; a switch is never reported twice.
-    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError>;
+    fn advance(&mut self, target: f64) -> Result<Option<Event<S>>, PropagationError>;
 }
 
 /// The check every [`Propagate::advance`] starts with: an error for a target that is not finite
@@ -220,24 +234,26 @@ pub fn check_target(target: f64, current: f64) -> Result<bool, PropagationError>
 }
 
 /// Iterator over the switches up to `end` (see [`events`]).
-pub struct Events<'a, P: ?Sized> {
+pub struct Events<'a, P: ?Sized, S = State> {
     propagator: &'a mut P,
     end: f64,
     done: bool,
+    state: core::marker::PhantomData<S>,
 }
 
 /// The switches of `propagator` from its current time to `end`, in order. An error is yielded
 /// once, then the iterator ends.
-pub fn events<P: Propagate + ?Sized>(propagator: &mut P, end: f64) -> Events<'_, P> {
+pub fn events<S, P: Propagate<S> + ?Sized>(propagator: &mut P, end: f64) -> Events<'_, P, S> {
     Events {
         propagator,
         end,
         done: false,
+        state: core::marker::PhantomData,
     }
 }
 
-impl<P: Propagate + ?Sized> Iterator for Events<'_, P> {
-    type Item = Result<Event, PropagationError>;
+impl<S, P: Propagate<S> + ?Sized> Iterator for Events<'_, P, S> {
+    type Item = Result<Event<S>, PropagationError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         if self.done {
@@ -259,21 +275,21 @@ impl<P: Propagate + ?Sized> Iterator for Events<'_, P> {
 
 /// One sampled point of a trajectory.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
+pub struct Sample<S = State> {
     /// Sample time τ.
     pub time: f64,
     /// State at `time`.
-    pub state: State,
+    pub state: S,
     /// Regime at `time`.
     pub regime: Regime,
 }
 
 /// Advance to `time`, passing every switch on the way to `on_event`, and return the sample there.
-pub fn advance_to<P: Propagate + ?Sized>(
+pub fn advance_to<S, P: Propagate<S> + ?Sized>(
     propagator: &mut P,
     time: f64,
-    mut on_event: impl FnMut(&Event),
-) -> Result<Sample, PropagationError> {
+    mut on_event: impl FnMut(&Event<S>),
+) -> Result<Sample<S>, PropagationError> {
     while let Some(event) = propagator.advance(time)? {
         on_event(&event);
     }
@@ -285,28 +301,30 @@ pub fn advance_to<P: Propagate + ?Sized>(
 }
 
 /// Iterator over samples at given non-decreasing times (see [`samples`]).
-pub struct Samples<'a, P: ?Sized, I> {
+pub struct Samples<'a, P: ?Sized, I, S = State> {
     propagator: &'a mut P,
     times: I,
     done: bool,
+    state: core::marker::PhantomData<S>,
 }
 
 /// The states at each of `times` (non-decreasing, not before the current time). Switches passed on
 /// the way are not reported; use [`advance_to`] to see both.
-pub fn samples<P, I>(propagator: &mut P, times: I) -> Samples<'_, P, I::IntoIter>
+pub fn samples<S, P, I>(propagator: &mut P, times: I) -> Samples<'_, P, I::IntoIter, S>
 where
-    P: Propagate + ?Sized,
+    P: Propagate<S> + ?Sized,
     I: IntoIterator<Item = f64>,
 {
     Samples {
         propagator,
         times: times.into_iter(),
         done: false,
+        state: core::marker::PhantomData,
     }
 }
 
-impl<P: Propagate + ?Sized, I: Iterator<Item = f64>> Iterator for Samples<'_, P, I> {
-    type Item = Result<Sample, PropagationError>;
+impl<S, P: Propagate<S> + ?Sized, I: Iterator<Item = f64>> Iterator for Samples<'_, P, I, S> {
+    type Item = Result<Sample<S>, PropagationError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         if self.done {
@@ -330,11 +348,11 @@ pub fn poincare_times(current: f64, speed_ratio: f64, count: usize) -> impl Iter
 
 /// The Poincaré section: the state once per forcing period at τ = k·2π/η, for the next `count`
 /// periods (see [`poincare_times`]).
-pub fn poincare<P: Propagate + ?Sized>(
+pub fn poincare<S, P: Propagate<S> + ?Sized>(
     propagator: &mut P,
     speed_ratio: f64,
     count: usize,
-) -> Samples<'_, P, impl Iterator<Item = f64> + use<P>> {
+) -> Samples<'_, P, impl Iterator<Item = f64> + use<P, S>, S> {
     let times = poincare_times(propagator.time(), speed_ratio, count);
     samples(propagator, times)
 }

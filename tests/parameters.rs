@@ -26,6 +26,13 @@ fn slot<'a>(p: &'a mut Problem, name: &str) -> &'a mut f64 {
         "radius_ratio" => &mut q.radius_ratio,
         "force_x" => &mut q.force_x,
         "force_y" => &mut q.force_y,
+        "stator_mass_ratio" => &mut q.stator_mass_ratio,
+        "contact_stiffness" => &mut q.contact_stiffness,
+        "stator_damping" => &mut q.stator_damping,
+        "xs0" => &mut q.xs0,
+        "ys0" => &mut q.ys0,
+        "vxs0" => &mut q.vxs0,
+        "vys0" => &mut q.vys0,
         "x0" => &mut p.initial.x,
         "y0" => &mut p.initial.y,
         "vx0" => &mut p.initial.vx,
@@ -37,8 +44,8 @@ fn slot<'a>(p: &'a mut Problem, name: &str) -> &'a mut f64 {
 
 #[test]
 fn access_by_name_reaches_the_named_field() {
-    assert_eq!(Parameter::COUNT, 20);
-    assert_eq!(Parameter::MODEL_COUNT, 15);
+    assert_eq!(Parameter::COUNT, 27);
+    assert_eq!(Parameter::MODEL_COUNT, 22);
     for (i, p) in Parameter::ALL.into_iter().enumerate() {
         assert_eq!(Parameter::from_name(p.name()), Some(p));
         assert_eq!(p.is_model(), i < Parameter::MODEL_COUNT, "{p}");
@@ -77,12 +84,51 @@ fn defaults_are_the_paper_preset_and_lie_in_their_ranges() {
     }
 }
 
+/// The entries of the stator ring with mass, valid only with `stator_mass_ratio` > 0.
+const RING: [Parameter; 6] = [
+    Parameter::ContactStiffness,
+    Parameter::StatorDamping,
+    Parameter::Xs0,
+    Parameter::Ys0,
+    Parameter::Vxs0,
+    Parameter::Vys0,
+];
+
+#[test]
+fn ring_entries_without_ring_mass_are_refused() {
+    for p in RING {
+        let mut problem = Preset::Paper.problem();
+        p.set(&mut problem, 0.5);
+        let e = problem.validate().unwrap_err();
+        assert_eq!(
+            e,
+            ParamError::RingWithoutMass {
+                parameter: p,
+                value: 0.5
+            }
+        );
+        let message = e.to_string();
+        assert!(
+            message.starts_with(&format!(
+                "{p} = 0.5 has no effect while stator_mass_ratio = 0"
+            )),
+            "{message}"
+        );
+        problem.params.stator_mass_ratio = 1.0;
+        assert_eq!(problem.validate(), Ok(()), "{p}");
+    }
+}
+
 #[test]
 fn validation_follows_each_range_at_its_ends() {
     for p in Parameter::ALL {
         let range = p.info().range;
         let with = |value: f64| {
             let mut problem = Preset::Paper.problem();
+            // The ring's own entries take effect only with a ring mass (`RingWithoutMass`).
+            if RING.contains(&p) {
+                problem.params.stator_mass_ratio = 1.0;
+            }
             p.set(&mut problem, value);
             problem
         };

@@ -32,6 +32,10 @@
 //                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 // contact_particular           before:   111 add   290 mul    6 div   0 sqrt   0 trans
 //                               after:    23 add    87 mul    2 div   0 sqrt   0 trans
+// contact_particular_residual  before:    20 add    32 mul    0 div   0 sqrt   0 trans
+//                               after:    20 add    29 mul    0 div   0 sqrt   0 trans
+// contact_particular_correction before:   144 add   360 mul    6 div   0 sqrt   0 trans
+//                               after:    36 add   108 mul    2 div   0 sqrt   0 trans
 // contact_particular_eval      before:     6 add    12 mul    0 div   0 sqrt   0 trans
 //                               after:     6 add    12 mul    0 div   0 sqrt   0 trans
 // contact_modes                before:     7 add    12 mul    0 div   0 sqrt   0 trans
@@ -110,6 +114,12 @@
 //                               after:     5 add    14 mul    0 div   0 sqrt   0 trans
 // stator_bounds                before:     6 add    10 mul    0 div   2 sqrt   0 trans
 //                               after:     3 add     6 mul    0 div   1 sqrt   0 trans
+// station_slipping             before:    57 add    99 mul   26 div  26 sqrt   0 trans
+//                               after:    11 add    27 mul    1 div   1 sqrt   0 trans
+// station_rolling              before:   285 add   497 mul  142 div 139 sqrt   0 trans
+//                               after:    22 add    56 mul    2 div   1 sqrt   0 trans
+// ring_matrices                before:     0 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
 // contact_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
 // slipping_taylor::constants   before:     0 add     4 mul    0 div   0 sqrt   0 trans
@@ -159,6 +169,12 @@ pub struct ModelParams {
     pub force_x: f64,
     /// external force on the rotor per unit mass, y, clearances·ω_n² (the FMU's input fy)
     pub force_y: f64,
+    /// stator ring mass over disk mass (0: the paper's massless ring, whose support K_s is the contact spring)
+    pub stator_mass_ratio: f64,
+    /// rotor–ring contact stiffness over rotor stiffness (isotropic; with stator_mass_ratio > 0 only)
+    pub contact_stiffness: f64,
+    /// ring support damping c_s/(M ω_n) (isotropic; with stator_mass_ratio > 0 only)
+    pub stator_damping: f64,
     /// η_m ρ̂, the unbalance's radius: mass ratio times eccentricity ratio
     pub unbalance: f64,
     /// F = η_m ρ̂ η², the unbalance forcing amplitude at a constant speed
@@ -320,6 +336,22 @@ pub struct ContactParticular {
     /// c66, constant of y: −(Kl⁻¹ Fd)_y
     pub c66: f64,
 }
+/// What the linearized contact equations leave at particular constants: their cos θ, sin θ and constant parts (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ParticularResidual {
+    /// cos θ part of the x equation
+    pub x_cos: f64,
+    /// sin θ part of the x equation
+    pub x_sin: f64,
+    /// constant part of the x equation
+    pub x_constant: f64,
+    /// cos θ part of the y equation
+    pub y_cos: f64,
+    /// sin θ part of the y equation
+    pub y_sin: f64,
+    /// constant part of the y equation
+    pub y_constant: f64,
+}
 /// Initial state of the homogeneous part of a contact segment (state minus particular).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct HomogeneousInitial {
@@ -480,6 +512,46 @@ pub struct SpeedChange {
     /// η' = dη/dτ, the rate of the speed ratio
     pub speed_rate: f64,
 }
+/// The rate d' = (u', v') of a rub station's offset from the stator centre (`docs/MODEL.md` §17).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OffsetRate {
+    /// u'
+    pub ur: f64,
+    /// v'
+    pub vr: f64,
+}
+/// A rub station's contact stiffness K_c (`docs/MODEL.md` §17; the planar model's is K_s).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactLaw {
+    /// K_c\[0\]\[0\]
+    pub kc_xx: f64,
+    /// K_c\[0\]\[1\]
+    pub kc_xy: f64,
+    /// K_c\[1\]\[0\]
+    pub kc_yx: f64,
+    /// K_c\[1\]\[1\]
+    pub kc_yy: f64,
+}
+/// How a force at a rub station accelerates its offset, W = B M⁻¹ Bᵀ with B = B_r − B_s (`docs/MODEL.md` §17).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StationCompliance {
+    /// W\[0\]\[0\]
+    pub w_xx: f64,
+    /// W\[0\]\[1\]
+    pub w_xy: f64,
+    /// W\[1\]\[0\]
+    pub w_yx: f64,
+    /// W\[1\]\[1\]
+    pub w_yy: f64,
+}
+/// The acceleration d'' of a rub station's offset from every force but the contact's (`docs/MODEL.md` §17).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OffsetAcceleration {
+    /// u'' without contact forces
+    pub au: f64,
+    /// v'' without contact forces
+    pub av: f64,
+}
 /// The model's parameters from the parameter table: each entry the formulas read, copied by name, and the quantities derived from them (F = η_m ρ̂ η², η_m ρ̂).
 ///
 /// Source: docs/MODEL.md §0, §1.
@@ -502,6 +574,9 @@ pub fn model_params(params: &crate::params::Params) -> ModelParams {
     let radius_ratio = params.radius_ratio;
     let force_x = params.force_x;
     let force_y = params.force_y;
+    let stator_mass_ratio = params.stator_mass_ratio;
+    let contact_stiffness = params.contact_stiffness;
+    let stator_damping = params.stator_damping;
     ModelParams {
         speed_ratio: speed_ratio,
         damping_ratio: damping_ratio,
@@ -516,6 +591,9 @@ pub fn model_params(params: &crate::params::Params) -> ModelParams {
         radius_ratio: radius_ratio,
         force_x: force_x,
         force_y: force_y,
+        stator_mass_ratio: stator_mass_ratio,
+        contact_stiffness: contact_stiffness,
+        stator_damping: stator_damping,
         unbalance: mass_ratio * eccentricity_ratio,
         unbalance_force: mass_ratio * eccentricity_ratio * speed_ratio * speed_ratio,
     }
@@ -1045,6 +1123,115 @@ pub fn contact_particular(
                         + 2.0 * speed_ratio * damping_ratio * fb2 * t2)),
         c55: t12 * (fb1 * fd2 - fa2 * fd1),
         c66: t12 * (fb2 * fd1 - fa1 * fd2),
+    }
+}
+/// Residual of particular constants c11 … c66 in the linearized contact equations with the input force (cos θ, sin θ and constant parts of the x and y equations): zero for the exact constants.
+///
+/// Source: docs/MODEL.md §5 (particular part), §15.
+/// Derivation: the harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd − F(cos θ, sin θ) − u, split by partial derivatives in cos θ, sin θ and the rest.
+#[inline]
+#[must_use]
+pub fn contact_particular_residual(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    particular: &ContactParticular,
+) -> ParticularResidual {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
+    let c11 = particular.c11;
+    let c22 = particular.c22;
+    let c33 = particular.c33;
+    let c44 = particular.c44;
+    let c55 = particular.c55;
+    let c66 = particular.c66;
+    let t0 = -unbalance_force;
+    let t1 = speed_ratio * speed_ratio;
+    ParticularResidual {
+        x_cos: t0 + c11 * fa1 + c33 * fb1 + 2.0 * speed_ratio * damping_ratio * c22
+            - t1 * c11,
+        x_sin: c22 * fa1 + c44 * fb1 - t1 * c22
+            - 2.0 * speed_ratio * damping_ratio * c11,
+        x_constant: fd1 + c55 * fa1 + c66 * fb1 - force_x,
+        y_cos: c11 * fb2 + c33 * fa2 + 2.0 * speed_ratio * damping_ratio * c44
+            - t1 * c33,
+        y_sin: t0 + c22 * fb2 + c44 * fa2 - t1 * c44
+            - 2.0 * speed_ratio * damping_ratio * c33,
+        y_constant: fd2 + c55 * fb2 + c66 * fa2 - force_y,
+    }
+}
+/// Correction δ of particular constants from their residual r (`contact_particular_residual`): M δ + r = 0, the equations' matrix M without forcing; c + δ is one step of iterative refinement.
+///
+/// Source: docs/MODEL.md §5 (particular part).
+/// Derivation: the ansatz substituted into q'' + 2νq' + Kl q with no forcing and no Fd, the residual added to each of the six equations, solved by Cramer's rule as for the particular constants.
+#[inline]
+#[must_use]
+pub fn contact_particular_correction(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    residual: &ParticularResidual,
+) -> ContactParticular {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let x_cos = residual.x_cos;
+    let x_sin = residual.x_sin;
+    let x_constant = residual.x_constant;
+    let y_cos = residual.y_cos;
+    let y_sin = residual.y_sin;
+    let y_constant = residual.y_constant;
+    let t0 = speed_ratio * speed_ratio;
+    let t1 = -t0;
+    let t2 = t1 + fa1;
+    let t3 = damping_ratio * damping_ratio;
+    let t4 = t1 + fa2;
+    let t5 = 4.0 * t0 * t3 + t4 * t4;
+    let t6 = t2 * t5 - fb1 * fb2 * t4;
+    let t7 = -(2.0 * speed_ratio * damping_ratio * t5)
+        - 2.0 * speed_ratio * damping_ratio * fb1 * fb2;
+    let t8 = fb2 * fb2;
+    let t9 = 4.0 * t0 * t3 * fb2 + fb1 * t8 - fb2 * t2 * t4;
+    let t10 = 1.0 / (t2 * t6 + fb1 * t9 - 2.0 * speed_ratio * damping_ratio * t7);
+    let t11 = t4 * y_sin;
+    let t12 = fb1 * (2.0 * speed_ratio * damping_ratio * y_cos + t11) - t5 * x_sin;
+    let t13 = 2.0 * speed_ratio * damping_ratio * fb2 * x_sin;
+    let t14 = 2.0 * speed_ratio * damping_ratio * y_sin - t4 * y_cos;
+    let t15 = t2 * t14;
+    let t16 = fb1 * fb2 * y_cos;
+    let t17 = fb2 * t4 * x_sin;
+    let t18 = t17 - 2.0 * speed_ratio * damping_ratio * t14 - fb1 * fb2 * y_sin;
+    let t19 = -(t11) - 2.0 * speed_ratio * damping_ratio * y_cos;
+    let t20 = 1.0 / (fa1 * fa2 - fb1 * fb2);
+    ContactParticular {
+        c11: t10
+            * (fb1 * (t13 - t15 - t16) - t6 * x_cos
+                - 2.0 * speed_ratio * damping_ratio * t12),
+        c22: t10 * (t2 * t12 + t7 * x_cos + fb1 * t18),
+        c33: t10
+            * (t2 * (t15 + t16 - 2.0 * speed_ratio * damping_ratio * fb2 * x_sin)
+                - 2.0 * speed_ratio * damping_ratio * t18 - t9 * x_cos),
+        c44: t10
+            * (t2 * (t17 + t2 * t19)
+                + fb1
+                    * (fb2 * t2 * y_sin - 2.0 * speed_ratio * damping_ratio * fb2 * y_cos
+                        - t8 * x_sin)
+                + (2.0 * speed_ratio * damping_ratio * fb2 * t4
+                    + 2.0 * speed_ratio * damping_ratio * fb2 * t2) * x_cos
+                - 2.0 * speed_ratio * damping_ratio
+                    * (t13 - 2.0 * speed_ratio * damping_ratio * t19)),
+        c55: t20 * (fb1 * y_constant - fa2 * x_constant),
+        c66: t20 * (fb2 * x_constant - fa1 * y_constant),
     }
 }
 /// Outputs of [`contact_particular_eval`].
@@ -2519,6 +2706,271 @@ pub fn stator_bounds(model: &ModelParams) -> StatorBounds {
     StatorBounds {
         stator_norm: t0,
         friction_gradient: 4.0 * friction_coefficient * t0,
+    }
+}
+/// Outputs of [`station_slipping`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StationForce {
+    /// N, the normal elastic contact force
+    pub normal: f64,
+    /// f_c, x component
+    pub fx: f64,
+    /// f_c, y component
+    pub fy: f64,
+    /// w, the slip velocity
+    pub slip_velocity: f64,
+}
+/// A rub station in slipping contact in direction σ (μ = 0: frictionless): the normal force N = nᵀK_c g(d), the force on the rotor's point f_c = −(K_c g(d) + μσN t) (the stator's point carries −f_c), and the slip velocity w = d'·t + ρ_R η.
+///
+/// Source: docs/MODEL.md §17, §10.
+/// Derivation: the model's `penetration`, `frame` and `coulomb` on the station's offset, K_c for K_s.
+#[inline]
+#[must_use]
+pub fn station_slipping(
+    model: &ModelParams,
+    offset: &StatorOffset,
+    slip: &Slip,
+    offset_rate: &OffsetRate,
+    law: &ContactLaw,
+) -> StationForce {
+    let speed_ratio = model.speed_ratio;
+    let friction_coefficient = model.friction_coefficient;
+    let radius_ratio = model.radius_ratio;
+    let u = offset.u;
+    let v = offset.v;
+    let sigma = slip.sigma;
+    let ur = offset_rate.ur;
+    let vr = offset_rate.vr;
+    let kc_xx = law.kc_xx;
+    let kc_xy = law.kc_xy;
+    let kc_yx = law.kc_yx;
+    let kc_yy = law.kc_yy;
+    let t0 = 1.0 / m::sqrt(u * u + v * v);
+    let t1 = 1.0 - t0;
+    let t2 = u * t1 * kc_xx;
+    let t3 = v * t1 * kc_xy;
+    let t4 = u * t1 * kc_yx;
+    let t5 = v * t1 * kc_yy;
+    let t6 = u * t0 * (t2 + t3) + v * t0 * (t4 + t5);
+    StationForce {
+        normal: t6,
+        fx: -(t2 + t3 - sigma * friction_coefficient * v * t0 * t6),
+        fy: -(t4 + t5 + sigma * friction_coefficient * u * t0 * t6),
+        slip_velocity: speed_ratio * radius_ratio + u * vr * t0 - v * ur * t0,
+    }
+}
+/// Outputs of [`station_rolling`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StationRolling {
+    /// N, the normal elastic contact force
+    pub normal: f64,
+    /// λ, the tangential force of rolling
+    pub lambda: f64,
+    /// f_c, x component
+    pub fx: f64,
+    /// f_c, y component
+    pub fy: f64,
+    /// μN − λ: rolling holds while both margins are ≥ 0
+    pub upper: f64,
+    /// μN + λ
+    pub lower: f64,
+}
+/// A rub station rolling without slip (w ≡ 0): the normal force N, the tangential force λ = (t·a − tᵀW K_c g − (d'·t)(d'·n)/z)/(tᵀW t) that keeps w' = 0 (a: the offset's acceleration from every force but the contact's, W = B M⁻¹ Bᵀ), and the force on the rotor's point f_c = −(K_c g(d) + λ t).
+///
+/// Source: docs/MODEL.md §17, §10.
+/// Derivation: w' = d''·t + d'·t' with d'' = a + W f_c and t' = −(d'·t/z) n, solved for λ.
+#[inline]
+#[must_use]
+pub fn station_rolling(
+    model: &ModelParams,
+    offset: &StatorOffset,
+    offset_rate: &OffsetRate,
+    law: &ContactLaw,
+    compliance: &StationCompliance,
+    drive: &OffsetAcceleration,
+) -> StationRolling {
+    let friction_coefficient = model.friction_coefficient;
+    let u = offset.u;
+    let v = offset.v;
+    let ur = offset_rate.ur;
+    let vr = offset_rate.vr;
+    let kc_xx = law.kc_xx;
+    let kc_xy = law.kc_xy;
+    let kc_yx = law.kc_yx;
+    let kc_yy = law.kc_yy;
+    let w_xx = compliance.w_xx;
+    let w_xy = compliance.w_xy;
+    let w_yx = compliance.w_yx;
+    let w_yy = compliance.w_yy;
+    let au = drive.au;
+    let av = drive.av;
+    let t0 = 1.0 / m::sqrt(u * u + v * v);
+    let t1 = 1.0 - t0;
+    let t2 = u * t1 * kc_xx;
+    let t3 = v * t1 * kc_xy;
+    let t4 = t2 + t3;
+    let t5 = u * t1 * kc_yx;
+    let t6 = v * t1 * kc_yy;
+    let t7 = t5 + t6;
+    let t8 = u * t0 * t4 + v * t0 * t7;
+    let t9 = u * t0 * av + v * t0 * (t4 * w_xx + t7 * w_xy) - v * t0 * au
+        - u * t0 * (t4 * w_yx + t7 * w_yy)
+        - t0 * (u * vr * t0 - v * ur * t0) * (u * ur * t0 + v * vr * t0);
+    let t10 = 1.0
+        / (u * t0 * (u * t0 * w_yy - v * t0 * w_yx)
+            - v * t0 * (u * t0 * w_xy - v * t0 * w_xx));
+    let t11 = t9 * t10;
+    let t12 = friction_coefficient * t8;
+    StationRolling {
+        normal: t8,
+        lambda: t11,
+        fx: -(t2 + t3 - v * t0 * t9 * t10),
+        fy: -(t5 + t6 + u * t0 * t9 * t10),
+        upper: t12 - t11,
+        lower: t11 + t12,
+    }
+}
+/// Outputs of [`ring_matrices`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RingMatrices {
+    /// M\[0\]\[0\]
+    pub m0: f64,
+    /// M\[1\]\[1\]
+    pub m1: f64,
+    /// M\[2\]\[2\]
+    pub m2: f64,
+    /// M\[3\]\[3\]
+    pub m3: f64,
+    /// C\[0\]\[0\]
+    pub c00: f64,
+    /// C\[0\]\[1\]
+    pub c01: f64,
+    /// C\[0\]\[2\]
+    pub c02: f64,
+    /// C\[0\]\[3\]
+    pub c03: f64,
+    /// C\[1\]\[0\]
+    pub c10: f64,
+    /// C\[1\]\[1\]
+    pub c11: f64,
+    /// C\[1\]\[2\]
+    pub c12: f64,
+    /// C\[1\]\[3\]
+    pub c13: f64,
+    /// C\[2\]\[0\]
+    pub c20: f64,
+    /// C\[2\]\[1\]
+    pub c21: f64,
+    /// C\[2\]\[2\]
+    pub c22: f64,
+    /// C\[2\]\[3\]
+    pub c23: f64,
+    /// C\[3\]\[0\]
+    pub c30: f64,
+    /// C\[3\]\[1\]
+    pub c31: f64,
+    /// C\[3\]\[2\]
+    pub c32: f64,
+    /// C\[3\]\[3\]
+    pub c33: f64,
+    /// K\[0\]\[0\]
+    pub k00: f64,
+    /// K\[0\]\[1\]
+    pub k01: f64,
+    /// K\[0\]\[2\]
+    pub k02: f64,
+    /// K\[0\]\[3\]
+    pub k03: f64,
+    /// K\[1\]\[0\]
+    pub k10: f64,
+    /// K\[1\]\[1\]
+    pub k11: f64,
+    /// K\[1\]\[2\]
+    pub k12: f64,
+    /// K\[1\]\[3\]
+    pub k13: f64,
+    /// K\[2\]\[0\]
+    pub k20: f64,
+    /// K\[2\]\[1\]
+    pub k21: f64,
+    /// K\[2\]\[2\]
+    pub k22: f64,
+    /// K\[2\]\[3\]
+    pub k23: f64,
+    /// K\[3\]\[0\]
+    pub k30: f64,
+    /// K\[3\]\[1\]
+    pub k31: f64,
+    /// K\[3\]\[2\]
+    pub k32: f64,
+    /// K\[3\]\[3\]
+    pub k33: f64,
+    /// K_c entry kc_xx: k̂_c I
+    pub kc_xx: f64,
+    /// K_c entry kc_xy: k̂_c I
+    pub kc_xy: f64,
+    /// K_c entry kc_yx: k̂_c I
+    pub kc_yx: f64,
+    /// K_c entry kc_yy: k̂_c I
+    pub kc_yy: f64,
+}
+/// The stator ring with mass as a 4-DOF matrix model: M = diag(1, 1, m̂, m̂), C and K of the positions (x, y, x_s, y_s): the rotor's 2ν I and I, the ring's ĉ I and K_s; the contact stiffness K_c = k̂_c I between rotor and ring.
+///
+/// Source: docs/MODEL.md §17.
+/// Derivation: the partial derivatives of the rotor's `damping` + `restoring` and the ring's ĉ p' + `stator_force`(p) by each velocity and position.
+#[inline]
+#[must_use]
+pub fn ring_matrices(model: &ModelParams) -> RingMatrices {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let stator_mass_ratio = model.stator_mass_ratio;
+    let contact_stiffness = model.contact_stiffness;
+    let stator_damping = model.stator_damping;
+    let t0 = 2.0 * damping_ratio;
+    RingMatrices {
+        m0: 1.0,
+        m1: 1.0,
+        m2: stator_mass_ratio,
+        m3: stator_mass_ratio,
+        c00: t0,
+        c01: 0.0,
+        c02: 0.0,
+        c03: 0.0,
+        c10: 0.0,
+        c11: t0,
+        c12: 0.0,
+        c13: 0.0,
+        c20: 0.0,
+        c21: 0.0,
+        c22: stator_damping,
+        c23: 0.0,
+        c30: 0.0,
+        c31: 0.0,
+        c32: 0.0,
+        c33: stator_damping,
+        k00: 1.0,
+        k01: 0.0,
+        k02: 0.0,
+        k03: 0.0,
+        k10: 0.0,
+        k11: 1.0,
+        k12: 0.0,
+        k13: 0.0,
+        k20: 0.0,
+        k21: 0.0,
+        k22: k_xx,
+        k23: k_xy,
+        k30: 0.0,
+        k31: 0.0,
+        k32: k_yx,
+        k33: k_yy,
+        kc_xx: contact_stiffness,
+        kc_xy: 0.0,
+        kc_yx: 0.0,
+        kc_yy: contact_stiffness,
     }
 }
 /// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).

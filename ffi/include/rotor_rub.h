@@ -39,20 +39,34 @@
 #define ROTOR_RUB_PARAMETER_FORCE_X 13
 /* force_y (u_y): external force on the rotor per unit mass, y, clearances·ω_n² (the FMU's input fy); valid range [-1000, 1000]. */
 #define ROTOR_RUB_PARAMETER_FORCE_Y 14
+/* stator_mass_ratio (m̂): stator ring mass over disk mass (0: the paper's massless ring, whose support K_s is the contact spring); valid range [0, 1000]. */
+#define ROTOR_RUB_PARAMETER_STATOR_MASS_RATIO 15
+/* contact_stiffness (k̂_c): rotor–ring contact stiffness over rotor stiffness (isotropic; with stator_mass_ratio > 0 only); valid range (0, 1e6]. */
+#define ROTOR_RUB_PARAMETER_CONTACT_STIFFNESS 16
+/* stator_damping (ĉ): ring support damping c_s/(M ω_n) (isotropic; with stator_mass_ratio > 0 only); valid range [0, 1000]. */
+#define ROTOR_RUB_PARAMETER_STATOR_DAMPING 17
+/* xs0 (x̃s0): initial ring position x from its rest position, clearances (with stator_mass_ratio > 0 only); valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_XS0 18
+/* ys0 (ỹs0): initial ring position y from its rest position, clearances (with stator_mass_ratio > 0 only); valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_YS0 19
+/* vxs0 (x̃s0'): initial ring velocity x', clearances per unit τ (with stator_mass_ratio > 0 only); valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_VXS0 20
+/* vys0 (ỹs0'): initial ring velocity y', clearances per unit τ (with stator_mass_ratio > 0 only); valid range [-100, 100]. */
+#define ROTOR_RUB_PARAMETER_VYS0 21
 /* x0 (x̃0): initial position x, clearances; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_X0 15
+#define ROTOR_RUB_PARAMETER_X0 22
 /* y0 (ỹ0): initial position y, clearances; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_Y0 16
+#define ROTOR_RUB_PARAMETER_Y0 23
 /* vx0 (x̃0'): initial velocity x', clearances per unit τ; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_VX0 17
+#define ROTOR_RUB_PARAMETER_VX0 24
 /* vy0 (ỹ0'): initial velocity y', clearances per unit τ; valid range [-100, 100]. */
-#define ROTOR_RUB_PARAMETER_VY0 18
+#define ROTOR_RUB_PARAMETER_VY0 25
 /* start_time (τ0): time of the initial state; valid range [-1e6, 1e6]. */
-#define ROTOR_RUB_PARAMETER_START_TIME 19
+#define ROTOR_RUB_PARAMETER_START_TIME 26
 
 
 // Number of table entries: model parameters, initial state and start time.
-#define ROTOR_RUB_PARAMETER_COUNT 20
+#define ROTOR_RUB_PARAMETER_COUNT 27
 
 // Success.
 #define ROTOR_RUB_OK 0
@@ -191,6 +205,20 @@ typedef struct RotorRubParams {
   double force_x;
   // u_y: external input force, y.
   double force_y;
+  // m̂: stator ring mass over disk mass (0: the paper's massless ring).
+  double stator_mass_ratio;
+  // k̂_c: rotor–ring contact stiffness (with a ring mass only).
+  double contact_stiffness;
+  // ĉ: ring support damping (with a ring mass only).
+  double stator_damping;
+  // x̃s0: initial ring position x (with a ring mass only).
+  double xs0;
+  // ỹs0: initial ring position y (with a ring mass only).
+  double ys0;
+  // x̃s0': initial ring velocity x (with a ring mass only).
+  double vxs0;
+  // ỹs0': initial ring velocity y (with a ring mass only).
+  double vys0;
 } RotorRubParams;
 
 // A state (x, y, x', y').
@@ -233,7 +261,7 @@ typedef struct RotorRubStepper {
 typedef struct RotorRubEvent {
   // Switch time τ.
   double time;
-  // `ROTOR_RUB_EVENT_ENTER` or `ROTOR_RUB_EVENT_EXIT`.
+  // `ROTOR_RUB_EVENT_ENTER`, `_EXIT`, or under friction `_REVERSE`, `_ROLL`, `_SLIP`.
   int32_t kind;
   // The state at the switch (on z = 1).
   struct RotorRubState state;
@@ -245,7 +273,7 @@ typedef struct RotorRubStepResult {
   double time;
   // State at the step end.
   struct RotorRubState state;
-  // `ROTOR_RUB_REGIME_FREE` or `ROTOR_RUB_REGIME_CONTACT` at the step end.
+  // `ROTOR_RUB_REGIME_FREE`, `_CONTACT` or (friction) `_ROLLING` at the step end.
   int32_t regime;
   // Switches stored in `events` (<= ROTOR_RUB_EVENT_CAPACITY).
   uint32_t event_count;

@@ -10,7 +10,7 @@ use crate::raw::{guard, read, write, write_text};
 use crate::types::*;
 
 /// Number of table entries: model parameters, initial state and start time.
-pub const ROTOR_RUB_PARAMETER_COUNT: usize = 20;
+pub const ROTOR_RUB_PARAMETER_COUNT: usize = 27;
 const _: () = assert!(ROTOR_RUB_PARAMETER_COUNT == Parameter::COUNT);
 
 fn parameter(index: i32) -> Result<Parameter, i32> {

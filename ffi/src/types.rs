@@ -126,6 +126,20 @@ pub struct RotorRubParams {
     pub force_x: f64,
     /// u_y: external input force, y.
     pub force_y: f64,
+    /// m̂: stator ring mass over disk mass (0: the paper's massless ring).
+    pub stator_mass_ratio: f64,
+    /// k̂_c: rotor–ring contact stiffness (with a ring mass only).
+    pub contact_stiffness: f64,
+    /// ĉ: ring support damping (with a ring mass only).
+    pub stator_damping: f64,
+    /// x̃s0: initial ring position x (with a ring mass only).
+    pub xs0: f64,
+    /// ỹs0: initial ring position y (with a ring mass only).
+    pub ys0: f64,
+    /// x̃s0': initial ring velocity x (with a ring mass only).
+    pub vxs0: f64,
+    /// ỹs0': initial ring velocity y (with a ring mass only).
+    pub vys0: f64,
 }
 
 /// A state (x, y, x', y').
@@ -167,7 +181,7 @@ pub struct RotorRubConfig {
 pub struct RotorRubEvent {
     /// Switch time τ.
     pub time: f64,
-    /// `ROTOR_RUB_EVENT_ENTER` or `ROTOR_RUB_EVENT_EXIT`.
+    /// `ROTOR_RUB_EVENT_ENTER`, `_EXIT`, or under friction `_REVERSE`, `_ROLL`, `_SLIP`.
     pub kind: i32,
     /// The state at the switch (on z = 1).
     pub state: RotorRubState,
@@ -181,7 +195,7 @@ pub struct RotorRubStepResult {
     pub time: f64,
     /// State at the step end.
     pub state: RotorRubState,
-    /// `ROTOR_RUB_REGIME_FREE` or `ROTOR_RUB_REGIME_CONTACT` at the step end.
+    /// `ROTOR_RUB_REGIME_FREE`, `_CONTACT` or (friction) `_ROLLING` at the step end.
     pub regime: i32,
     /// Switches stored in `events` (<= ROTOR_RUB_EVENT_CAPACITY).
     pub event_count: u32,
@@ -208,47 +222,35 @@ pub struct RotorRubStepper {
     pub _opaque: [u64; ROTOR_RUB_STEPPER_WORDS],
 }
 
+impl RotorRubParams {
+    /// The fields in table order: `RotorRubParams` is `repr(C)` with one `f64` per model
+    /// parameter in the table's order (its size is checked at compile time above, its field
+    /// order against the table by `tests/header.rs`), so it is laid out as that array.
+    fn to_values(self) -> [f64; rotor_rub::Parameter::MODEL_COUNT] {
+        // SAFETY: a `repr(C)` struct of MODEL_COUNT `f64` fields has the layout of
+        // `[f64; MODEL_COUNT]` (same size, asserted above; alignment of f64; no padding).
+        unsafe {
+            core::mem::transmute::<RotorRubParams, [f64; rotor_rub::Parameter::MODEL_COUNT]>(self)
+        }
+    }
+
+    fn from_values(values: [f64; rotor_rub::Parameter::MODEL_COUNT]) -> Self {
+        // SAFETY: as in `to_values`.
+        unsafe {
+            core::mem::transmute::<[f64; rotor_rub::Parameter::MODEL_COUNT], RotorRubParams>(values)
+        }
+    }
+}
+
 impl From<RotorRubParams> for Params {
     fn from(p: RotorRubParams) -> Self {
-        Params {
-            speed_ratio: p.speed_ratio,
-            damping_ratio: p.damping_ratio,
-            mass_ratio: p.mass_ratio,
-            eccentricity_ratio: p.eccentricity_ratio,
-            phase: p.phase,
-            k_xx: p.k_xx,
-            k_xy: p.k_xy,
-            k_yx: p.k_yx,
-            k_yy: p.k_yy,
-            offset_x: p.offset_x,
-            offset_y: p.offset_y,
-            friction_coefficient: p.friction_coefficient,
-            radius_ratio: p.radius_ratio,
-            force_x: p.force_x,
-            force_y: p.force_y,
-        }
+        Params::from_values(p.to_values())
     }
 }
 
 impl From<Params> for RotorRubParams {
     fn from(p: Params) -> Self {
-        RotorRubParams {
-            speed_ratio: p.speed_ratio,
-            damping_ratio: p.damping_ratio,
-            mass_ratio: p.mass_ratio,
-            eccentricity_ratio: p.eccentricity_ratio,
-            phase: p.phase,
-            k_xx: p.k_xx,
-            k_xy: p.k_xy,
-            k_yx: p.k_yx,
-            k_yy: p.k_yy,
-            offset_x: p.offset_x,
-            offset_y: p.offset_y,
-            friction_coefficient: p.friction_coefficient,
-            radius_ratio: p.radius_ratio,
-            force_x: p.force_x,
-            force_y: p.force_y,
-        }
+        RotorRubParams::from_values(p.values())
     }
 }
 

@@ -351,7 +351,7 @@ fn parameters_by_index_and_name() {
     // SAFETY: valid or null pointers as each case says.
     unsafe {
         let mut found = 0;
-        for bad in [-1, 20, i32::MAX] {
+        for bad in [-1, ROTOR_RUB_PARAMETER_COUNT as i32, i32::MAX] {
             assert_eq!(
                 rotor_rub_parameter_set(&mut params, &mut initial, &mut start_time, bad, 1.0),
                 ROTOR_RUB_ERR_INVALID_ARGUMENT
@@ -398,8 +398,10 @@ fn parameters_by_index_and_name() {
         );
         assert_eq!(params.speed_ratio, 2.0);
         let mut value = 0.0;
+        // The first start value (x0) needs the initial state.
+        let x0 = Parameter::X0 as i32;
         assert_eq!(
-            rotor_rub_parameter_get(&params, std::ptr::null(), std::ptr::null(), 15, &mut value),
+            rotor_rub_parameter_get(&params, std::ptr::null(), std::ptr::null(), x0, &mut value),
             ROTOR_RUB_ERR_NULL
         );
         assert_eq!(

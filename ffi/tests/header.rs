@@ -89,3 +89,25 @@ fn every_function_documents_its_error_codes() {
     }
     assert_eq!(checked, 14, "functions returning an error code");
 }
+
+/// The C struct `RotorRubParams` has one `double` per model parameter of the table, named as the
+/// table names it and in the table's order (the conversions go through the table's order): a
+/// missing, extra or reordered field fails here.
+#[test]
+fn the_c_parameter_struct_follows_the_table() {
+    let header =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("include/rotor_rub.h"))
+            .unwrap();
+    let start = header.find("typedef struct RotorRubParams {").unwrap();
+    let end = start + header[start..].find("} RotorRubParams;").unwrap();
+    let fields: Vec<&str> = header[start..end]
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("double "))
+        .map(|f| f.trim_end_matches(';'))
+        .collect();
+    let table: Vec<&str> = Parameter::ALL[..Parameter::MODEL_COUNT]
+        .iter()
+        .map(|p| p.info().name)
+        .collect();
+    assert_eq!(fields, table);
+}

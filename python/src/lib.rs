@@ -1,6 +1,15 @@
 //! `rotor_rub._core`, the compiled core of the Python package `rotor_rub` (see
 //! `python/rotor_rub/__init__.py` for the public, typed API). It calls the CLI library
 //! (`rotor_rub_cli`) so inputs, results and error messages are the command line's.
+//!
+//! Modules: `args` (Python values → numbers, counts and flags, strictly), `inputs` (keywords →
+//! the CLI library's problem and options), `watch` (long calls under the CLI library's watch:
+//! Ctrl-C and progress every ~50 ms), `runs` (simulate, poincare, spectrum), `sweep` (sweeps with
+//! response classes, Lyapunov exponents and continuation, on a thread pool per call), `runup` +
+//! `runup_speed`, `stepper` + `stepper_state` (the stepper and its checked saved state), `meta`
+//! (the problem a result carries), `errors` (CLI errors → ValueError / PropagationError, flags
+//! named as keywords). The typed layer is `python/rotor_rub/` (results as dataclasses of numpy
+//! arrays, plots, pandas/xarray/Parquet/NetCDF, progress bars, Dask sweeps).
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

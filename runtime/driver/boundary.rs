@@ -22,18 +22,7 @@ pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, 
         return (field::regime_of(params, time, state), *state);
     }
     let free = field::acceleration(&model, Field::Free, &field::phasor(&model, time), state);
-    let c = 0.5 * geometry::curvature(&model, state, free);
-    // March out geometrically until the expansion leaves the band; its sign there is the side.
-    let mut s = 1e-20;
-    let mut side = 0.0;
-    while s < 1e3 {
-        let hs = h + dh * s + c * s * s;
-        if math::abs(hs) > TOUCH_DEPTH {
-            side = hs;
-            break;
-        }
-        s *= 2.0;
-    }
+    let side = motion_side(h, dh, geometry::curvature(&model, state, free));
     let regime = if side > 0.0 {
         Regime::Contact
     } else if side < 0.0 {
@@ -50,4 +39,20 @@ pub(crate) fn start_side(params: &Params, time: f64, state: &State) -> (Regime, 
     let scale = math::sqrt(1.0 + target) / math::hypot(u, v);
     let (x, y) = geometry::at_offset(&model, (u * scale, v * scale));
     (regime, State { x, y, ..*state })
+}
+
+/// The side of z = 1 the motion takes from a start within [`TOUCH_DEPTH`] of it: the sign of
+/// the expansion h0 + h0'·s + ½h0''·s² where it first leaves the band, marching s out
+/// geometrically (0 when it never does: the motion stays on z = 1 to rounding).
+pub(crate) fn motion_side(h: f64, dh: f64, d2h: f64) -> f64 {
+    let c = 0.5 * d2h;
+    let mut s = 1e-20;
+    while s < 1e3 {
+        let hs = h + dh * s + c * s * s;
+        if math::abs(hs) > TOUCH_DEPTH {
+            return hs;
+        }
+        s *= 2.0;
+    }
+    0.0
 }

@@ -3,6 +3,14 @@
 //! what happens between them: target handling, the switch from one regime's solver to the next,
 //! divergence at a switch, the step budget, a failure that repeats, and starts on z = 1.
 //!
+//! # Any model
+//! The driver knows a model only through [`System`]: its state type, the side of a start, the
+//! slip direction at a contact start and the divergence test. The paper's planar model
+//! ([`crate::params::Params`], state [`State`]) and a rotor from matrices
+//! (`crate::matrix::MatrixModel`, the model's size a property of its statement) are two
+//! systems on the same state machine; [`Located`], [`SegmentSolver`] and [`Solvers`] take the
+//! state type as a parameter that defaults to the planar [`State`].
+//!
 //! # How a method plugs in
 //! A [`SegmentSolver`] solves the motion in one regime from a start on: [`SegmentSolver::start`]
 //! begins a segment at a switch (or the problem start), [`SegmentSolver::locate`] serves a
@@ -26,8 +34,9 @@
 
 mod boundary;
 mod piecewise;
+mod system;
 
-pub(crate) use boundary::start_side;
+pub(crate) use boundary::{motion_side, start_side};
 
 /// `impl Propagate for $ty` by delegation to the [`Piecewise`] it wraps (field 0): a method's
 /// propagator is a newtype over the driver, and this is all its `Propagate` says.
@@ -54,23 +63,24 @@ macro_rules! propagate_through_driver {
 }
 pub use piecewise::Piecewise;
 pub(crate) use propagate_through_driver;
+pub use system::System;
 
 use crate::params::State;
 use crate::propagate::{Event, PropagationError, Regime};
 
 /// What a segment solver found on the way to a target time.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Located {
+pub enum Located<S = State> {
     /// The target lies in the part of the segment already computed: the state there.
-    Reached(State),
+    Reached(S),
     /// The segment ends at this switch, at or before the target.
-    Switch(Event),
+    Switch(Event<S>),
     /// The target lies beyond what has been computed: take a step.
     NeedStep,
 }
 
-/// A solver of one regime's segments.
-pub trait SegmentSolver {
+/// A solver of one regime's segments of a model with state `S`.
+pub trait SegmentSolver<S = State> {
     /// Start a segment in `regime` at `(time, state)`; `slip` is the slip direction σ = ±1 of
     /// slipping contact under friction, 0 when no slip is tracked (free flight, rolling, μ = 0).
     /// A solver may compute its first step here.
@@ -79,12 +89,12 @@ pub trait SegmentSolver {
         regime: Regime,
         slip: f64,
         time: f64,
-        state: State,
+        state: S,
     ) -> Result<(), PropagationError>;
     /// Serve `target` (not before the segment start nor before the last target served) from what
     /// has been computed. A closed-form solver may serve every target without steps. Serving a
     /// target never changes the steps taken (sampling does not perturb a run).
-    fn locate(&mut self, target: f64) -> Located;
+    fn locate(&mut self, target: f64) -> Located<S>;
     /// Compute the next step and search it for the switch that ends the segment.
     fn step(&mut self) -> Result<(), PropagationError>;
     /// The time up to which the segment has been computed (reported when the step budget is
@@ -92,17 +102,30 @@ pub trait SegmentSolver {
     fn computed_to(&self) -> f64;
 }
 
-/// The segment solvers of a method, by regime.
-pub trait Solvers {
+/// The segment solvers of a method, by regime (state `S`).
+pub trait Solvers<S = State> {
     /// The solver of `regime`'s segments.
-    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver;
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver<S>;
 
     /// [`SegmentSolver::locate`] on the solver of `regime`: what the driver asks for every
     /// target, so an implementation dispatches it statically (inlined) instead of through
     /// [`Self::solver`]'s `dyn` reference.
     #[inline]
-    fn locate(&mut self, regime: Regime, target: f64) -> Located {
+    fn locate(&mut self, regime: Regime, target: f64) -> Located<S> {
         self.solver(regime).locate(target)
+    }
+}
+
+/// A caller's solvers, borrowed: a driver run over solvers that outlive it (the stepper's, built
+/// once per step on its stack, with a sub-step slot too large to move).
+impl<St, S: Solvers<St> + ?Sized> Solvers<St> for &mut S {
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver<St> {
+        (**self).solver(regime)
+    }
+
+    #[inline]
+    fn locate(&mut self, regime: Regime, target: f64) -> Located<St> {
+        (**self).locate(regime, target)
     }
 }
 
@@ -117,8 +140,13 @@ pub struct ByRegime<F, C, R> {
     pub rolling: R,
 }
 
-impl<F: SegmentSolver, C: SegmentSolver, R: SegmentSolver> Solvers for ByRegime<F, C, R> {
-    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver {
+impl<St, F, C, R> Solvers<St> for ByRegime<F, C, R>
+where
+    F: SegmentSolver<St>,
+    C: SegmentSolver<St>,
+    R: SegmentSolver<St>,
+{
+    fn solver(&mut self, regime: Regime) -> &mut dyn SegmentSolver<St> {
         match regime {
             Regime::Free => &mut self.free,
             Regime::Contact => &mut self.contact,
@@ -127,7 +155,7 @@ impl<F: SegmentSolver, C: SegmentSolver, R: SegmentSolver> Solvers for ByRegime<
     }
 
     #[inline]
-    fn locate(&mut self, regime: Regime, target: f64) -> Located {
+    fn locate(&mut self, regime: Regime, target: f64) -> Located<St> {
         match regime {
             Regime::Free => self.free.locate(target),
             Regime::Contact => self.contact.locate(target),

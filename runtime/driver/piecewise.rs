@@ -1,22 +1,19 @@
 //! The state machine itself: one [`Piecewise`] behind [`Propagate`] for every method.
 
-use super::boundary::start_side;
-use super::within_bounds;
-use super::{Located, Solvers, StepBudget};
-use crate::field;
-use crate::params::{Params, Problem, State};
+use super::{Located, Solvers, StepBudget, System};
+use crate::params::{Params, Problem};
 use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target};
 
-/// A piecewise propagation: the current regime's solver serves targets until it reports a
-/// switch; the next regime's solver starts there. See the module documentation of
-/// [`crate::driver`].
+/// A piecewise propagation of a model `Y` (the paper's planar model by default): the current
+/// regime's solver serves targets until it reports a switch; the next regime's solver starts
+/// there. See the module documentation of [`crate::driver`].
 #[derive(Clone, Copy, Debug)]
-pub struct Piecewise<S> {
+pub struct Piecewise<S, Y: System = Params> {
     solvers: S,
-    params: Params,
+    system: Y,
     budget: Option<StepBudget>,
     time: f64,
-    state: State,
+    state: Y::State,
     regime: Regime,
     /// σ of the current slipping contact segment (0 when none is tracked).
     slip: f64,
@@ -26,34 +23,56 @@ pub struct Piecewise<S> {
 
 impl<S: Solvers> Piecewise<S> {
     /// Start at the problem's start, in the regime [`crate::field::regime_of`] decides there (on z = 1:
-    /// the side the motion takes, see the module documentation). `build(regime, state)` makes
-    /// the method's solvers with the solver of `regime` started at the problem's start time in
-    /// `state` (the initial state, or on z = 1 the start moved onto its side), with slip
-    /// direction `slip` (see [`super::SegmentSolver::start`]).
+    /// the side the motion takes, see the module documentation): [`Piecewise::start`] for the
+    /// paper's planar model.
+    ///
+    /// # Errors
+    /// As [`Piecewise::start`].
+    #[inline(always)]
+    pub fn new(
+        problem: &Problem,
+        budget: Option<StepBudget>,
+        build: impl FnOnce(Regime, f64, crate::params::State) -> Result<S, PropagationError>,
+    ) -> Result<Self, PropagationError> {
+        Piecewise::start(
+            problem.params,
+            problem.start_time,
+            problem.initial,
+            budget,
+            build,
+        )
+    }
+}
+
+impl<Y: System, S: Solvers<Y::State>> Piecewise<S, Y> {
+    /// Start `system` at `(time, state)`, in the regime [`System::start_side`] decides there.
+    /// `build(regime, slip, state)` makes the method's solvers with the solver of `regime`
+    /// started at `time` in `state` (the initial state, or on the contact surface the start
+    /// moved onto its side), with slip direction `slip` (see [`super::SegmentSolver::start`]).
     ///
     /// # Errors
     /// [`PropagationError::Diverged`] for a start beyond the divergence radius, or what `build`
     /// reports.
     #[inline(always)]
-    pub fn new(
-        problem: &Problem,
+    pub fn start(
+        system: Y,
+        time: f64,
+        state: Y::State,
         budget: Option<StepBudget>,
-        build: impl FnOnce(Regime, f64, State) -> Result<S, PropagationError>,
+        build: impl FnOnce(Regime, f64, Y::State) -> Result<S, PropagationError>,
     ) -> Result<Self, PropagationError> {
-        let params = problem.params;
-        let (time, state) = (problem.start_time, problem.initial);
-        if !within_bounds(&state) {
-            return Err(PropagationError::Diverged { time, state });
+        if !system.within_bounds(&state) {
+            return Err(system.diverged(time, &state));
         }
-        let (regime, start) = start_side(&params, time, &state);
+        let (regime, start) = system.start_side(time, &state);
         let slip = match regime {
-            Regime::Contact => field::slip_direction(&params, time, &start, None),
+            Regime::Contact => system.slip_direction(time, &start, None),
             Regime::Free | Regime::Rolling => 0.0,
         };
         let solvers = build(regime, slip, start)?;
         Ok(Piecewise {
             solvers,
-            params,
+            system,
             budget,
             time,
             state,
@@ -61,6 +80,31 @@ impl<S: Solvers> Piecewise<S> {
             slip,
             failure: None,
         })
+    }
+
+    /// A propagation already under way: at `(time, state)` in `regime` with slip direction
+    /// `slip`, the solvers' solver of `regime` already started there (a fixed-step caller that
+    /// keeps the position between its steps and runs the driver over each, `crate::stepper`).
+    /// Nothing is validated: the caller's position is one the driver reached.
+    #[inline]
+    pub fn resume(
+        system: Y,
+        time: f64,
+        state: Y::State,
+        regime: Regime,
+        slip: f64,
+        solvers: S,
+    ) -> Self {
+        Piecewise {
+            solvers,
+            system,
+            budget: None,
+            time,
+            state,
+            regime,
+            slip,
+            failure: None,
+        }
     }
 
     /// The slip direction σ of the current contact segment (±1 while slipping under friction, 0
@@ -75,17 +119,15 @@ impl<S: Solvers> Piecewise<S> {
     }
 
     /// Move to `event` and start the next regime's solver there.
-    fn switch(&mut self, event: Event) -> Result<(), PropagationError> {
-        if !within_bounds(&event.state) {
-            return Err(PropagationError::Diverged {
-                time: event.time,
-                state: event.state,
-            });
+    fn switch(&mut self, event: Event<Y::State>) -> Result<(), PropagationError> {
+        if !self.system.within_bounds(&event.state) {
+            return Err(self.system.diverged(event.time, &event.state));
         }
         let regime = event.kind.regime_after();
         let slip = match regime {
             Regime::Contact => {
-                field::slip_direction(&self.params, event.time, &event.state, Some(event.kind))
+                self.system
+                    .slip_direction(event.time, &event.state, Some(event.kind))
             }
             Regime::Free | Regime::Rolling => 0.0,
         };
@@ -100,12 +142,12 @@ impl<S: Solvers> Piecewise<S> {
     }
 }
 
-impl<S: Solvers> Propagate for Piecewise<S> {
+impl<Y: System, S: Solvers<Y::State>> Propagate<Y::State> for Piecewise<S, Y> {
     fn time(&self) -> f64 {
         self.time
     }
 
-    fn state(&self) -> State {
+    fn state(&self) -> Y::State {
         self.state
     }
 
@@ -113,7 +155,7 @@ impl<S: Solvers> Propagate for Piecewise<S> {
         self.regime
     }
 
-    fn advance(&mut self, target: f64) -> Result<Option<Event>, PropagationError> {
+    fn advance(&mut self, target: f64) -> Result<Option<Event<Y::State>>, PropagationError> {
         if !check_target(target, self.time)? {
             return Ok(None);
         }

@@ -27,6 +27,13 @@
 //   part of K_s (`cross_checks`), else the normal force can turn negative (`docs/MODEL.md §10`).
 // * |u| ≤ 1e3 per component (the external input force, `docs/MODEL.md §15`): its static
 //   deflection u stays a decade below the divergence radius, like the unbalance orbit.
+// * The stator ring (`docs/MODEL.md` §17): m̂ ∈ [0, 1e3] (0 is the paper's massless ring; at
+//   1e3 the ring moves by 1e-3 of the rotor's contact impulse, the fixed-ring limit);
+//   k̂_c ∈ (0, 1e6] (a contact frequency √(k̂_c (1 + 1/m̂)) ≤ 1e3·√2 keeps a contact resolved by
+//   a few hundred steps per forcing period); ĉ ∈ [0, 1e3] (0: the ring rings down for ever).
+//   Its start state has the rotor's ranges. Without mass (m̂ = 0) the ring has no state and no
+//   contact spring of its own: a non-default k̂_c, ĉ or ring start is an error
+//   (`ParamError::RingWithoutMass`), never silently ignored.
 
 
 const STIFFNESS: f64 = 1.0e5;
@@ -64,6 +71,20 @@ parameter_table! {
             "external force on the rotor per unit mass, x, clearances·ω_n² (a bearing, a controller, a static load; the FMU's input fx)";
         ForceY force_y "u_y" = 0.0, Range::closed(-FORCE, FORCE),
             "external force on the rotor per unit mass, y, clearances·ω_n² (the FMU's input fy)";
+        StatorMassRatio stator_mass_ratio "m̂" = 0.0, Range::closed(0.0, 1.0e3),
+            "stator ring mass over disk mass (0: the paper's massless ring, whose support K_s is the contact spring)";
+        ContactStiffness contact_stiffness "k̂_c" = 50.0, Range::above(0.0, 1.0e6),
+            "rotor–ring contact stiffness over rotor stiffness (isotropic; with stator_mass_ratio > 0 only)";
+        StatorDamping stator_damping "ĉ" = 0.0, Range::closed(0.0, 1.0e3),
+            "ring support damping c_s/(M ω_n) (isotropic; with stator_mass_ratio > 0 only)";
+        Xs0 xs0 "x̃s0" = 0.0, Range::closed(-1.0e2, 1.0e2),
+            "initial ring position x from its rest position, clearances (with stator_mass_ratio > 0 only)";
+        Ys0 ys0 "ỹs0" = 0.0, Range::closed(-1.0e2, 1.0e2),
+            "initial ring position y from its rest position, clearances (with stator_mass_ratio > 0 only)";
+        Vxs0 vxs0 "x̃s0'" = 0.0, Range::closed(-1.0e2, 1.0e2),
+            "initial ring velocity x', clearances per unit τ (with stator_mass_ratio > 0 only)";
+        Vys0 vys0 "ỹs0'" = 0.0, Range::closed(-1.0e2, 1.0e2),
+            "initial ring velocity y', clearances per unit τ (with stator_mass_ratio > 0 only)";
     }
     start {
         X0 x0 "x̃0" = 0.1, Range::closed(-1.0e2, 1.0e2),

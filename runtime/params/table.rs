@@ -83,6 +83,14 @@ macro_rules! parameter_table {
             pub const fn values(&self) -> [f64; Parameter::MODEL_COUNT] {
                 [$( self.$mname, )*]
             }
+
+            /// The parameters with `values` in table order (the inverse of [`Params::values`]):
+            /// what a caller that holds the table as an array (the C ABI's struct) converts
+            /// through, so that no field is copied by hand.
+            pub const fn from_values(values: [f64; Parameter::MODEL_COUNT]) -> Params {
+                let [$( $mname, )*] = values;
+                Params { $( $mname, )* }
+            }
         }
 
         impl Problem {

@@ -117,6 +117,16 @@ pub enum ParamError {
         /// K̂xx K̂yy − ((K̂xy + K̂yx)/2)², the determinant of the symmetric part.
         determinant: f64,
     },
+    /// A stator ring parameter (`contact_stiffness`, `stator_damping`, the ring's start state)
+    /// away from its default while `stator_mass_ratio` = 0: the massless ring has no contact
+    /// spring, damping or state of its own (its support K_s is the contact), so the value would
+    /// be ignored.
+    RingWithoutMass {
+        /// The ring parameter.
+        parameter: Parameter,
+        /// Its value.
+        value: f64,
+    },
 }
 
 impl ParamError {
@@ -127,6 +137,7 @@ impl ParamError {
                 Some(parameter)
             }
             ParamError::FrictionNeedsDefiniteStator { .. } => Some(Parameter::FrictionCoefficient),
+            ParamError::RingWithoutMass { parameter, .. } => Some(parameter),
         }
     }
 }
@@ -154,6 +165,12 @@ impl fmt::Display for ParamError {
                 "friction_coefficient = {} needs a stator stiffness with a positive definite symmetric part (k_xx > 0, k_yy > 0 and k_xx·k_yy − ((k_xy + k_yx)/2)² > 0; it is {}): otherwise the normal contact force can be negative",
                 Number(friction_coefficient),
                 Number(determinant)
+            ),
+            ParamError::RingWithoutMass { parameter, value } => write!(
+                f,
+                "{parameter} = {} has no effect while stator_mass_ratio = 0 (the massless ring's support K_s is the contact spring): set stator_mass_ratio in (0, 1e3] for a ring with mass, or leave {parameter} at its default {}",
+                Number(value),
+                Number(parameter.info().default)
             ),
         }
     }
@@ -215,12 +232,28 @@ impl Params {
     }
 }
 
-/// Rules across parameters: μ > 0 needs a positive definite symmetric part of K_s
+/// Rules across parameters: ring parameters only with a ring mass ([`ParamError::RingWithoutMass`]);
+/// μ > 0 on the massless ring needs a positive definite symmetric part of K_s
 /// (`docs/MODEL.md §10`: else the normal force N = (z − 1) nᵀK_s n turns negative in some
 /// direction and the Coulomb cone is meaningless). ν = 0 at η = 1 (exact resonance) is valid,
 /// its free flight grows secularly (`docs/MODEL.md §11`).
 fn cross_checks(p: &Params) -> Result<(), ParamError> {
-    if p.friction_coefficient > 0.0 {
+    if p.stator_mass_ratio == 0.0 {
+        for (parameter, value) in [
+            (Parameter::ContactStiffness, p.contact_stiffness),
+            (Parameter::StatorDamping, p.stator_damping),
+            (Parameter::Xs0, p.xs0),
+            (Parameter::Ys0, p.ys0),
+            (Parameter::Vxs0, p.vxs0),
+            (Parameter::Vys0, p.vys0),
+        ] {
+            if value != parameter.info().default {
+                return Err(ParamError::RingWithoutMass { parameter, value });
+            }
+        }
+    }
+    // With a ring of mass the contact law is k̂_c I (isotropic, N ≥ 0 whatever K_s).
+    if p.friction_coefficient > 0.0 && p.stator_mass_ratio == 0.0 {
         let cross = 0.5 * (p.k_xy + p.k_yx);
         let determinant = p.k_xx * p.k_yy - cross * cross;
         if !(p.k_xx > 0.0 && p.k_yy > 0.0 && determinant > 0.0) {

@@ -13,13 +13,12 @@
 //! evaluations of a step: in practice 40–60). Rolling's first integral w stays at 0 to the
 //! explicit steps' accuracy (its drift is the local error, ~h⁹).
 
-use super::report::StepReport;
-use super::{Stepper, StepperError};
 use crate::analytic::schemes::SubStep;
-use crate::analytic::switch::{SlipVelocity, first_slip_switch};
+use crate::analytic::switch::{Budget, SlipVelocity, first_slip_switch};
+use crate::driver::within_bounds;
 use crate::field;
 use crate::params::{Params, State};
-use crate::propagate::{EventKind, Regime};
+use crate::propagate::{EventKind, PropagationError, Regime};
 use crate::reference::{
     Dop853, Function, Interpolant, OdeSystem, RotorSystem, Scheme, Switches, Tolerance,
     first_crossing_subdivided,
@@ -46,7 +45,8 @@ impl Slip {
     };
 
     /// The slip of a segment of `regime` starting at `(t, state)` after `cause` (the event that
-    /// starts it, `None` at a start).
+    /// starts it, `None` at a start): its direction as the driver decides it
+    /// ([`field::slip_direction`]), then [`Slip::of`].
     pub fn at(
         params: &Params,
         regime: Regime,
@@ -54,19 +54,26 @@ impl Slip {
         state: &State,
         cause: Option<EventKind>,
     ) -> Slip {
+        let sigma = match regime {
+            Regime::Contact => field::slip_direction(params, t, state, cause),
+            Regime::Free | Regime::Rolling => 0.0,
+        };
+        Slip::of(params, regime, t, state, sigma)
+    }
+
+    /// The slip of a segment of `regime` starting at `(t, state)` in direction `sigma` (the
+    /// driver's, 0 when no slip is tracked): the friction switch's offset and scale there.
+    pub fn of(params: &Params, regime: Regime, t: f64, state: &State, sigma: f64) -> Slip {
         if params.friction_coefficient <= 0.0 {
             return Slip::NONE;
         }
         match regime {
             Regime::Free => Slip::NONE,
-            Regime::Contact => {
-                let sigma = field::slip_direction(params, t, state, cause);
-                Slip {
-                    sigma,
-                    offset: SlipVelocity::start_offset(params, t, state, sigma),
-                    scale: SlipVelocity::scale_at(params, state),
-                }
-            }
+            Regime::Contact => Slip {
+                sigma,
+                offset: SlipVelocity::start_offset(params, t, state, sigma),
+                scale: SlipVelocity::scale_at(params, state),
+            },
             Regime::Rolling => Slip {
                 sigma: 0.0,
                 offset: Switches::new(params, Regime::Rolling, 0.0, t, &state.to_array()).offset(),
@@ -109,72 +116,73 @@ impl Interpolant<4> for ExactSteps<'_> {
     }
 }
 
-impl Stepper {
-    /// The first `reverse` or `roll` on a slipping sub-step from `state` at `t`, before local
-    /// time `limit` (the exit, or the sub-step's end), with the stepper's capped budget.
-    pub(super) fn slip_in(
-        &self,
-        sub: &SubStep,
-        t: f64,
-        state: State,
-        slip: &Slip,
-        limit: f64,
-    ) -> Option<SwitchIn> {
-        if slip.sigma == 0.0 {
-            return None;
-        }
-        let f = SlipVelocity::new(&sub.segment, t, slip.sigma, slip.offset, slip.scale);
-        first_slip_switch(&f, state, limit, self.config.budget())
+/// The first `reverse` or `roll` on a slipping sub-step `sub` from `state` at `t`, before local
+/// time `limit` (the exit, or the sub-step's end), with the capped `budget`.
+pub(super) fn slip_in(
+    sub: &SubStep,
+    t: f64,
+    state: State,
+    slip: &Slip,
+    limit: f64,
+    budget: &Budget,
+) -> Option<SwitchIn> {
+    if slip.sigma == 0.0 {
+        return None;
     }
+    let f = SlipVelocity::new(&sub.segment, t, slip.sigma, slip.offset, slip.scale);
+    first_slip_switch(&f, state, limit, budget)
+}
 
-    /// One rolling sub-step of length `h` from `state` at `t`: its end state, or the first
-    /// switch in it as (local time, state, kind).
-    pub(super) fn rolling_substep(
-        &self,
-        t: f64,
-        state: State,
-        h: f64,
-        slip: &Slip,
-        report: &mut StepReport,
-    ) -> Result<(State, Option<SwitchIn>), StepperError> {
-        let sys = RotorSystem {
-            params: self.params,
-            regime: Regime::Rolling,
-            slip: 0.0,
-        };
-        let y0 = state.to_array();
-        let steps = ExactSteps {
-            sys: &sys,
-            t0: t,
-            t1: t + h,
-            y0,
-            f0: sys.rhs(t, &y0),
-            tol: Tolerance::uniform(1e-12),
-        };
-        let y1 = steps.eval(t + h);
-        super::check_bounded(t + h, State::from_array(y1))?;
-        report.substeps += 1;
-        let switches = Switches::with_offset(&self.params, Regime::Rolling, 0.0, slip.offset);
-        let mut first: Option<(f64, Function)> = None;
-        for f in switches.functions().into_iter().flatten() {
-            let found =
-                first_crossing_subdivided(1, &steps, &y0, &y1, |tt, y| switches.measure(f, tt, y));
-            if let Some(te) = found
-                && first.is_none_or(|(tf, _)| te < tf)
-            {
-                first = Some((te, f));
-            }
-        }
-        let end = State::from_array(y1);
-        let Some((te, f)) = first else {
-            return Ok((end, None));
-        };
-        let ye = if te >= t + h { y1 } else { steps.eval(te) };
-        Ok((
-            end,
-            switches
-                .classify(f, te, &ye)
-                .map(|kind| (te - t, State::from_array(ye), kind)),
-        ))
+/// One rolling sub-step of length `h` from `state` at `t`: its end state, or the first switch
+/// in it as (local time, state, kind).
+pub(super) fn rolling_substep(
+    params: &Params,
+    t: f64,
+    state: State,
+    h: f64,
+    slip: &Slip,
+) -> Result<(State, Option<SwitchIn>), PropagationError> {
+    let sys = RotorSystem {
+        params: *params,
+        regime: Regime::Rolling,
+        slip: 0.0,
+    };
+    let y0 = state.to_array();
+    let steps = ExactSteps {
+        sys: &sys,
+        t0: t,
+        t1: t + h,
+        y0,
+        f0: sys.rhs(t, &y0),
+        tol: Tolerance::uniform(1e-12),
+    };
+    let y1 = steps.eval(t + h);
+    let end = State::from_array(y1);
+    if !within_bounds(&end) {
+        return Err(PropagationError::Diverged {
+            time: t + h,
+            state: end,
+        });
     }
+    let switches = Switches::with_offset(params, Regime::Rolling, 0.0, slip.offset);
+    let mut first: Option<(f64, Function)> = None;
+    for f in switches.functions().into_iter().flatten() {
+        let found =
+            first_crossing_subdivided(1, &steps, &y0, &y1, |tt, y| switches.measure(f, tt, y));
+        if let Some(te) = found
+            && first.is_none_or(|(tf, _)| te < tf)
+        {
+            first = Some((te, f));
+        }
+    }
+    let Some((te, f)) = first else {
+        return Ok((end, None));
+    };
+    let ye = if te >= t + h { y1 } else { steps.eval(te) };
+    Ok((
+        end,
+        switches
+            .classify(f, te, &ye)
+            .map(|kind| (te - t, State::from_array(ye), kind)),
+    ))
 }

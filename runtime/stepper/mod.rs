@@ -73,6 +73,7 @@ pub mod friction;
 mod inputs;
 mod report;
 pub mod search;
+mod solvers;
 mod transition;
 
 pub use crate::analytic::switch::Search;

@@ -48,6 +48,7 @@ pub mod parameters;
 mod polynomial;
 mod regimes;
 mod speed;
+mod station;
 pub mod symbols;
 mod taylor;
 mod tools;
@@ -84,6 +85,7 @@ pub fn derive_all() -> Model {
     speed::derive(&mut m);
     taylor::derive(&mut m);
     regimes::derive(&mut m);
+    station::derive(&mut m);
     m
 }
 
@@ -221,24 +223,39 @@ impl Model {
     }
 
     /// The rotor's position relative to the stator centre, stated once (`docs/MODEL.md` §1):
-    /// d = (u, v) = q − ε̂, its squared length z² = u² + v² and its length z. Every contact
-    /// quantity (the contact function, the frame, the switching function) is built on it.
+    /// d = (u, v) = q − ε̂, with its squared length z² and length z ([`Model::offset_length`]).
+    /// Every contact quantity of the planar model (the contact function, the frame, the
+    /// switching function) is built on it.
     pub(crate) fn stator_offset(&mut self, q: Vec2) -> (Vec2, ExprId, ExprId) {
         let (ex, ey) = (self.var("offset_x"), self.var("offset_y"));
         let g = &mut self.graph;
         let u = g.sub(q[0], ex);
         let v = g.sub(q[1], ey);
-        let uu = g.mul(u, u);
-        let vv = g.mul(v, v);
+        let (z2, z) = self.offset_length([u, v]);
+        ([u, v], z2, z)
+    }
+
+    /// z² = u² + v² and z of an offset d = (u, v) from the stator centre: the one definition of
+    /// the distance every contact law measures (the planar model's d = q − ε̂, a rub station's
+    /// d = B_r q − B_s q − ε̂).
+    pub(crate) fn offset_length(&mut self, d: Vec2) -> (ExprId, ExprId) {
+        let g = &mut self.graph;
+        let uu = g.mul(d[0], d[0]);
+        let vv = g.mul(d[1], d[1]);
         let z2 = g.add(uu, vv);
         let z = g.sqrt(z2);
-        ([u, v], z2, z)
+        (z2, z)
     }
 
     /// The switching function h = z² − 1 of a position: negative in free flight, positive in
     /// contact (squared so that it is smooth and cheap).
     pub(crate) fn boundary(&mut self, q: Vec2) -> ExprId {
         let (_, z2, _) = self.stator_offset(q);
+        self.boundary_at(z2)
+    }
+
+    /// h = z² − 1 from z².
+    pub(crate) fn boundary_at(&mut self, z2: ExprId) -> ExprId {
         let g = &mut self.graph;
         let one = g.constant(1.0);
         g.sub(z2, one)
@@ -247,21 +264,31 @@ impl Model {
     /// The contact function g(q) = (1 − 1/z)(u, v) ([`Model::stator_offset`]): the stator's
     /// deflection, the rotor's penetration beyond the clearance along the radius.
     pub(crate) fn contact_function(&mut self, q: Vec2) -> Vec2 {
-        let ([u, v], _, z) = self.stator_offset(q);
+        let (d, _, z) = self.stator_offset(q);
+        self.penetration(d, z)
+    }
+
+    /// The penetration (1 − 1/z) d of an offset d of length z.
+    pub(crate) fn penetration(&mut self, d: Vec2, z: ExprId) -> Vec2 {
         let g = &mut self.graph;
         let one = g.constant(1.0);
         let inv_z = g.powi(z, -1);
         let scale = g.sub(one, inv_z);
-        [g.mul(scale, u), g.mul(scale, v)]
+        [g.mul(scale, d[0]), g.mul(scale, d[1])]
     }
 
     /// K_s·w: the stator stiffness applied to a deflection.
     pub(crate) fn stator_force(&mut self, w: Vec2) -> Vec2 {
         let ks = self.stator_stiffness();
+        self.apply(ks, w)
+    }
+
+    /// K·w for a 2 × 2 matrix K.
+    pub(crate) fn apply(&mut self, k: [[ExprId; 2]; 2], w: Vec2) -> Vec2 {
         let g = &mut self.graph;
         [0, 1].map(|i| {
-            let a = g.mul(ks[i][0], w[0]);
-            let b = g.mul(ks[i][1], w[1]);
+            let a = g.mul(k[i][0], w[0]);
+            let b = g.mul(k[i][1], w[1]);
             g.add(a, b)
         })
     }
@@ -275,7 +302,13 @@ impl Model {
     /// The outward normal n = (u, v)/z and the counter-clockwise tangent t = (−v, u)/z of the
     /// contact at q ([`Model::stator_offset`]), with z (`docs/MODEL.md` §10).
     pub(crate) fn contact_frame(&mut self, q: Vec2) -> (Vec2, Vec2, ExprId) {
-        let ([u, v], _, z) = self.stator_offset(q);
+        let (d, _, z) = self.stator_offset(q);
+        self.frame(d, z)
+    }
+
+    /// The normal n = d/z and the counter-clockwise tangent t = (−d_y, d_x)/z of an offset d of
+    /// length z, with z.
+    pub(crate) fn frame(&mut self, [u, v]: Vec2, z: ExprId) -> (Vec2, Vec2, ExprId) {
         let g = &mut self.graph;
         let inv_z = g.powi(z, -1);
         let n = [g.mul(u, inv_z), g.mul(v, inv_z)];
@@ -288,6 +321,12 @@ impl Model {
     /// (`docs/MODEL.md` §10): the rotor spins counter-clockwise at η.
     pub(crate) fn slip_velocity(&mut self, q: Vec2, v: Vec2) -> ExprId {
         let (_, t, _) = self.contact_frame(q);
+        self.surface_slip(v, t)
+    }
+
+    /// w = d'·t + ρ_R η: the slip velocity of the rotor's surface, spinning counter-clockwise at
+    /// η, whose contact point moves at d' relative to the stator's, along the tangent t.
+    pub(crate) fn surface_slip(&mut self, v: Vec2, t: Vec2) -> ExprId {
         let vt = self.dot(v, t);
         let (rho, eta) = (self.var("radius_ratio"), self.var("speed_ratio"));
         let g = &mut self.graph;
@@ -309,6 +348,11 @@ impl Model {
         let normal = self.normal_force(q);
         let (_, t, _) = self.contact_frame(q);
         let mu = self.var("friction_coefficient");
+        self.coulomb(mu, sigma, normal, t)
+    }
+
+    /// μ σ N t: Coulomb friction of magnitude μN along the tangent t, in the slip direction σ.
+    pub(crate) fn coulomb(&mut self, mu: ExprId, sigma: ExprId, normal: ExprId, t: Vec2) -> Vec2 {
         let g = &mut self.graph;
         let magnitude = g.product(&[mu, sigma, normal]);
         t.map(|ti| g.mul(magnitude, ti))

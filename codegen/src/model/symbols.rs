@@ -216,6 +216,20 @@ pub const GROUPS: &[Group] = &[
         external: None,
     },
     Group {
+        ty: "ParticularResidual",
+        arg: "residual",
+        doc: "What the linearized contact equations leave at particular constants: their cos θ, sin θ and constant parts (`docs/MODEL.md` §5).",
+        fields: &[
+            ("pr_xc", "x_cos", "cos θ part of the x equation"),
+            ("pr_xs", "x_sin", "sin θ part of the x equation"),
+            ("pr_x0", "x_constant", "constant part of the x equation"),
+            ("pr_yc", "y_cos", "cos θ part of the y equation"),
+            ("pr_ys", "y_sin", "sin θ part of the y equation"),
+            ("pr_y0", "y_constant", "constant part of the y equation"),
+        ],
+        external: None,
+    },
+    Group {
         ty: "HomogeneousInitial",
         arg: "initial",
         doc: "Initial state of the homogeneous part of a contact segment (state minus particular).",
@@ -375,6 +389,47 @@ pub const GROUPS: &[Group] = &[
         )],
         external: None,
     },
+    Group {
+        ty: "OffsetRate",
+        arg: "offset_rate",
+        doc: "The rate d' = (u', v') of a rub station's offset from the stator centre (`docs/MODEL.md` §17).",
+        fields: &[("du_rate", "ur", "u'"), ("dv_rate", "vr", "v'")],
+        external: None,
+    },
+    Group {
+        ty: "ContactLaw",
+        arg: "law",
+        doc: "A rub station's contact stiffness K_c (`docs/MODEL.md` §17; the planar model's is K_s).",
+        fields: &[
+            ("kc_xx", "kc_xx", "K_c[0][0]"),
+            ("kc_xy", "kc_xy", "K_c[0][1]"),
+            ("kc_yx", "kc_yx", "K_c[1][0]"),
+            ("kc_yy", "kc_yy", "K_c[1][1]"),
+        ],
+        external: None,
+    },
+    Group {
+        ty: "StationCompliance",
+        arg: "compliance",
+        doc: "How a force at a rub station accelerates its offset, W = B M⁻¹ Bᵀ with B = B_r − B_s (`docs/MODEL.md` §17).",
+        fields: &[
+            ("w_xx", "w_xx", "W[0][0]"),
+            ("w_xy", "w_xy", "W[0][1]"),
+            ("w_yx", "w_yx", "W[1][0]"),
+            ("w_yy", "w_yy", "W[1][1]"),
+        ],
+        external: None,
+    },
+    Group {
+        ty: "OffsetAcceleration",
+        arg: "drive",
+        doc: "The acceleration d'' of a rub station's offset from every force but the contact's (`docs/MODEL.md` §17).",
+        fields: &[
+            ("drive_u", "au", "u'' without contact forces"),
+            ("drive_v", "av", "v'' without contact forces"),
+        ],
+        external: None,
+    },
 ];
 
 /// Symbols that only live inside derivations (unknowns, variables substituted away).
@@ -402,6 +457,17 @@ pub const INTERNAL: &[(&str, &str)] = &[
         "qsy",
         "y of the unknown constant response to the input force",
     ),
+    (
+        "ring_q0",
+        "x of the stator ring model's positions (q, p) = (x, y, x_s, y_s)",
+    ),
+    ("ring_q1", "y of the stator ring model's positions"),
+    ("ring_q2", "x_s of the stator ring model's positions"),
+    ("ring_q3", "y_s of the stator ring model's positions"),
+    ("ring_v0", "x' of the stator ring model's velocities"),
+    ("ring_v1", "y' of the stator ring model's velocities"),
+    ("ring_v2", "x_s' of the stator ring model's velocities"),
+    ("ring_v3", "y_s' of the stator ring model's velocities"),
     ("c1", "c1, unknown of the paper's modal constants"),
     ("c2", "c2, unknown of the paper's modal constants"),
     ("c3", "c3, unknown of the paper's modal constants"),

@@ -226,6 +226,15 @@ impl Model {
                     k(params.k_yy)
                 )
             }
+            ParamError::RingWithoutMass { parameter, value } => {
+                let d = dimension(parameter);
+                msg!(
+                    "{context}: {} = {} has no effect while stator_mass_ratio = 0 (the massless ring's support is the contact spring): set stator_mass_ratio > 0 or leave {} at its start value",
+                    name(parameter),
+                    Number(scales.to_importer(d, value)),
+                    name(parameter)
+                )
+            }
         }
     }
 }

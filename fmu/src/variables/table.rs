@@ -18,14 +18,22 @@ pub fn dimension(p: Parameter) -> Dimension {
     use Parameter as P;
     match p {
         P::SpeedRatio => Dimension::AngularSpeed,
-        P::DampingRatio | P::MassRatio | P::FrictionCoefficient => Dimension::One,
-        P::Phase => Dimension::Angle,
-        P::KXx | P::KXy | P::KYx | P::KYy => Dimension::Stiffness,
-        P::EccentricityRatio | P::OffsetX | P::OffsetY | P::RadiusRatio | P::X0 | P::Y0 => {
-            Dimension::Length
+        P::DampingRatio | P::MassRatio | P::FrictionCoefficient | P::StatorMassRatio => {
+            Dimension::One
         }
+        P::StatorDamping => Dimension::One,
+        P::Phase => Dimension::Angle,
+        P::KXx | P::KXy | P::KYx | P::KYy | P::ContactStiffness => Dimension::Stiffness,
+        P::EccentricityRatio
+        | P::OffsetX
+        | P::OffsetY
+        | P::RadiusRatio
+        | P::X0
+        | P::Y0
+        | P::Xs0
+        | P::Ys0 => Dimension::Length,
         P::ForceX | P::ForceY => Dimension::Force,
-        P::Vx0 | P::Vy0 => Dimension::Velocity,
+        P::Vx0 | P::Vy0 | P::Vxs0 | P::Vys0 => Dimension::Velocity,
         P::StartTime => Dimension::Time,
     }
 }

@@ -1,0 +1,26 @@
+//! Rotors from matrices (`docs/MODEL.md` §17): any linear rotor
+//! M q'' + (C + ηG) q' + K q = unbalance + u + B_rᵀ f_c − B_sᵀ f_c with a rub station where the
+//! contact law of the planar model acts on the offset d = B_r q − B_s q − ε̂ of two points. The
+//! model's size is a property of its statement ([`MatrixModel`], n ≤ CAP/2 in const-generic
+//! storage, no heap), not of the runtime's types; the stator ring with mass is its n = 4
+//! instance ([`ring_model`]).
+//!
+//! - `model.rs`: the statement, checked ([`MatrixModel`], [`Station`], [`Unbalance`]).
+//! - `state.rs`: y = (q, q') ([`MatrixState`]).
+//! - `field.rs`: the regime fields and the station's quantities (generated station law).
+//! - `system.rs`: the model as a [`crate::driver::System`] (start side, slip, divergence).
+//! - `ring.rs`: the stator ring with mass from the parameter table.
+//! - `error.rs`: [`MatrixError`].
+
+mod error;
+mod field;
+mod model;
+mod ring;
+mod state;
+mod system;
+
+pub use error::MatrixError;
+pub use field::StationMotion;
+pub use model::{MatrixModel, Running, SPEED_RANGE, Station, Unbalance};
+pub use ring::{RING_CAPACITY, RingModel, ring_model, ring_start};
+pub use state::MatrixState;
