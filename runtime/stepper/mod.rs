@@ -71,6 +71,7 @@ mod config;
 mod exact;
 pub mod friction;
 mod inputs;
+pub mod polynomial;
 mod report;
 pub mod search;
 mod solvers;
