@@ -54,8 +54,6 @@ pub struct SubstepPolynomial<'a> {
     model: &'a ModelParams,
     /// c_0 … c_{len − 1}, (x, y).
     c: [[f64; 2]; TERMS],
-    /// |c_m|₁ = |c_mx| + |c_my| (≥ the Euclidean norm), for the bounds.
-    norm: [f64; TERMS],
     len: usize,
     /// A bound of what the neglected terms add to |r − ε|, |r'| and |r''| on [0, horizon].
     tail: f64,
@@ -67,6 +65,7 @@ impl<'a> SubstepPolynomial<'a> {
     /// The polynomial of the contact sub-step `segment` from `start`, on [0, `horizon`], or
     /// `None` when ρ·horizon > [`MAX_RATE_STEP`] (then the closed form is the better
     /// evaluation).
+    #[inline(always)]
     pub fn contact(segment: &'a LinearSegment, start: &Point, horizon: f64) -> Option<Self> {
         let lin = segment.linearization();
         let model = lin.model();
@@ -107,6 +106,7 @@ impl<'a> SubstepPolynomial<'a> {
     /// sin θ) there, on [0, `horizon`] (the generated `free_field`), or `None` as for
     /// [`Self::contact`]. The free stiffness's norm is read from the field itself (its response
     /// to unit displacements).
+    #[inline(always)]
     pub fn free(
         model: &'a ModelParams,
         start: &Point,
@@ -162,11 +162,12 @@ impl Segment for SubstepPolynomial<'_> {
         // ones: |r − ε| ≤ |c0 − ε| + Σ_{m≥1} |c_m| h^m, |r'| ≤ Σ m|c_m| h^(m−1),
         // |r''| ≤ Σ m(m − 1)|c_m| h^(m−2), plus the neglected terms' tail.
         let h = math::abs(hi);
-        let terms = self.norm.get(1..self.len).unwrap_or(&[]);
+        let terms = self.c.get(1..self.len).unwrap_or(&[]);
         let (mut r, mut v, mut a) = (0.0, 0.0, 0.0);
         // m as a float, counted down from len − 1 to 1.
         let mut m = terms.len() as f64;
-        for n in terms.iter().rev() {
+        for cm in terms.iter().rev() {
+            let n = norm1(cm);
             if m >= 2.0 {
                 a = a * h + m * (m - 1.0) * n;
             }
@@ -195,6 +196,11 @@ fn without_input(model: &ModelParams) -> Option<ModelParams> {
     })
 }
 
+/// |c_x| + |c_y| (≥ the Euclidean norm) of a coefficient.
+fn norm1(c: &[f64; 2]) -> f64 {
+    math::abs(c[0]) + math::abs(c[1])
+}
+
 /// The Frobenius norm of the 2×2 matrix [[a, b], [c, d]].
 fn frobenius(a: f64, b: f64, c: f64, d: f64) -> f64 {
     math::sqrt(a * a + b * b + c * c + d * d)
@@ -204,6 +210,7 @@ fn frobenius(a: f64, b: f64, c: f64, d: f64) -> f64 {
 /// phasor's m-th coefficient)` (its calls with m ≥ 1 leave out the field's constants), the
 /// phasor (cos θ0, sin θ0) at s = 0; `stiffness` is the norm of the field's position gain (for
 /// the rate ρ).
+#[inline(always)]
 fn build<'a>(
     model: &'a ModelParams,
     start: &Point,
@@ -221,22 +228,13 @@ fn build<'a>(
     }
     let len = terms_for(rho_h);
     let mut c = [[0.0; 2]; TERMS];
-    let mut norm = [0.0; TERMS];
     let w = &start.state;
     let (mut cm, mut cn) = ([w.x, w.y], [w.vx, w.vy]);
-    let ([first, second, ..], [n0, n1, ..]) = (&mut c, &mut norm);
+    let [first, second, ..] = &mut c;
     (*first, *second) = (cm, cn);
-    *n0 = math::abs(cm[0]) + math::abs(cm[1]);
-    *n1 = math::abs(cn[0]) + math::abs(cn[1]);
     // η^m/m!, and m + 1 as a float.
     let (mut scale, mut k) = (1.0, 0.0);
-    for (m, (slot, n)) in c
-        .iter_mut()
-        .zip(norm.iter_mut())
-        .skip(2)
-        .take(len - 2)
-        .enumerate()
-    {
+    for (m, slot) in c.iter_mut().skip(2).take(len - 2).enumerate() {
         // The phasor's m-th coefficient: (cos, sin)(θ0 + mπ/2)·η^m/m!.
         let (ct, st) = match m % 4 {
             0 => (c0, s0),
@@ -260,7 +258,6 @@ fn build<'a>(
         let divisor = 1.0 / ((k + 1.0) * k);
         let next = [acc.ax * divisor, acc.ay * divisor];
         *slot = next;
-        *n = math::abs(next[0]) + math::abs(next[1]);
         (cm, cn) = (cn, next);
         scale *= eta / k;
     }
@@ -273,14 +270,13 @@ fn build<'a>(
     // the harmonic terms' growth. (Below rounding: about TRUNCATION of the piece's scale.)
     let h = horizon.min(1.0);
     let power = (2..len).fold(1.0, |p, _| p * h);
-    let last = norm.get(len - 1).copied().unwrap_or(0.0);
-    let before = norm.get(len - 2).copied().unwrap_or(0.0);
+    let last = c.get(len - 1).map_or(0.0, norm1);
+    let before = c.get(len - 2).map_or(0.0, norm1);
     let n = len as f64;
     let tail = 3.0 * n * (last * (n - 1.0) * rho + before * rho * rho) * power;
     Some(SubstepPolynomial {
         model,
         c,
-        norm,
         len,
         tail,
         // z = √(h + 1) = |c0 − ε|, with room for the rounding of h + 1 and of the root.
