@@ -374,12 +374,7 @@ impl SubstepKind for Contact<'_> {
 /// polynomial ([`SubstepPolynomial`]: the same function to far below rounding, a Horner sum per
 /// evaluation instead of the closed form's transcendental functions), or on the closed form
 /// when the sub-step is too long for the polynomial.
-fn exit_search(
-    sub: &SubStep,
-    start: Point,
-    end: Point,
-    budget: &Budget,
-) -> Search<Point> {
+fn exit_search(sub: &SubStep, start: Point, end: Point, budget: &Budget) -> Search<Point> {
     let len = sub.length;
     // g = −h on the way out; the start counts as inside (g ≤ 0) whatever its rounding.
     let (ga, dga, gb, dgb) = (-start.h, -start.dh, -end.h, -end.dh);
