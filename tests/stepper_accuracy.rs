@@ -62,8 +62,14 @@ fn check(name: &str, problem: &Problem, state_bound: f64, time_bound: f64) {
     let (state, time, n) = errors(problem);
     eprintln!("{name:14}: {n} switches, state error {state:.2e}, switch times {time:.2e}");
     assert!(n > 0, "{name}: no switch to test");
-    assert!(state <= state_bound, "{name}: state error {state:e} > {state_bound:e}");
-    assert!(time <= time_bound, "{name}: switch time error {time:e} > {time_bound:e}");
+    assert!(
+        state <= state_bound,
+        "{name}: state error {state:e} > {state_bound:e}"
+    );
+    assert!(
+        time <= time_bound,
+        "{name}: switch time error {time:e} > {time_bound:e}"
+    );
 }
 
 /// The paper preset: 2.0e-10 before (`BENCHMARKS.md`, "Embedded stepper").
