@@ -10,10 +10,12 @@
 //! - `field.rs`: the regime fields and the station's quantities (generated station law).
 //! - `system.rs`: the model as a [`crate::driver::System`] (start side, slip, divergence).
 //! - `ring.rs`: the stator ring with mass from the parameter table.
+//! - `free/`: exact free flight and its contact search ([`ExactFree`]).
 //! - `error.rs`: [`MatrixError`].
 
 mod error;
 mod field;
+pub mod free;
 mod model;
 mod ring;
 mod state;
@@ -21,6 +23,7 @@ mod system;
 
 pub use error::MatrixError;
 pub use field::StationMotion;
+pub use free::{ExactFree, FreeWork};
 pub use model::{MatrixModel, Running, SPEED_RANGE, Station, Unbalance};
 pub use ring::{RING_CAPACITY, RingModel, ring_model, ring_start};
 pub use state::MatrixState;
