@@ -301,7 +301,8 @@ fn terms_for(rho_h: f64) -> usize {
 mod tests {
     use super::*;
     use crate::analytic::free::{FreeConstants, FreeSegment};
-    use crate::analytic::schemes::{SubStep, exprb43_into};
+    use crate::analytic::linear::ContactConstants;
+    use crate::analytic::schemes::{SubStep, exprb43_with};
     use crate::field;
     use crate::params::Problem;
     use crate::propagate::Regime;
@@ -360,7 +361,16 @@ mod tests {
                         return;
                     }
                     let mut sub = SubStep::zeroed();
-                    exprb43_into(&params, 0.0, t, w, dt, 1.0, &mut sub).unwrap();
+                    exprb43_with(
+                        &ContactConstants::new(&params),
+                        0.0,
+                        t,
+                        w,
+                        dt,
+                        1.0,
+                        &mut sub,
+                    )
+                    .unwrap();
                     let start = geometry::point(&model, w);
                     let poly = SubstepPolynomial::contact(&sub.segment, &start, dt).unwrap();
                     assert!(poly.terms() <= TERMS);
