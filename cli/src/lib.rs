@@ -6,8 +6,10 @@
 //!
 //! Commands: `fig2` (the main job), `simulate`, `compare`, `sweep` and `merge` (shards with
 //! metadata, `shard`), `poincare`, `spectrum`, `friction_fig`, `runup` (the speed program from a
-//! preset, options or a profile CSV; per-period and event files; jumps and hysteresis), `params`,
-//! `presets`. Shared: `problem` (presets, TOML configs, `--set`), `options`, `trajectory`
+//! preset, options or a profile CSV; per-period and event files; jumps and hysteresis), `orbit`
+//! and `continue` (`orbit/`: periodic orbits, branches by pseudo-arclength continuation,
+//! bifurcations located), `params`, `presets`. Shared: `problem` (presets, TOML configs,
+//! `--set`), `options`, `trajectory`
 //! (passes over a run), `analysis` (response classes, Lyapunov exponents, spectra, switch
 //! counts), `plot`. Files and streams: `stdio` is the one writer to stdout and stderr (a closed
 //! pipe ends quietly, exit 141; `.ci/run` refuses a print anywhere else); `output` writes each
@@ -25,6 +27,7 @@ pub mod friction_fig;
 pub mod limits;
 pub mod merge;
 pub mod options;
+pub mod orbit;
 pub mod output;
 pub mod params;
 pub mod plot;

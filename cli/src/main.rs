@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 
 use rotor_rub_cli::error::{CliError, EXIT_INPUT};
 use rotor_rub_cli::{
-    compare, fig2, friction_fig, merge, output, params, poincare, presets, runup, simulate,
+    compare, fig2, friction_fig, merge, orbit, output, params, poincare, presets, runup, simulate,
     spectrum, stdio, sweep,
 };
 
@@ -79,6 +79,15 @@ enum Command {
     /// hysteresis)
     #[command(after_help = UNITS)]
     Runup(runup::Args),
+    /// One periodic orbit by shooting: its state on the section, period, Floquet multipliers
+    /// and stability (each map by --method, default hybrid, at --tol, default 1e-12 here)
+    #[command(after_help = UNITS)]
+    Orbit(orbit::command::Args),
+    /// Continue periodic orbits over a range of one parameter: branches with their stability,
+    /// folds, period doublings, Neimark-Sacker and grazing points (CSV and plot; each map by
+    /// --method, default hybrid, at --tol, default 1e-12 here)
+    #[command(after_help = UNITS)]
+    Continue(orbit::continue_command::Args),
     /// List the presets with every value
     #[command(after_help = UNITS)]
     Presets,
@@ -118,6 +127,8 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Friction(args)) => friction_fig::run(&args),
         Some(Command::Runup(args)) => runup::run(&args),
+        Some(Command::Orbit(args)) => orbit::command::run(&args),
+        Some(Command::Continue(args)) => orbit::continue_command::run(&args),
         Some(Command::Presets) => presets::run(),
         Some(Command::Params) => params::run(),
     }

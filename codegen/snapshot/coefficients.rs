@@ -120,6 +120,16 @@
 //                               after:    22 add    56 mul    2 div   1 sqrt   0 trans
 // ring_matrices                before:     0 add     2 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
+// contact_field_jacobian       before:   130 add    70 mul   12 div  12 sqrt   0 trans
+//                               after:    14 add    35 mul    2 div   1 sqrt   0 trans
+// slipping_field_jacobian      before:  1096 add   586 mul  126 div 126 sqrt   0 trans
+//                               after:    43 add   106 mul    2 div   1 sqrt   0 trans
+// rolling_field_jacobian       before:  2150 add  1104 mul  256 div 248 sqrt   0 trans
+//                               after:    76 add   166 mul    2 div   1 sqrt   0 trans
+// switching_gradient           before:     2 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     2 mul    0 div   0 sqrt   0 trans
+// slip_velocity_gradient       before:    74 add    36 mul    8 div   8 sqrt   0 trans
+//                               after:     7 add    20 mul    2 div   1 sqrt   0 trans
 // contact_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
 // slipping_taylor::constants   before:     0 add     4 mul    0 div   0 sqrt   0 trans
@@ -551,6 +561,38 @@ pub struct OffsetAcceleration {
     pub au: f64,
     /// v'' without contact forces
     pub av: f64,
+}
+/// The Jacobian of a regime's acceleration (x'', y'') with respect to the state (x, y, x', y'), row by row: the variational equations' matrix (`docs/MODEL.md` §18).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FieldJacobian {
+    /// ∂x''/∂x
+    pub xx: f64,
+    /// ∂x''/∂y
+    pub xy: f64,
+    /// ∂x''/∂x'
+    pub xvx: f64,
+    /// ∂x''/∂y'
+    pub xvy: f64,
+    /// ∂y''/∂x
+    pub yx: f64,
+    /// ∂y''/∂y
+    pub yy: f64,
+    /// ∂y''/∂x'
+    pub yvx: f64,
+    /// ∂y''/∂y'
+    pub yvy: f64,
+}
+/// The gradient of a scalar function of the state with respect to (x, y, x', y'): a switching surface's normal in the state space (`docs/MODEL.md` §18).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StateGradient {
+    /// ∂/∂x
+    pub x: f64,
+    /// ∂/∂y
+    pub y: f64,
+    /// ∂/∂x'
+    pub vx: f64,
+    /// ∂/∂y'
+    pub vy: f64,
 }
 /// The model's parameters from the parameter table: each entry the formulas read, copied by name, and the quantities derived from them (F = η_m ρ̂ η², η_m ρ̂).
 ///
@@ -2971,6 +3013,239 @@ pub fn ring_matrices(model: &ModelParams) -> RingMatrices {
         kc_xy: 0.0,
         kc_yx: 0.0,
         kc_yy: contact_stiffness,
+    }
+}
+/// The Jacobian of frictionless contact's field q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q) with respect to the state (x, y, x', y'): the variational equations' matrix in contact.
+///
+/// Source: docs/MODEL.md §10, §18.
+/// Derivation: partial derivatives of the regime's field (the model's acceleration with the regime's stiffness term and the forcing) with respect to x, y, x', y'.
+#[inline]
+#[must_use]
+pub fn contact_field_jacobian(model: &ModelParams, at: &Position) -> FieldJacobian {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    let t0 = x - offset_x;
+    let t1 = t0 * t0;
+    let t2 = y - offset_y;
+    let t3 = t2 * t2;
+    let t4 = t1 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = 1.0 - t5;
+    let t7 = 1.0 / t4;
+    let t8 = -2.0 * damping_ratio;
+    FieldJacobian {
+        xx: -(1.0) - t6 * k_xx - t1 * t5 * t7 * k_xx - t0 * t2 * t5 * t7 * k_xy,
+        xy: -(t0 * t2 * t5 * t7 * k_xx) - t6 * k_xy - t3 * t5 * t7 * k_xy,
+        xvx: t8,
+        xvy: 0.0,
+        yx: -(t6 * k_yx) - t1 * t5 * t7 * k_yx - t0 * t2 * t5 * t7 * k_yy,
+        yy: -(1.0) - t0 * t2 * t5 * t7 * k_yx - t6 * k_yy - t3 * t5 * t7 * k_yy,
+        yvx: 0.0,
+        yvy: t8,
+    }
+}
+/// The Jacobian of the field of contact slipping in direction σ, q'' = … − K_s·g(q) − μσN t, with respect to the state (x, y, x', y').
+///
+/// Source: docs/MODEL.md §10, §18.
+/// Derivation: partial derivatives of the regime's field (the model's acceleration with the regime's stiffness term and the forcing) with respect to x, y, x', y'.
+#[inline]
+#[must_use]
+pub fn slipping_field_jacobian(
+    model: &ModelParams,
+    at: &Position,
+    slip: &Slip,
+) -> FieldJacobian {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let friction_coefficient = model.friction_coefficient;
+    let x = at.x;
+    let y = at.y;
+    let sigma = slip.sigma;
+    let t0 = y - offset_y;
+    let t1 = x - offset_x;
+    let t2 = t1 * t1;
+    let t3 = t0 * t0;
+    let t4 = t2 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = 1.0 - t5;
+    let t7 = t1 * t6 * k_xx + t0 * t6 * k_xy;
+    let t8 = 1.0 / t4;
+    let t9 = t6 * k_xx;
+    let t10 = t2 * t5 * t8 * k_xx;
+    let t11 = t1 * t0 * t5 * t8 * k_xy;
+    let t12 = t1 * t6 * k_yx + t0 * t6 * k_yy;
+    let t13 = t6 * k_yx;
+    let t14 = t2 * t5 * t8 * k_yx;
+    let t15 = t1 * t0 * t5 * t8 * k_yy;
+    let t16 = t5 * t7 + t1 * t5 * (t9 + t10 + t11) + t0 * t5 * (t13 + t14 + t15)
+        - t2 * t5 * t8 * t7 - t1 * t0 * t5 * t8 * t12;
+    let t17 = t1 * t5 * t7 + t0 * t5 * t12;
+    let t18 = t1 * t0 * t5 * t8 * sigma * friction_coefficient * t17;
+    let t19 = t5 * sigma * friction_coefficient * t17;
+    let t20 = t1 * t0 * t5 * t8 * k_xx;
+    let t21 = t6 * k_xy;
+    let t22 = t3 * t5 * t8 * k_xy;
+    let t23 = t1 * t0 * t5 * t8 * k_yx;
+    let t24 = t6 * k_yy;
+    let t25 = t3 * t5 * t8 * k_yy;
+    let t26 = t1 * t5 * (t20 + t21 + t22) + t5 * t12 + t0 * t5 * (t23 + t24 + t25)
+        - t1 * t0 * t5 * t8 * t7 - t3 * t5 * t8 * t12;
+    let t27 = -2.0 * damping_ratio;
+    FieldJacobian {
+        xx: t0 * t5 * sigma * friction_coefficient * t16 - 1.0 - t18 - t9 - t10 - t11,
+        xy: t19 + t0 * t5 * sigma * friction_coefficient * t26 - t20 - t21 - t22
+            - t3 * t5 * t8 * sigma * friction_coefficient * t17,
+        xvx: t27,
+        xvy: 0.0,
+        yx: t2 * t5 * t8 * sigma * friction_coefficient * t17 - t19 - t13 - t14 - t15
+            - t1 * t5 * sigma * friction_coefficient * t16,
+        yy: t18 - 1.0 - t23 - t24 - t25 - t1 * t5 * sigma * friction_coefficient * t26,
+        yvx: 0.0,
+        yvy: t27,
+    }
+}
+/// The Jacobian of the rolling field q'' = G − λ t with respect to the state (x, y, x', y') (λ depends on the velocity too).
+///
+/// Source: docs/MODEL.md §10, §18.
+/// Derivation: partial derivatives of the regime's field (the model's acceleration with the regime's stiffness term and the forcing) with respect to x, y, x', y'.
+#[inline]
+#[must_use]
+pub fn rolling_field_jacobian(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+    phasor: &Phasor,
+) -> FieldJacobian {
+    let damping_ratio = model.damping_ratio;
+    let k_xx = model.k_xx;
+    let k_xy = model.k_xy;
+    let k_yx = model.k_yx;
+    let k_yy = model.k_yy;
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    let t0 = x - offset_x;
+    let t1 = t0 * t0;
+    let t2 = y - offset_y;
+    let t3 = t2 * t2;
+    let t4 = t1 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = 1.0 - t5;
+    let t7 = -t6 * k_xx;
+    let t8 = 1.0 / t4;
+    let t9 = -t1 * t5 * t8 * k_xx;
+    let t10 = -t0 * t2 * t5 * t8 * k_xy;
+    let t11 = ct * unbalance_force + force_x - x - t0 * t6 * k_xx - t2 * t6 * k_xy
+        - 2.0 * damping_ratio * vx;
+    let t12 = st * unbalance_force + force_y - y - t0 * t6 * k_yx - t2 * t6 * k_yy
+        - 2.0 * damping_ratio * vy;
+    let t13 = t0 * t5 * vy - t2 * t5 * vx;
+    let t14 = t0 * t5 * vx + t2 * t5 * vy;
+    let t15 = t0 * t5 * t12 - t2 * t5 * t11 - t5 * t13 * t14;
+    let t16 = t0 * t2 * t5 * t8 * t15;
+    let t17 = -t6 * k_yx;
+    let t18 = -t1 * t5 * t8 * k_yx;
+    let t19 = -t0 * t2 * t5 * t8 * k_yy;
+    let t20 = t0 * t2 * t5 * t8 * vx;
+    let t21 = t5 * vy;
+    let t22 = t5 * vx;
+    let t23 = -t0 * t2 * t5 * t8 * vy;
+    let t24 = t0 * t2 * t5 * t8 * t11 + t5 * t12 + t0 * t5 * (t17 + t18 + t19)
+        + t0 * t5 * t8 * t13 * t14 - t2 * t5 * (t7 + t9 + t10 - 1.0) - t1 * t5 * t8 * t12
+        - t5 * t14 * (t20 + t21 - t1 * t5 * t8 * vy)
+        - t5 * t13 * (t22 + t23 - t1 * t5 * t8 * vx);
+    let t25 = -t0 * t2 * t5 * t8 * k_xx;
+    let t26 = -t6 * k_xy;
+    let t27 = -t3 * t5 * t8 * k_xy;
+    let t28 = t5 * t15;
+    let t29 = -t0 * t2 * t5 * t8 * k_yx;
+    let t30 = -t6 * k_yy;
+    let t31 = -t3 * t5 * t8 * k_yy;
+    let t32 = t3 * t5 * t8 * t11 + t0 * t5 * (t29 + t30 + t31 - 1.0)
+        + t2 * t5 * t8 * t13 * t14 - t5 * t11 - t2 * t5 * (t25 + t26 + t27)
+        - t0 * t2 * t5 * t8 * t12 - t5 * t14 * (t23 + t3 * t5 * t8 * vx - t22)
+        - t5 * t13 * (t21 - t20 - t3 * t5 * t8 * vy);
+    let t33 = -2.0 * damping_ratio;
+    let t34 = 2.0 * t2 * t5 * damping_ratio + t2 * t8 * t14 - t0 * t8 * t13;
+    let t35 = -(2.0 * t0 * t5 * damping_ratio) - t0 * t8 * t14 - t2 * t8 * t13;
+    FieldJacobian {
+        xx: t7 + t9 + t10 + t2 * t5 * t24 - 1.0 - t16,
+        xy: t25 + t26 + t27 + t28 + t2 * t5 * t32 - t3 * t5 * t8 * t15,
+        xvx: t33 + t2 * t5 * t34,
+        xvy: t2 * t5 * t35,
+        yx: t17 + t18 + t19 + t1 * t5 * t8 * t15 - t28 - t0 * t5 * t24,
+        yy: t29 + t30 + t31 + t16 - 1.0 - t0 * t5 * t32,
+        yvx: -t0 * t5 * t34,
+        yvy: t33 - t0 * t5 * t35,
+    }
+}
+/// The gradient ∇h = ∂h/∂(x, y, x', y') of the switching function h = z² − 1: the normal of the contact surface in the state space, for the saltation matrix of a switch whose field jumps (rolling's exit).
+///
+/// Source: docs/MODEL.md §1, §18.
+/// Derivation: partial derivatives of the model's `boundary`.
+#[inline]
+#[must_use]
+pub fn switching_gradient(model: &ModelParams, at: &Position) -> StateGradient {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    StateGradient {
+        x: 2.0 * (x - offset_x),
+        y: 2.0 * (y - offset_y),
+        vx: 0.0,
+        vy: 0.0,
+    }
+}
+/// The gradient ∇w = ∂w/∂(x, y, x', y') of the slip velocity w = q'·t + ρ_R η: the normal of friction's switching surface w = 0 in the state space, for the saltation matrices at `reverse` and `roll`.
+///
+/// Source: docs/MODEL.md §10, §18.
+/// Derivation: partial derivatives of the model's `slip_velocity`.
+#[inline]
+#[must_use]
+pub fn slip_velocity_gradient(
+    model: &ModelParams,
+    at: &Position,
+    rate: &Velocity,
+) -> StateGradient {
+    let offset_x = model.offset_x;
+    let offset_y = model.offset_y;
+    let x = at.x;
+    let y = at.y;
+    let vx = rate.vx;
+    let vy = rate.vy;
+    let t0 = x - offset_x;
+    let t1 = y - offset_y;
+    let t2 = t0 * t0;
+    let t3 = t1 * t1;
+    let t4 = t2 + t3;
+    let t5 = 1.0 / m::sqrt(t4);
+    let t6 = 1.0 / t4;
+    StateGradient {
+        x: t0 * t1 * t5 * t6 * vx + t5 * vy - t2 * t5 * t6 * vy,
+        y: t3 * t5 * t6 * vx - t0 * t1 * t5 * t6 * vy - t5 * vx,
+        vx: -t1 * t5,
+        vy: t0 * t5,
     }
 }
 /// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).
