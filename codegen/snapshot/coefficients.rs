@@ -139,14 +139,14 @@
 //
 // Taylor recurrences per system: series, order 0, and order n >= 1 as fixed + n x per-n
 // (per-n counts bound the convolutions from above: a square or a square root takes about half):
-// contact_taylor               21 series; order 0:    16 add    14 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    11 add    23 mul    1 div   0 sqrt   0 trans
+// contact_taylor               20 series; order 0:    16 add    14 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    10 add    22 mul    1 div   0 sqrt   0 trans
 //                              order n per n:     3 add     6 mul    0 div   0 sqrt   0 trans
-// slipping_taylor              33 series; order 0:    23 add    28 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    17 add    37 mul    1 div   0 sqrt   0 trans
+// slipping_taylor              32 series; order 0:    23 add    28 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    16 add    36 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    11 add    14 mul    0 div   0 sqrt   0 trans
-// rolling_taylor               45 series; order 0:    41 add    42 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    34 add    51 mul    1 div   0 sqrt   0 trans
+// rolling_taylor               44 series; order 0:    41 add    42 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    33 add    50 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    17 add    20 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
@@ -3261,11 +3261,11 @@ pub mod contact_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 21;
+    pub const SERIES: usize = 20;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 20;
+    pub const BOUNDARY: usize = 19;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -3337,24 +3337,23 @@ pub mod contact_taylor {
         s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
-        s[11][0] = m::sqrt(s[10][0]);
-        s[12][0] = 1.0 / s[11][0];
-        s[13][0] = 1.0 - s[12][0];
-        s[14][0] = s[6][0] * s[13][0];
-        s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] - s[0][0];
-        s[17][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0];
-        s[18][0] = k.k10 * s[5][0];
-        s[19][0] = k.k11 * s[4][0];
-        s[20][0] = s[7][0] + s[9][0] - 1.0;
+        s[11][0] = 1.0 / m::sqrt(s[10][0]);
+        s[12][0] = 1.0 - s[11][0];
+        s[13][0] = s[6][0] * s[12][0];
+        s[14][0] = s[8][0] * s[12][0];
+        s[15][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0];
+        s[16][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[13][0]
+            + k.k9 * s[14][0];
+        s[17][0] = k.k10 * s[5][0];
+        s[18][0] = k.k11 * s[4][0];
+        s[19][0] = -1.0 + s[7][0] + s[9][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
-        s[2][1] = s[16][0];
-        s[3][1] = s[17][0];
-        s[4][1] = s[18][0];
-        s[5][1] = s[19][0];
+        s[2][1] = s[15][0];
+        s[3][1] = s[16][0];
+        s[4][1] = s[17][0];
+        s[5][1] = s[18][0];
     }
     /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
     /// coefficient `N + 1` of every state. The order is a constant, so every
@@ -3373,40 +3372,55 @@ pub mod contact_taylor {
         ts::set(&mut s[9], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
         ts::set(&mut s[10], N, v);
-        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
         ts::set(&mut s[11], N, v);
-        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        let v = -ts::at(&s[11], N);
         ts::set(&mut s[12], N, v);
-        let v = -ts::at(&s[12], N);
+        let v = ts::product::<N>(&s[6], &s[12]);
         ts::set(&mut s[13], N, v);
-        let v = ts::product::<N>(&s[6], &s[13]);
+        let v = ts::product::<N>(&s[8], &s[12]);
         ts::set(&mut s[14], N, v);
-        let v = ts::product::<N>(&s[8], &s[13]);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N);
         ts::set(&mut s[15], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
         ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
-        ts::set(&mut s[17], N, v);
         let v = k.k10 * ts::at(&s[5], N);
-        ts::set(&mut s[18], N, v);
+        ts::set(&mut s[17], N, v);
         let v = k.k11 * ts::at(&s[4], N);
-        ts::set(&mut s[19], N, v);
+        ts::set(&mut s[18], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
-        ts::set(&mut s[20], N, v);
+        ts::set(&mut s[19], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
         ts::set(&mut s[1], N + 1, v);
-        let v = ts::at(&s[16], N) * ts::inverse::<N>();
+        let v = ts::at(&s[15], N) * ts::inverse::<N>();
         ts::set(&mut s[2], N + 1, v);
-        let v = ts::at(&s[17], N) * ts::inverse::<N>();
+        let v = ts::at(&s[16], N) * ts::inverse::<N>();
         ts::set(&mut s[3], N + 1, v);
-        let v = ts::at(&s[18], N) * ts::inverse::<N>();
+        let v = ts::at(&s[17], N) * ts::inverse::<N>();
         ts::set(&mut s[4], N + 1, v);
-        let v = ts::at(&s[19], N) * ts::inverse::<N>();
+        let v = ts::at(&s[18], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[19], N, v);
     }
 }
 /// Slipping contact in direction σ: the frictionless contact field minus μσN t.
@@ -3422,13 +3436,13 @@ pub mod slipping_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 33;
+    pub const SERIES: usize = 32;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 29;
+    pub const BOUNDARY: usize = 28;
     /// The series of the slip velocity w = q'·t + ρ_R η.
-    pub const SLIP_VELOCITY: usize = 32;
+    pub const SLIP_VELOCITY: usize = 31;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -3525,36 +3539,35 @@ pub mod slipping_taylor {
         s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
-        s[11][0] = m::sqrt(s[10][0]);
-        s[12][0] = 1.0 / s[11][0];
-        s[13][0] = 1.0 - s[12][0];
-        s[14][0] = s[6][0] * s[13][0];
-        s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = s[8][0] * s[12][0];
-        s[17][0] = s[6][0] * s[12][0];
-        s[18][0] = k.k8 * s[14][0] + k.k9 * s[15][0];
-        s[19][0] = s[17][0] * s[18][0];
-        s[20][0] = k.k10 * s[14][0] + k.k11 * s[15][0];
-        s[21][0] = s[16][0] * s[20][0];
-        s[22][0] = s[19][0] + s[21][0];
-        s[23][0] = s[16][0] * s[22][0];
-        s[24][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] + k.k7 * s[23][0] - s[0][0];
-        s[25][0] = s[17][0] * s[22][0];
-        s[26][0] = k.k12 + k.k1 * s[5][0] + k.k13 * s[14][0] + k.k14 * s[15][0]
-            + k.k6 * s[3][0] + k.k15 * s[25][0] - s[1][0];
-        s[27][0] = k.k16 * s[5][0];
-        s[28][0] = k.k17 * s[4][0];
-        s[29][0] = s[7][0] + s[9][0] - 1.0;
-        s[30][0] = s[2][0] * s[16][0];
-        s[31][0] = s[3][0] * s[17][0];
-        s[32][0] = k.k18 + s[31][0] - s[30][0];
+        s[11][0] = 1.0 / m::sqrt(s[10][0]);
+        s[12][0] = 1.0 - s[11][0];
+        s[13][0] = s[6][0] * s[12][0];
+        s[14][0] = s[8][0] * s[12][0];
+        s[15][0] = s[8][0] * s[11][0];
+        s[16][0] = s[6][0] * s[11][0];
+        s[17][0] = k.k8 * s[13][0] + k.k9 * s[14][0];
+        s[18][0] = s[16][0] * s[17][0];
+        s[19][0] = k.k10 * s[13][0] + k.k11 * s[14][0];
+        s[20][0] = s[15][0] * s[19][0];
+        s[21][0] = s[18][0] + s[20][0];
+        s[22][0] = s[15][0] * s[21][0];
+        s[23][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0] + k.k7 * s[22][0];
+        s[24][0] = s[16][0] * s[21][0];
+        s[25][0] = k.k12 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k13 * s[13][0]
+            + k.k14 * s[14][0] + k.k15 * s[24][0];
+        s[26][0] = k.k16 * s[5][0];
+        s[27][0] = k.k17 * s[4][0];
+        s[28][0] = -1.0 + s[7][0] + s[9][0];
+        s[29][0] = s[2][0] * s[15][0];
+        s[30][0] = s[3][0] * s[16][0];
+        s[31][0] = k.k18 - s[29][0] + s[30][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
-        s[2][1] = s[24][0];
-        s[3][1] = s[26][0];
-        s[4][1] = s[27][0];
-        s[5][1] = s[28][0];
+        s[2][1] = s[23][0];
+        s[3][1] = s[25][0];
+        s[4][1] = s[26][0];
+        s[5][1] = s[27][0];
     }
     /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
     /// coefficient `N + 1` of every state. The order is a constant, so every
@@ -3573,66 +3586,95 @@ pub mod slipping_taylor {
         ts::set(&mut s[9], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
         ts::set(&mut s[10], N, v);
-        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
         ts::set(&mut s[11], N, v);
-        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        let v = -ts::at(&s[11], N);
         ts::set(&mut s[12], N, v);
-        let v = -ts::at(&s[12], N);
-        ts::set(&mut s[13], N, v);
-        let v = ts::product::<N>(&s[6], &s[13]);
-        ts::set(&mut s[14], N, v);
-        let v = ts::product::<N>(&s[8], &s[13]);
-        ts::set(&mut s[15], N, v);
-        let v = ts::product::<N>(&s[8], &s[12]);
-        ts::set(&mut s[16], N, v);
         let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[16], N, v);
+        let v = k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
         ts::set(&mut s[17], N, v);
-        let v = k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[16], &s[17]);
         ts::set(&mut s[18], N, v);
-        let v = ts::product::<N>(&s[17], &s[18]);
+        let v = k.k10 * ts::at(&s[13], N) + k.k11 * ts::at(&s[14], N);
         ts::set(&mut s[19], N, v);
-        let v = k.k10 * ts::at(&s[14], N) + k.k11 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[15], &s[19]);
         ts::set(&mut s[20], N, v);
-        let v = ts::product::<N>(&s[16], &s[20]);
+        let v = ts::at(&s[18], N) + ts::at(&s[20], N);
         ts::set(&mut s[21], N, v);
-        let v = ts::at(&s[19], N) + ts::at(&s[21], N);
+        let v = ts::product::<N>(&s[15], &s[21]);
         ts::set(&mut s[22], N, v);
-        let v = ts::product::<N>(&s[16], &s[22]);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N)
+            + k.k7 * ts::at(&s[22], N);
         ts::set(&mut s[23], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N)
-            + k.k7 * ts::at(&s[23], N) - ts::at(&s[0], N);
+        let v = ts::product::<N>(&s[16], &s[21]);
         ts::set(&mut s[24], N, v);
-        let v = ts::product::<N>(&s[17], &s[22]);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k13 * ts::at(&s[13], N) + k.k14 * ts::at(&s[14], N)
+            + k.k15 * ts::at(&s[24], N);
         ts::set(&mut s[25], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k13 * ts::at(&s[14], N)
-            + k.k14 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N)
-            + k.k15 * ts::at(&s[25], N) - ts::at(&s[1], N);
-        ts::set(&mut s[26], N, v);
         let v = k.k16 * ts::at(&s[5], N);
-        ts::set(&mut s[27], N, v);
+        ts::set(&mut s[26], N, v);
         let v = k.k17 * ts::at(&s[4], N);
-        ts::set(&mut s[28], N, v);
+        ts::set(&mut s[27], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[2], &s[15]);
         ts::set(&mut s[29], N, v);
-        let v = ts::product::<N>(&s[2], &s[16]);
+        let v = ts::product::<N>(&s[3], &s[16]);
         ts::set(&mut s[30], N, v);
-        let v = ts::product::<N>(&s[3], &s[17]);
+        let v = -ts::at(&s[29], N) + ts::at(&s[30], N);
         ts::set(&mut s[31], N, v);
-        let v = ts::at(&s[31], N) - ts::at(&s[30], N);
-        ts::set(&mut s[32], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
         ts::set(&mut s[1], N + 1, v);
-        let v = ts::at(&s[24], N) * ts::inverse::<N>();
+        let v = ts::at(&s[23], N) * ts::inverse::<N>();
         ts::set(&mut s[2], N + 1, v);
-        let v = ts::at(&s[26], N) * ts::inverse::<N>();
+        let v = ts::at(&s[25], N) * ts::inverse::<N>();
         ts::set(&mut s[3], N + 1, v);
-        let v = ts::at(&s[27], N) * ts::inverse::<N>();
+        let v = ts::at(&s[26], N) * ts::inverse::<N>();
         ts::set(&mut s[4], N + 1, v);
-        let v = ts::at(&s[28], N) * ts::inverse::<N>();
+        let v = ts::at(&s[27], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
+        ts::set(&mut s[11], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[16], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[2], &s[15]);
+        ts::set(&mut s[29], N, v);
+        let v = ts::product::<N>(&s[3], &s[16]);
+        ts::set(&mut s[30], N, v);
+        let v = -ts::at(&s[29], N) + ts::at(&s[30], N);
+        ts::set(&mut s[31], N, v);
     }
 }
 /// Rolling contact: the frictionless contact field minus λ t, λ the tangential force that keeps w = 0.
@@ -3648,15 +3690,15 @@ pub mod rolling_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 45;
+    pub const SERIES: usize = 44;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 37;
+    pub const BOUNDARY: usize = 36;
     /// The series of μN − λ (rolling needs it ≥ 0).
-    pub const CONE_UPPER: usize = 43;
+    pub const CONE_UPPER: usize = 42;
     /// The series of μN + λ (rolling needs it ≥ 0).
-    pub const CONE_LOWER: usize = 44;
+    pub const CONE_LOWER: usize = 43;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -3744,50 +3786,49 @@ pub mod rolling_taylor {
         s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
-        s[11][0] = m::sqrt(s[10][0]);
-        s[12][0] = 1.0 / s[11][0];
-        s[13][0] = 1.0 - s[12][0];
-        s[14][0] = s[6][0] * s[13][0];
-        s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = s[8][0] * s[12][0];
-        s[17][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] - s[0][0];
-        s[18][0] = s[16][0] * s[17][0];
-        s[19][0] = s[6][0] * s[12][0];
-        s[20][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0];
-        s[21][0] = s[19][0] * s[20][0];
-        s[22][0] = s[2][0] * s[16][0];
-        s[23][0] = s[3][0] * s[19][0];
-        s[24][0] = s[23][0] - s[22][0];
-        s[25][0] = s[12][0] * s[24][0];
-        s[26][0] = s[2][0] * s[19][0];
-        s[27][0] = s[3][0] * s[16][0];
-        s[28][0] = s[26][0] + s[27][0];
-        s[29][0] = s[25][0] * s[28][0];
-        s[30][0] = s[21][0] - s[18][0] - s[29][0];
-        s[31][0] = s[16][0] * s[30][0];
-        s[32][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] + s[31][0] - s[0][0];
-        s[33][0] = s[19][0] * s[30][0];
-        s[34][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0] - s[33][0];
-        s[35][0] = k.k10 * s[5][0];
-        s[36][0] = k.k11 * s[4][0];
-        s[37][0] = s[7][0] + s[9][0] - 1.0;
-        s[38][0] = k.k13 * s[14][0] + k.k14 * s[15][0];
-        s[39][0] = s[19][0] * s[38][0];
-        s[40][0] = k.k15 * s[14][0] + k.k16 * s[15][0];
-        s[41][0] = s[16][0] * s[40][0];
-        s[42][0] = s[39][0] + s[41][0];
-        s[43][0] = s[18][0] + s[29][0] + k.k12 * s[42][0] - s[21][0];
-        s[44][0] = s[21][0] + k.k12 * s[42][0] - s[18][0] - s[29][0];
+        s[11][0] = 1.0 / m::sqrt(s[10][0]);
+        s[12][0] = 1.0 - s[11][0];
+        s[13][0] = s[6][0] * s[12][0];
+        s[14][0] = s[8][0] * s[12][0];
+        s[15][0] = s[8][0] * s[11][0];
+        s[16][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0];
+        s[17][0] = s[15][0] * s[16][0];
+        s[18][0] = s[6][0] * s[11][0];
+        s[19][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[13][0]
+            + k.k9 * s[14][0];
+        s[20][0] = s[18][0] * s[19][0];
+        s[21][0] = s[2][0] * s[15][0];
+        s[22][0] = s[3][0] * s[18][0];
+        s[23][0] = -s[21][0] + s[22][0];
+        s[24][0] = s[11][0] * s[23][0];
+        s[25][0] = s[2][0] * s[18][0];
+        s[26][0] = s[3][0] * s[15][0];
+        s[27][0] = s[25][0] + s[26][0];
+        s[28][0] = s[24][0] * s[27][0];
+        s[29][0] = -s[17][0] + s[20][0] - s[28][0];
+        s[30][0] = s[15][0] * s[29][0];
+        s[31][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0] + s[30][0];
+        s[32][0] = s[18][0] * s[29][0];
+        s[33][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[13][0]
+            + k.k9 * s[14][0] - s[32][0];
+        s[34][0] = k.k10 * s[5][0];
+        s[35][0] = k.k11 * s[4][0];
+        s[36][0] = -1.0 + s[7][0] + s[9][0];
+        s[37][0] = k.k13 * s[13][0] + k.k14 * s[14][0];
+        s[38][0] = s[18][0] * s[37][0];
+        s[39][0] = k.k15 * s[13][0] + k.k16 * s[14][0];
+        s[40][0] = s[15][0] * s[39][0];
+        s[41][0] = s[38][0] + s[40][0];
+        s[42][0] = s[17][0] - s[20][0] + s[28][0] + k.k12 * s[41][0];
+        s[43][0] = -s[17][0] + s[20][0] - s[28][0] + k.k12 * s[41][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
-        s[2][1] = s[32][0];
-        s[3][1] = s[34][0];
-        s[4][1] = s[35][0];
-        s[5][1] = s[36][0];
+        s[2][1] = s[31][0];
+        s[3][1] = s[33][0];
+        s[4][1] = s[34][0];
+        s[5][1] = s[35][0];
     }
     /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
     /// coefficient `N + 1` of every state. The order is a constant, so every
@@ -3806,95 +3847,164 @@ pub mod rolling_taylor {
         ts::set(&mut s[9], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
         ts::set(&mut s[10], N, v);
-        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
         ts::set(&mut s[11], N, v);
-        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        let v = -ts::at(&s[11], N);
         ts::set(&mut s[12], N, v);
-        let v = -ts::at(&s[12], N);
-        ts::set(&mut s[13], N, v);
-        let v = ts::product::<N>(&s[6], &s[13]);
-        ts::set(&mut s[14], N, v);
-        let v = ts::product::<N>(&s[8], &s[13]);
-        ts::set(&mut s[15], N, v);
-        let v = ts::product::<N>(&s[8], &s[12]);
-        ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
-        ts::set(&mut s[17], N, v);
-        let v = ts::product::<N>(&s[16], &s[17]);
-        ts::set(&mut s[18], N, v);
         let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[15], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[18], N, v);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
         ts::set(&mut s[19], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
+        let v = ts::product::<N>(&s[18], &s[19]);
         ts::set(&mut s[20], N, v);
-        let v = ts::product::<N>(&s[19], &s[20]);
+        let v = ts::product::<N>(&s[2], &s[15]);
         ts::set(&mut s[21], N, v);
-        let v = ts::product::<N>(&s[2], &s[16]);
+        let v = ts::product::<N>(&s[3], &s[18]);
         ts::set(&mut s[22], N, v);
-        let v = ts::product::<N>(&s[3], &s[19]);
+        let v = -ts::at(&s[21], N) + ts::at(&s[22], N);
         ts::set(&mut s[23], N, v);
-        let v = ts::at(&s[23], N) - ts::at(&s[22], N);
+        let v = ts::product::<N>(&s[11], &s[23]);
         ts::set(&mut s[24], N, v);
-        let v = ts::product::<N>(&s[12], &s[24]);
+        let v = ts::product::<N>(&s[2], &s[18]);
         ts::set(&mut s[25], N, v);
-        let v = ts::product::<N>(&s[2], &s[19]);
+        let v = ts::product::<N>(&s[3], &s[15]);
         ts::set(&mut s[26], N, v);
-        let v = ts::product::<N>(&s[3], &s[16]);
+        let v = ts::at(&s[25], N) + ts::at(&s[26], N);
         ts::set(&mut s[27], N, v);
-        let v = ts::at(&s[26], N) + ts::at(&s[27], N);
+        let v = ts::product::<N>(&s[24], &s[27]);
         ts::set(&mut s[28], N, v);
-        let v = ts::product::<N>(&s[25], &s[28]);
+        let v = -ts::at(&s[17], N) + ts::at(&s[20], N) - ts::at(&s[28], N);
         ts::set(&mut s[29], N, v);
-        let v = ts::at(&s[21], N) - ts::at(&s[18], N) - ts::at(&s[29], N);
+        let v = ts::product::<N>(&s[15], &s[29]);
         ts::set(&mut s[30], N, v);
-        let v = ts::product::<N>(&s[16], &s[30]);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N) + ts::at(&s[30], N);
         ts::set(&mut s[31], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) + ts::at(&s[31], N)
-            - ts::at(&s[0], N);
+        let v = ts::product::<N>(&s[18], &s[29]);
         ts::set(&mut s[32], N, v);
-        let v = ts::product::<N>(&s[19], &s[30]);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N) - ts::at(&s[32], N);
         ts::set(&mut s[33], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N)
-            - ts::at(&s[33], N);
-        ts::set(&mut s[34], N, v);
         let v = k.k10 * ts::at(&s[5], N);
-        ts::set(&mut s[35], N, v);
+        ts::set(&mut s[34], N, v);
         let v = k.k11 * ts::at(&s[4], N);
-        ts::set(&mut s[36], N, v);
+        ts::set(&mut s[35], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[36], N, v);
+        let v = k.k13 * ts::at(&s[13], N) + k.k14 * ts::at(&s[14], N);
         ts::set(&mut s[37], N, v);
-        let v = k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[18], &s[37]);
         ts::set(&mut s[38], N, v);
-        let v = ts::product::<N>(&s[19], &s[38]);
+        let v = k.k15 * ts::at(&s[13], N) + k.k16 * ts::at(&s[14], N);
         ts::set(&mut s[39], N, v);
-        let v = k.k15 * ts::at(&s[14], N) + k.k16 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[15], &s[39]);
         ts::set(&mut s[40], N, v);
-        let v = ts::product::<N>(&s[16], &s[40]);
+        let v = ts::at(&s[38], N) + ts::at(&s[40], N);
         ts::set(&mut s[41], N, v);
-        let v = ts::at(&s[39], N) + ts::at(&s[41], N);
+        let v = ts::at(&s[17], N) - ts::at(&s[20], N) + ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
         ts::set(&mut s[42], N, v);
-        let v = ts::at(&s[18], N) + ts::at(&s[29], N) + k.k12 * ts::at(&s[42], N)
-            - ts::at(&s[21], N);
+        let v = -ts::at(&s[17], N) + ts::at(&s[20], N) - ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
         ts::set(&mut s[43], N, v);
-        let v = ts::at(&s[21], N) + k.k12 * ts::at(&s[42], N) - ts::at(&s[18], N)
-            - ts::at(&s[29], N);
-        ts::set(&mut s[44], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
         ts::set(&mut s[1], N + 1, v);
-        let v = ts::at(&s[32], N) * ts::inverse::<N>();
+        let v = ts::at(&s[31], N) * ts::inverse::<N>();
         ts::set(&mut s[2], N + 1, v);
-        let v = ts::at(&s[34], N) * ts::inverse::<N>();
+        let v = ts::at(&s[33], N) * ts::inverse::<N>();
         ts::set(&mut s[3], N + 1, v);
-        let v = ts::at(&s[35], N) * ts::inverse::<N>();
+        let v = ts::at(&s[34], N) * ts::inverse::<N>();
         ts::set(&mut s[4], N + 1, v);
-        let v = ts::at(&s[36], N) * ts::inverse::<N>();
+        let v = ts::at(&s[35], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
+        ts::set(&mut s[11], N, v);
+        let v = -ts::at(&s[11], N);
+        ts::set(&mut s[12], N, v);
+        let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[15], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[18], N, v);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
+        ts::set(&mut s[19], N, v);
+        let v = ts::product::<N>(&s[18], &s[19]);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[2], &s[15]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[3], &s[18]);
+        ts::set(&mut s[22], N, v);
+        let v = -ts::at(&s[21], N) + ts::at(&s[22], N);
+        ts::set(&mut s[23], N, v);
+        let v = ts::product::<N>(&s[11], &s[23]);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[2], &s[18]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[3], &s[15]);
+        ts::set(&mut s[26], N, v);
+        let v = ts::at(&s[25], N) + ts::at(&s[26], N);
+        ts::set(&mut s[27], N, v);
+        let v = ts::product::<N>(&s[24], &s[27]);
+        ts::set(&mut s[28], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[36], N, v);
+        let v = k.k13 * ts::at(&s[13], N) + k.k14 * ts::at(&s[14], N);
+        ts::set(&mut s[37], N, v);
+        let v = ts::product::<N>(&s[18], &s[37]);
+        ts::set(&mut s[38], N, v);
+        let v = k.k15 * ts::at(&s[13], N) + k.k16 * ts::at(&s[14], N);
+        ts::set(&mut s[39], N, v);
+        let v = ts::product::<N>(&s[15], &s[39]);
+        ts::set(&mut s[40], N, v);
+        let v = ts::at(&s[38], N) + ts::at(&s[40], N);
+        ts::set(&mut s[41], N, v);
+        let v = ts::at(&s[17], N) - ts::at(&s[20], N) + ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
+        ts::set(&mut s[42], N, v);
+        let v = -ts::at(&s[17], N) + ts::at(&s[20], N) - ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
+        ts::set(&mut s[43], N, v);
     }
 }
 /// The most series any Taylor system uses (the runtime's storage size).
-pub const TAYLOR_SERIES_MAX: usize = 45;
+pub const TAYLOR_SERIES_MAX: usize = 44;
