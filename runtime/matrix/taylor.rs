@@ -76,7 +76,10 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> TaylorContact<M, CAP
             }
             let c = self.expansion.switch_polynomial(sw);
             let scale = self.expansion.rounding_scale(sw, &self.model);
-            if let Some(s) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
+            // The polynomial is signed already; the root polished (`precise`) as before the
+            // planar solver's `Crossing` (its `past` is not used here).
+            let (order, start) = (self.expansion.order(), self.first_step);
+            if let Some(s) = first_exit(&c, 1.0, order, h, scale, start, true).map(|x| x.at)
                 && first.is_none_or(|(f, _)| s < f)
             {
                 first = Some((s, sw));
