@@ -54,7 +54,7 @@ pub fn continuous(kind: EventKind, before: Field) -> bool {
 /// The saltation matrix at `event`, from the field `before` to `after`.
 ///
 /// # Errors
-/// [`Tangential`] where the switch is tangential to the old field (∇h·f⁻ = 0: the formula
+/// `Tangential` where the switch is tangential to the old field (∇h·f⁻ = 0: the formula
 /// divides by it; the switch time does not depend smoothly on the start there).
 pub fn saltation(
     model: &ModelParams,

@@ -167,7 +167,7 @@ pub fn state_norm(u: &Vector5) -> f64 {
     u[..4].iter().fold(0.0, |a: f64, v| a.max(v.abs()))
 }
 
-/// The 5 × 5 system [[M − I, r_p], [cᵀ]] of a corrector step, row-major.
+/// The 5 × 5 system `[[M − I, r_p], [cᵀ]]` of a corrector step, row-major.
 pub fn bordered(monodromy: &Mat4, dp: &[f64; 4], constraint: &Vector5) -> [[f64; 5]; 5] {
     let mut a = [[0.0; 5]; 5];
     for i in 0..4 {
