@@ -27,7 +27,7 @@ use super::numerical::NumericalFree;
 use super::numerical::NumericalSolver;
 use super::state::MatrixState;
 use super::taylor::TaylorContact;
-use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
+use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, System};
 use crate::method::{ContactScheme, Method, Options};
 use crate::propagate::{Event, Propagate, PropagationError, Regime};
 use crate::reference::{Dop853, REFERENCE_BUDGET, Rk45, Scheme};
@@ -173,7 +173,7 @@ where
     clippy::large_enum_variant,
     reason = "the runtime has no heap to box into; the CLI and Python hold it in a Box"
 )]
-enum Inner<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> {
+enum Inner<M: System, const CAP: usize> {
     Dop853(NumericalPropagator<Dop853, M, CAP>),
     Rk45(NumericalPropagator<Rk45, M, CAP>),
     Hybrid(HybridPropagator<FreeFlight<M, CAP>, M, CAP>),
@@ -183,7 +183,10 @@ enum Inner<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> {
 /// Every [`Method`] on a rotor from matrices behind one type (no heap): built from the model
 /// (`&MatrixModel`, `Arc<MatrixModel>`, …), a start and the same [`Options`] as the planar
 /// [`crate::Propagator`].
-pub struct MatrixPropagator<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> {
+// (The definitions bound `M` by `System` only, which every `Deref<Target = MatrixModel<CAP>>`
+// is: rustdoc 1.95 panics canonicalizing a definition's bound that projects to a type with a
+// const parameter.)
+pub struct MatrixPropagator<M: System, const CAP: usize> {
     inner: Inner<M, CAP>,
     method: Method,
 }
