@@ -24,6 +24,7 @@ pub mod fig2;
 pub mod friction_fig;
 pub mod limits;
 pub mod merge;
+pub mod model_file;
 pub mod options;
 pub mod output;
 pub mod params;

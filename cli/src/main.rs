@@ -8,8 +8,8 @@ use clap::{Parser, Subcommand};
 
 use rotor_rub_cli::error::{CliError, EXIT_INPUT};
 use rotor_rub_cli::{
-    compare, fig2, friction_fig, merge, output, params, poincare, presets, runup, simulate,
-    spectrum, stdio, sweep,
+    compare, fig2, friction_fig, merge, model_file, output, params, poincare, presets, runup,
+    simulate, spectrum, stdio, sweep,
 };
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
@@ -79,6 +79,9 @@ enum Command {
     /// hysteresis)
     #[command(after_help = UNITS)]
     Runup(runup::Args),
+    /// Read and check a model file (TOML or .npz, SI units: docs/MODEL_FILES.md); print its
+    /// degrees of freedom, station, clearance and modes
+    CheckModel(model_file::CheckArgs),
     /// List the presets with every value
     #[command(after_help = UNITS)]
     Presets,
@@ -118,6 +121,7 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Friction(args)) => friction_fig::run(&args),
         Some(Command::Runup(args)) => runup::run(&args),
+        Some(Command::CheckModel(args)) => model_file::check(&args),
         Some(Command::Presets) => presets::run(),
         Some(Command::Params) => params::run(),
     }
