@@ -20,6 +20,7 @@ use rotor_rub_cli::problem::settable;
 mod args;
 mod errors;
 mod inputs;
+mod matrix;
 mod meta;
 mod runs;
 mod runup;
@@ -80,6 +81,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_points, m)?)?;
     m.add_function(wrap_pyfunction!(runup::runup, m)?)?;
+    matrix::register(m)?;
     m.add_function(wrap_pyfunction!(timing::rust_simulate_seconds, m)?)?;
     m.add_class::<stepper::PyStepper>()?;
     m.add_class::<stepper_state::PyStepperState>()?;
