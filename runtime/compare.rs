@@ -5,9 +5,16 @@
 //! other. This is the right pairing as long as both runs see the same sequence of contacts; the
 //! first place where they stop doing so is reported as the first disagreement, and everything
 //! after it should be read with care (a missed contact shifts every later pair).
+//!
+//! A contact only one run has may lie below what the runs resolve ([`contact_depth`],
+//! [`contact_resolution`]): the numerical methods miss contacts shallower than about 10·tol, and
+//! on an orbit that grazes z = 1 their own truncation error makes contacts that shallow
+//! (`docs/MODEL.md` §12); a comparison sets those aside instead of calling them unmatched.
 
-use crate::params::State;
-use crate::propagate::Event;
+use crate::coefficients::ModelParams;
+use crate::geometry;
+use crate::params::{Params, State};
+use crate::propagate::{Event, EventKind};
 
 /// Why two runs first disagree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -139,4 +146,55 @@ pub fn compare_events(a: &[Event], b: &[Event], tolerance: f64) -> Comparison {
         note(&mut c, compared, extra.time, Disagreement::Missing);
     }
     c
+}
+
+/// How deep a contact must reach (z − 1) for two runs at tolerances `tol_a` and `tol_b` to be
+/// held to both seeing it: 10·max(tol_a, tol_b), the numerical methods' resolution. Shallower
+/// contacts may be missed by a numerical method (its dense output errs by about its tolerance)
+/// or made by it where the true orbit only grazes z = 1 (the exactly grazing orbit z ≡ 1, which
+/// the closed forms follow to rounding and dop853 at tol 1e-10 leaves by up to 8e-11 in z,
+/// issue 32): `docs/MODEL.md` §12.
+pub fn contact_resolution(tol_a: f64, tol_b: f64) -> f64 {
+    10.0 * tol_a.max(tol_b)
+}
+
+/// Samples of the cubic in [`penetration`].
+const DEPTH_SAMPLES: u32 = 64;
+
+/// The penetration depth z − 1 of the contact from `enter` to the `exit` that ends it (switches
+/// of one run): [`penetration`] between them. NaN unless `enter` is an `enter` and `exit` an
+/// `exit` after it.
+pub fn contact_depth(params: &Params, enter: &Event, exit: &Event) -> f64 {
+    let ordered = exit.time >= enter.time;
+    if enter.kind != EventKind::Enter || exit.kind != EventKind::Exit || !ordered {
+        return f64::NAN;
+    }
+    penetration(params, (enter.time, &enter.state), (exit.time, &exit.state))
+}
+
+/// How far past z = 1 (z − 1) a run reaches between two of its states, estimated from
+/// h = z² − 1 and its rate h′ at both (a contact's `enter` and `exit`, where h = 0, or its
+/// `enter` and a run's last state inside it): the largest value of the cubic through them,
+/// halved (z − 1 ≈ h/2 near z = 1). Exact for a parabola; 0 when the cubic stays below 0.
+pub fn penetration(params: &Params, from: (f64, &State), to: (f64, &State)) -> f64 {
+    let length = to.0 - from.0;
+    let model = ModelParams::of(params);
+    let (a, b) = (
+        geometry::point(&model, *from.1),
+        geometry::point(&model, *to.1),
+    );
+    // Hermite on σ ∈ [0, 1]: H = h0 (1 − 3σ² + 2σ³) + h1 (3σ² − 2σ³)
+    //   + m0 (σ³ − 2σ² + σ) + m1 (σ³ − σ²), m = h′·length.
+    let (m0, m1) = (a.dh * length, b.dh * length);
+    let mut deepest: f64 = a.h.max(b.h).max(0.0);
+    for k in 1..DEPTH_SAMPLES {
+        let s = f64::from(k) / f64::from(DEPTH_SAMPLES);
+        let (s2, s3) = (s * s, s * s * s);
+        let h = a.h * (1.0 - 3.0 * s2 + 2.0 * s3)
+            + b.h * (3.0 * s2 - 2.0 * s3)
+            + m0 * (s3 - 2.0 * s2 + s)
+            + m1 * (s3 - s2);
+        deepest = deepest.max(h);
+    }
+    0.5 * deepest
 }

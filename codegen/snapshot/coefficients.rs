@@ -32,6 +32,10 @@
 //                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 // contact_particular           before:   111 add   290 mul    6 div   0 sqrt   0 trans
 //                               after:    23 add    87 mul    2 div   0 sqrt   0 trans
+// contact_particular_residual  before:    20 add    32 mul    0 div   0 sqrt   0 trans
+//                               after:    20 add    29 mul    0 div   0 sqrt   0 trans
+// contact_particular_correction before:   144 add   360 mul    6 div   0 sqrt   0 trans
+//                               after:    36 add   108 mul    2 div   0 sqrt   0 trans
 // contact_particular_eval      before:     6 add    12 mul    0 div   0 sqrt   0 trans
 //                               after:     6 add    12 mul    0 div   0 sqrt   0 trans
 // contact_modes                before:     7 add    12 mul    0 div   0 sqrt   0 trans
@@ -116,12 +120,24 @@
 //                               after:    22 add    56 mul    2 div   1 sqrt   0 trans
 // ring_matrices                before:     0 add     2 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
+// station_slip_rate            before:    11 add    30 mul    4 div   4 sqrt   0 trans
+//                               after:     5 add    20 mul    2 div   1 sqrt   0 trans
+// station_cone_rates           before:   822 add  1720 mul  352 div 346 sqrt   0 trans
+//                               after:    69 add   231 mul    4 div   1 sqrt   0 trans
+// forcing_phasor_rate          before:     0 add     2 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     2 mul    0 div   0 sqrt   0 trans
 // contact_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
 // slipping_taylor::constants   before:     0 add     4 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     4 mul    0 div   0 sqrt   0 trans
 // rolling_taylor::constants    before:     0 add     1 mul    0 div   0 sqrt   0 trans
 //                               after:     0 add     1 mul    0 div   0 sqrt   0 trans
+// station_contact_taylor::constants before:     0 add     0 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
+// station_slipping_taylor::constants before:     0 add     3 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     3 mul    0 div   0 sqrt   0 trans
+// station_rolling_taylor::constants before:     0 add     0 mul    0 div   0 sqrt   0 trans
+//                               after:     0 add     0 mul    0 div   0 sqrt   0 trans
 //
 // Taylor recurrences per system: series, order 0, and order n >= 1 as fixed + n x per-n
 // (per-n counts bound the convolutions from above: a square or a square root takes about half):
@@ -134,6 +150,15 @@
 // rolling_taylor               45 series; order 0:    41 add    42 mul    1 div   1 sqrt   0 trans
 //                              order n fixed:    34 add    51 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    17 add    20 mul    0 div   0 sqrt   0 trans
+// station_contact_taylor       23 series; order 0:     8 add    10 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:     5 add    19 mul    1 div   0 sqrt   0 trans
+//                              order n per n:     3 add     6 mul    0 div   0 sqrt   0 trans
+// station_slipping_taylor      35 series; order 0:    15 add    24 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    11 add    33 mul    1 div   0 sqrt   0 trans
+//                              order n per n:    11 add    14 mul    0 div   0 sqrt   0 trans
+// station_rolling_taylor       62 series; order 0:    26 add    45 mul    2 div   1 sqrt   0 trans
+//                              order n fixed:    23 add    57 mul    1 div   0 sqrt   0 trans
+//                              order n per n:    25 add    28 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
 /// The model's parameters: the parameter table's entries the formulas read and the quantities derived from them (`docs/MODEL.md` §0, §1).
@@ -331,6 +356,22 @@ pub struct ContactParticular {
     pub c55: f64,
     /// c66, constant of y: −(Kl⁻¹ Fd)_y
     pub c66: f64,
+}
+/// What the linearized contact equations leave at particular constants: their cos θ, sin θ and constant parts (`docs/MODEL.md` §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ParticularResidual {
+    /// cos θ part of the x equation
+    pub x_cos: f64,
+    /// sin θ part of the x equation
+    pub x_sin: f64,
+    /// constant part of the x equation
+    pub x_constant: f64,
+    /// cos θ part of the y equation
+    pub y_cos: f64,
+    /// sin θ part of the y equation
+    pub y_sin: f64,
+    /// constant part of the y equation
+    pub y_constant: f64,
 }
 /// Initial state of the homogeneous part of a contact segment (state minus particular).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -531,6 +572,14 @@ pub struct OffsetAcceleration {
     pub au: f64,
     /// v'' without contact forces
     pub av: f64,
+}
+/// The rate a' of a rub station's offset acceleration from every force but the contact's (`docs/MODEL.md` §17).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DriveRate {
+    /// (u'')' without contact forces
+    pub au_rate: f64,
+    /// (v'')' without contact forces
+    pub av_rate: f64,
 }
 /// The model's parameters from the parameter table: each entry the formulas read, copied by name, and the quantities derived from them (F = η_m ρ̂ η², η_m ρ̂).
 ///
@@ -1103,6 +1152,115 @@ pub fn contact_particular(
                         + 2.0 * speed_ratio * damping_ratio * fb2 * t2)),
         c55: t12 * (fb1 * fd2 - fa2 * fd1),
         c66: t12 * (fb2 * fd1 - fa1 * fd2),
+    }
+}
+/// Residual of particular constants c11 … c66 in the linearized contact equations with the input force (cos θ, sin θ and constant parts of the x and y equations): zero for the exact constants.
+///
+/// Source: docs/MODEL.md §5 (particular part), §15.
+/// Derivation: the harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd − F(cos θ, sin θ) − u, split by partial derivatives in cos θ, sin θ and the rest.
+#[inline]
+#[must_use]
+pub fn contact_particular_residual(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    particular: &ContactParticular,
+) -> ParticularResidual {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let force_x = model.force_x;
+    let force_y = model.force_y;
+    let unbalance_force = model.unbalance_force;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let fd1 = kl.fd1;
+    let fd2 = kl.fd2;
+    let c11 = particular.c11;
+    let c22 = particular.c22;
+    let c33 = particular.c33;
+    let c44 = particular.c44;
+    let c55 = particular.c55;
+    let c66 = particular.c66;
+    let t0 = -unbalance_force;
+    let t1 = speed_ratio * speed_ratio;
+    ParticularResidual {
+        x_cos: t0 + c11 * fa1 + c33 * fb1 + 2.0 * speed_ratio * damping_ratio * c22
+            - t1 * c11,
+        x_sin: c22 * fa1 + c44 * fb1 - t1 * c22
+            - 2.0 * speed_ratio * damping_ratio * c11,
+        x_constant: fd1 + c55 * fa1 + c66 * fb1 - force_x,
+        y_cos: c11 * fb2 + c33 * fa2 + 2.0 * speed_ratio * damping_ratio * c44
+            - t1 * c33,
+        y_sin: t0 + c22 * fb2 + c44 * fa2 - t1 * c44
+            - 2.0 * speed_ratio * damping_ratio * c33,
+        y_constant: fd2 + c55 * fb2 + c66 * fa2 - force_y,
+    }
+}
+/// Correction δ of particular constants from their residual r (`contact_particular_residual`): M δ + r = 0, the equations' matrix M without forcing; c + δ is one step of iterative refinement.
+///
+/// Source: docs/MODEL.md §5 (particular part).
+/// Derivation: the ansatz substituted into q'' + 2νq' + Kl q with no forcing and no Fd, the residual added to each of the six equations, solved by Cramer's rule as for the particular constants.
+#[inline]
+#[must_use]
+pub fn contact_particular_correction(
+    model: &ModelParams,
+    kl: &LinearizedContact,
+    residual: &ParticularResidual,
+) -> ContactParticular {
+    let speed_ratio = model.speed_ratio;
+    let damping_ratio = model.damping_ratio;
+    let fa1 = kl.fa1;
+    let fb1 = kl.fb1;
+    let fb2 = kl.fb2;
+    let fa2 = kl.fa2;
+    let x_cos = residual.x_cos;
+    let x_sin = residual.x_sin;
+    let x_constant = residual.x_constant;
+    let y_cos = residual.y_cos;
+    let y_sin = residual.y_sin;
+    let y_constant = residual.y_constant;
+    let t0 = speed_ratio * speed_ratio;
+    let t1 = -t0;
+    let t2 = t1 + fa1;
+    let t3 = damping_ratio * damping_ratio;
+    let t4 = t1 + fa2;
+    let t5 = 4.0 * t0 * t3 + t4 * t4;
+    let t6 = t2 * t5 - fb1 * fb2 * t4;
+    let t7 = -(2.0 * speed_ratio * damping_ratio * t5)
+        - 2.0 * speed_ratio * damping_ratio * fb1 * fb2;
+    let t8 = fb2 * fb2;
+    let t9 = 4.0 * t0 * t3 * fb2 + fb1 * t8 - fb2 * t2 * t4;
+    let t10 = 1.0 / (t2 * t6 + fb1 * t9 - 2.0 * speed_ratio * damping_ratio * t7);
+    let t11 = t4 * y_sin;
+    let t12 = fb1 * (2.0 * speed_ratio * damping_ratio * y_cos + t11) - t5 * x_sin;
+    let t13 = 2.0 * speed_ratio * damping_ratio * fb2 * x_sin;
+    let t14 = 2.0 * speed_ratio * damping_ratio * y_sin - t4 * y_cos;
+    let t15 = t2 * t14;
+    let t16 = fb1 * fb2 * y_cos;
+    let t17 = fb2 * t4 * x_sin;
+    let t18 = t17 - 2.0 * speed_ratio * damping_ratio * t14 - fb1 * fb2 * y_sin;
+    let t19 = -(t11) - 2.0 * speed_ratio * damping_ratio * y_cos;
+    let t20 = 1.0 / (fa1 * fa2 - fb1 * fb2);
+    ContactParticular {
+        c11: t10
+            * (fb1 * (t13 - t15 - t16) - t6 * x_cos
+                - 2.0 * speed_ratio * damping_ratio * t12),
+        c22: t10 * (t2 * t12 + t7 * x_cos + fb1 * t18),
+        c33: t10
+            * (t2 * (t15 + t16 - 2.0 * speed_ratio * damping_ratio * fb2 * x_sin)
+                - 2.0 * speed_ratio * damping_ratio * t18 - t9 * x_cos),
+        c44: t10
+            * (t2 * (t17 + t2 * t19)
+                + fb1
+                    * (fb2 * t2 * y_sin - 2.0 * speed_ratio * damping_ratio * fb2 * y_cos
+                        - t8 * x_sin)
+                + (2.0 * speed_ratio * damping_ratio * fb2 * t4
+                    + 2.0 * speed_ratio * damping_ratio * fb2 * t2) * x_cos
+                - 2.0 * speed_ratio * damping_ratio
+                    * (t13 - 2.0 * speed_ratio * damping_ratio * t19)),
+        c55: t20 * (fb1 * y_constant - fa2 * x_constant),
+        c66: t20 * (fb2 * x_constant - fa1 * y_constant),
     }
 }
 /// Outputs of [`contact_particular_eval`].
@@ -2844,6 +3002,155 @@ pub fn ring_matrices(model: &ModelParams) -> RingMatrices {
         kc_yy: contact_stiffness,
     }
 }
+/// The rate w' = d''·t − (d'·t)(d'·n)/z of a rub station's slip velocity along a motion whose offset accelerates at d'' (every force included).
+///
+/// Source: docs/MODEL.md §17, §10.
+/// Derivation: the total time derivative of the station's slip velocity w = d'·t + ρ_R η (d' → d'').
+#[inline]
+#[must_use]
+pub fn station_slip_rate(
+    offset: &StatorOffset,
+    acceleration: &Acceleration,
+    offset_rate: &OffsetRate,
+) -> SlipVelocityRate {
+    let u = offset.u;
+    let v = offset.v;
+    let ax = acceleration.ax;
+    let ay = acceleration.ay;
+    let ur = offset_rate.ur;
+    let vr = offset_rate.vr;
+    let t0 = u * u + v * v;
+    let t1 = 1.0 / m::sqrt(t0);
+    let t2 = 2.0 * u * ur + 2.0 * v * vr;
+    let t3 = 1.0 / t0;
+    SlipVelocityRate {
+        rate: 0.5 * v * ur * t1 * t2 * t3 + ay * u * t1 - ax * v * t1
+            - 0.5 * u * vr * t1 * t2 * t3,
+    }
+}
+/// Outputs of [`station_cone_rates`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StationConeRates {
+    /// μN − λ
+    pub upper: f64,
+    /// μN + λ
+    pub lower: f64,
+    /// (μN − λ)'
+    pub upper_rate: f64,
+    /// (μN + λ)'
+    pub lower_rate: f64,
+}
+/// The friction cone's margins μN − λ and μN + λ of a rolling station and their rates along a motion whose offset accelerates at d'' and whose drive a changes at a'.
+///
+/// Source: docs/MODEL.md §17, §10.
+/// Derivation: the total time derivatives of `station_rolling`'s margins (d → d', d' → d'', a → a').
+#[inline]
+#[must_use]
+pub fn station_cone_rates(
+    model: &ModelParams,
+    offset: &StatorOffset,
+    acceleration: &Acceleration,
+    offset_rate: &OffsetRate,
+    law: &ContactLaw,
+    compliance: &StationCompliance,
+    drive: &OffsetAcceleration,
+    drive_rate: &DriveRate,
+) -> StationConeRates {
+    let friction_coefficient = model.friction_coefficient;
+    let u = offset.u;
+    let v = offset.v;
+    let ax = acceleration.ax;
+    let ay = acceleration.ay;
+    let ur = offset_rate.ur;
+    let vr = offset_rate.vr;
+    let kc_xx = law.kc_xx;
+    let kc_xy = law.kc_xy;
+    let kc_yx = law.kc_yx;
+    let kc_yy = law.kc_yy;
+    let w_xx = compliance.w_xx;
+    let w_xy = compliance.w_xy;
+    let w_yx = compliance.w_yx;
+    let w_yy = compliance.w_yy;
+    let au = drive.au;
+    let av = drive.av;
+    let au_rate = drive_rate.au_rate;
+    let av_rate = drive_rate.av_rate;
+    let t0 = u * u + v * v;
+    let t1 = 1.0 / m::sqrt(t0);
+    let t2 = 1.0 - t1;
+    let t3 = u * t2 * kc_xx + v * t2 * kc_xy;
+    let t4 = u * t2 * kc_yx + v * t2 * kc_yy;
+    let t5 = friction_coefficient * (u * t1 * t3 + v * t1 * t4);
+    let t6 = t3 * w_xx + t4 * w_xy;
+    let t7 = t3 * w_yx + t4 * w_yy;
+    let t8 = u * vr * t1 - v * ur * t1;
+    let t9 = u * ur * t1 + v * vr * t1;
+    let t10 = u * t1 * av + v * t1 * t6 - v * t1 * au - u * t1 * t7 - t1 * t8 * t9;
+    let t11 = u * t1 * w_xy - v * t1 * w_xx;
+    let t12 = u * t1 * w_yy - v * t1 * w_yx;
+    let t13 = u * t1 * t12 - v * t1 * t11;
+    let t14 = 1.0 / t13;
+    let t15 = t10 * t14;
+    let t16 = 2.0 * u * ur + 2.0 * v * vr;
+    let t17 = 1.0 / t0;
+    let t18 = ur * t2 * kc_xx + 0.5 * u * t1 * kc_xx * t16 * t17 + vr * t2 * kc_xy
+        + 0.5 * v * t1 * kc_xy * t16 * t17;
+    let t19 = ur * t2 * kc_yx + 0.5 * u * t1 * kc_yx * t16 * t17 + vr * t2 * kc_yy
+        + 0.5 * v * t1 * kc_yy * t16 * t17;
+    let t20 = friction_coefficient
+        * (ur * t1 * t3 + u * t1 * t18 + vr * t1 * t4 + v * t1 * t19
+            - 0.5 * u * t1 * t3 * t16 * t17 - 0.5 * v * t1 * t4 * t16 * t17);
+    let t21 = t14
+        * (0.5 * v * t1 * au * t16 * t17 + ur * t1 * av + u * t1 * av_rate + vr * t1 * t6
+            + v * t1 * (w_xx * t18 + w_xy * t19) + 0.5 * u * t1 * t7 * t16 * t17
+            + 0.5 * t1 * t8 * t9 * t16 * t17 - vr * t1 * au - v * t1 * au_rate
+            - 0.5 * u * t1 * av * t16 * t17 - 0.5 * v * t1 * t6 * t16 * t17
+            - ur * t1 * t7 - u * t1 * (w_yx * t18 + w_yy * t19)
+            - t1 * t9
+                * (0.5 * v * ur * t1 * t16 * t17 + ay * u * t1 - ax * v * t1
+                    - 0.5 * u * vr * t1 * t16 * t17)
+            - t1 * t8
+                * (t1 * ur * ur + ax * u * t1 + t1 * vr * vr + ay * v * t1
+                    - 0.5 * u * ur * t1 * t16 * t17 - 0.5 * v * vr * t1 * t16 * t17));
+    let t22 = t10
+        * (0.5 * v * t1 * t11 * t16 * t17 + ur * t1 * t12
+            + u * t1
+                * (0.5 * v * t1 * w_yx * t16 * t17 + ur * t1 * w_yy - vr * t1 * w_yx
+                    - 0.5 * u * t1 * w_yy * t16 * t17) - vr * t1 * t11
+            - v * t1
+                * (0.5 * v * t1 * w_xx * t16 * t17 + ur * t1 * w_xy - vr * t1 * w_xx
+                    - 0.5 * u * t1 * w_xy * t16 * t17) - 0.5 * u * t1 * t12 * t16 * t17)
+        / (t13 * t13);
+    StationConeRates {
+        upper: t5 - t15,
+        lower: t15 + t5,
+        upper_rate: t20 + t22 - t21,
+        lower_rate: t20 + t21 - t22,
+    }
+}
+/// Outputs of [`forcing_phasor_rate`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhasorRate {
+    /// (cos θ)'
+    pub ct_rate: f64,
+    /// (sin θ)'
+    pub st_rate: f64,
+}
+/// The forcing phasor's rate: (cos θ)' = −η sin θ, (sin θ)' = η cos θ.
+///
+/// Source: docs/MODEL.md §16, §17.
+/// Derivation: the model's `forcing_phasor` (θ' = η).
+#[inline]
+#[must_use]
+pub fn forcing_phasor_rate(model: &ModelParams, phasor: &Phasor) -> PhasorRate {
+    let speed_ratio = model.speed_ratio;
+    let ct = phasor.ct;
+    let st = phasor.st;
+    PhasorRate {
+        ct_rate: -speed_ratio * st,
+        st_rate: speed_ratio * ct,
+    }
+}
 /// Frictionless contact: q'' = F(cos θ, sin θ) + u − 2ν q' − q − K_s·g(q).
 ///
 /// Source: docs/MODEL.md §1, §16.
@@ -3492,5 +3799,703 @@ pub mod rolling_taylor {
         ts::set(&mut s[5], N + 1, v);
     }
 }
+/// A rub station in frictionless contact: the restoring force K_c g(d) at d = P − ε̂ (f_c = −K_c g(d)). The law's inputs (P, P' and while rolling a) are states of rate 0 that the caller sets from the matrix model's series before each order; the forcing phasor is carried with its rates.
+///
+/// Source: docs/MODEL.md §16, §17.
+/// Generated Taylor-coefficient recurrences (automatic differentiation of the field's
+/// elementary operations): `order0` evaluates every operation at the expansion point,
+/// `order` its coefficient n ≥ 1 from the lower ones, then each state's coefficient n + 1.
+pub mod station_contact_taylor {
+    #[allow(unused_imports)]
+    use super::*;
+    #[allow(unused_imports)]
+    use crate::math as m;
+    use crate::taylor::kernels as ts;
+    /// Series the recurrences use (states first).
+    pub const SERIES: usize = 23;
+    /// States, stored first: x, y, x', y', cos θ, sin θ.
+    pub const STATES: usize = 6;
+    /// The series of P_x, the station's relative position (input).
+    pub const RELATIVE_X: usize = 0;
+    /// The series of P_y (input).
+    pub const RELATIVE_Y: usize = 1;
+    /// The series of P'_x, its rate (input).
+    pub const RELATIVE_VX: usize = 2;
+    /// The series of P'_y (input).
+    pub const RELATIVE_VY: usize = 3;
+    /// The series of cos θ.
+    pub const PHASOR_CT: usize = 4;
+    /// The series of sin θ.
+    pub const PHASOR_ST: usize = 5;
+    /// The series of −f_c, x component: the contact force the rotor's point feels, with a minus.
+    pub const RESTORING_X: usize = 20;
+    /// The series of −f_c, y component.
+    pub const RESTORING_Y: usize = 21;
+    /// The series of h = z² − 1 (positive in contact).
+    pub const BOUNDARY: usize = 22;
+    /// Outputs of [`constants`].
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Constants {
+        /// time-constant sub-expression 0
+        pub k0: f64,
+        /// time-constant sub-expression 1
+        pub k1: f64,
+        /// time-constant sub-expression 2
+        pub k2: f64,
+        /// time-constant sub-expression 3
+        pub k3: f64,
+        /// time-constant sub-expression 4
+        pub k4: f64,
+        /// time-constant sub-expression 5
+        pub k5: f64,
+        /// time-constant sub-expression 6
+        pub k6: f64,
+        /// time-constant sub-expression 7
+        pub k7: f64,
+    }
+    /// The time-constant sub-expressions of the station_contact_taylor recurrences (parameters and their combinations), computed once per segment.
+    ///
+    /// Source: docs/MODEL.md §16, §17.
+    /// Derivation: the sub-expressions of the field that depend on no state.
+    #[inline]
+    #[must_use]
+    pub fn constants(model: &ModelParams, law: &ContactLaw) -> Constants {
+        let speed_ratio = model.speed_ratio;
+        let offset_x = model.offset_x;
+        let offset_y = model.offset_y;
+        let kc_xx = law.kc_xx;
+        let kc_xy = law.kc_xy;
+        let kc_yx = law.kc_yx;
+        let kc_yy = law.kc_yy;
+        Constants {
+            k0: -speed_ratio,
+            k1: speed_ratio,
+            k2: kc_xx,
+            k3: -offset_x,
+            k4: -offset_y,
+            k5: kc_xy,
+            k6: kc_yx,
+            k7: kc_yy,
+        }
+    }
+    /// Every operation at the expansion point (order 0; the states' order 0 set by the
+    /// caller), and every state's coefficient 1.
+    #[inline]
+    pub fn order0(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        s[6][0] = 0.0;
+        s[7][0] = 0.0;
+        s[8][0] = k.k0 * s[5][0];
+        s[9][0] = k.k1 * s[4][0];
+        s[10][0] = k.k3 + s[0][0];
+        s[11][0] = s[10][0] * s[10][0];
+        s[12][0] = k.k4 + s[1][0];
+        s[13][0] = s[12][0] * s[12][0];
+        s[14][0] = s[11][0] + s[13][0];
+        s[15][0] = m::sqrt(s[14][0]);
+        s[16][0] = 1.0 / s[15][0];
+        s[17][0] = 1.0 - s[16][0];
+        s[18][0] = s[10][0] * s[17][0];
+        s[19][0] = s[12][0] * s[17][0];
+        s[20][0] = k.k2 * s[18][0] + k.k5 * s[19][0];
+        s[21][0] = k.k6 * s[18][0] + k.k7 * s[19][0];
+        s[22][0] = s[11][0] + s[13][0] - 1.0;
+        s[0][1] = s[2][0];
+        s[1][1] = s[3][0];
+        s[2][1] = s[6][0];
+        s[3][1] = s[7][0];
+        s[4][1] = s[8][0];
+        s[5][1] = s[9][0];
+    }
+    /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
+    /// coefficient `N + 1` of every state. The order is a constant, so every
+    /// convolution is a loop of known length (unrolled by the compiler). Beyond the
+    /// storage's capacity it does nothing.
+    #[inline]
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = 0.0;
+        ts::set(&mut s[6], N, v);
+        let v = 0.0;
+        ts::set(&mut s[7], N, v);
+        let v = k.k0 * ts::at(&s[5], N);
+        ts::set(&mut s[8], N, v);
+        let v = k.k1 * ts::at(&s[4], N);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::square::<N>(&s[10]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[12], N, v);
+        let v = ts::square::<N>(&s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[14], N, v);
+        let v = ts::sqrt::<N>(&s[14], &s[15]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::reciprocal::<N>(&s[15], &s[16]);
+        ts::set(&mut s[16], N, v);
+        let v = -ts::at(&s[16], N);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[10], &s[17]);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[12], &s[17]);
+        ts::set(&mut s[19], N, v);
+        let v = k.k2 * ts::at(&s[18], N) + k.k5 * ts::at(&s[19], N);
+        ts::set(&mut s[20], N, v);
+        let v = k.k6 * ts::at(&s[18], N) + k.k7 * ts::at(&s[19], N);
+        ts::set(&mut s[21], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[22], N, v);
+        let v = ts::at(&s[2], N) * ts::inverse::<N>();
+        ts::set(&mut s[0], N + 1, v);
+        let v = ts::at(&s[3], N) * ts::inverse::<N>();
+        ts::set(&mut s[1], N + 1, v);
+        let v = ts::at(&s[6], N) * ts::inverse::<N>();
+        ts::set(&mut s[2], N + 1, v);
+        let v = ts::at(&s[7], N) * ts::inverse::<N>();
+        ts::set(&mut s[3], N + 1, v);
+        let v = ts::at(&s[8], N) * ts::inverse::<N>();
+        ts::set(&mut s[4], N + 1, v);
+        let v = ts::at(&s[9], N) * ts::inverse::<N>();
+        ts::set(&mut s[5], N + 1, v);
+    }
+}
+/// A rub station slipping in direction σ: the restoring force K_c g(d) + μσN t (= −f_c). The law's inputs (P, P' and while rolling a) are states of rate 0 that the caller sets from the matrix model's series before each order; the forcing phasor is carried with its rates.
+///
+/// Source: docs/MODEL.md §16, §17.
+/// Generated Taylor-coefficient recurrences (automatic differentiation of the field's
+/// elementary operations): `order0` evaluates every operation at the expansion point,
+/// `order` its coefficient n ≥ 1 from the lower ones, then each state's coefficient n + 1.
+pub mod station_slipping_taylor {
+    #[allow(unused_imports)]
+    use super::*;
+    #[allow(unused_imports)]
+    use crate::math as m;
+    use crate::taylor::kernels as ts;
+    /// Series the recurrences use (states first).
+    pub const SERIES: usize = 35;
+    /// States, stored first: x, y, x', y', cos θ, sin θ.
+    pub const STATES: usize = 6;
+    /// The series of P_x, the station's relative position (input).
+    pub const RELATIVE_X: usize = 0;
+    /// The series of P_y (input).
+    pub const RELATIVE_Y: usize = 1;
+    /// The series of P'_x, its rate (input).
+    pub const RELATIVE_VX: usize = 2;
+    /// The series of P'_y (input).
+    pub const RELATIVE_VY: usize = 3;
+    /// The series of cos θ.
+    pub const PHASOR_CT: usize = 4;
+    /// The series of sin θ.
+    pub const PHASOR_ST: usize = 5;
+    /// The series of −f_c, x component: the contact force the rotor's point feels, with a minus.
+    pub const RESTORING_X: usize = 28;
+    /// The series of −f_c, y component.
+    pub const RESTORING_Y: usize = 30;
+    /// The series of h = z² − 1 (positive in contact).
+    pub const BOUNDARY: usize = 31;
+    /// The series of the slip velocity w = d'·t + ρ_R η.
+    pub const SLIP_VELOCITY: usize = 34;
+    /// Outputs of [`constants`].
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Constants {
+        /// time-constant sub-expression 0
+        pub k0: f64,
+        /// time-constant sub-expression 1
+        pub k1: f64,
+        /// time-constant sub-expression 2
+        pub k2: f64,
+        /// time-constant sub-expression 3
+        pub k3: f64,
+        /// time-constant sub-expression 4
+        pub k4: f64,
+        /// time-constant sub-expression 5
+        pub k5: f64,
+        /// time-constant sub-expression 6
+        pub k6: f64,
+        /// time-constant sub-expression 7
+        pub k7: f64,
+        /// time-constant sub-expression 8
+        pub k8: f64,
+        /// time-constant sub-expression 9
+        pub k9: f64,
+        /// time-constant sub-expression 10
+        pub k10: f64,
+    }
+    /// The time-constant sub-expressions of the station_slipping_taylor recurrences (parameters and their combinations), computed once per segment.
+    ///
+    /// Source: docs/MODEL.md §16, §17.
+    /// Derivation: the sub-expressions of the field that depend on no state.
+    #[inline]
+    #[must_use]
+    pub fn constants(model: &ModelParams, slip: &Slip, law: &ContactLaw) -> Constants {
+        let speed_ratio = model.speed_ratio;
+        let offset_x = model.offset_x;
+        let offset_y = model.offset_y;
+        let friction_coefficient = model.friction_coefficient;
+        let radius_ratio = model.radius_ratio;
+        let sigma = slip.sigma;
+        let kc_xx = law.kc_xx;
+        let kc_xy = law.kc_xy;
+        let kc_yx = law.kc_yx;
+        let kc_yy = law.kc_yy;
+        let t0 = sigma * friction_coefficient;
+        Constants {
+            k0: -speed_ratio,
+            k1: speed_ratio,
+            k2: kc_xx,
+            k3: -offset_x,
+            k4: -offset_y,
+            k5: kc_xy,
+            k6: -sigma * friction_coefficient,
+            k7: kc_yx,
+            k8: kc_yy,
+            k9: t0,
+            k10: speed_ratio * radius_ratio,
+        }
+    }
+    /// Every operation at the expansion point (order 0; the states' order 0 set by the
+    /// caller), and every state's coefficient 1.
+    #[inline]
+    pub fn order0(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        s[6][0] = 0.0;
+        s[7][0] = 0.0;
+        s[8][0] = k.k0 * s[5][0];
+        s[9][0] = k.k1 * s[4][0];
+        s[10][0] = k.k3 + s[0][0];
+        s[11][0] = s[10][0] * s[10][0];
+        s[12][0] = k.k4 + s[1][0];
+        s[13][0] = s[12][0] * s[12][0];
+        s[14][0] = s[11][0] + s[13][0];
+        s[15][0] = m::sqrt(s[14][0]);
+        s[16][0] = 1.0 / s[15][0];
+        s[17][0] = 1.0 - s[16][0];
+        s[18][0] = s[10][0] * s[17][0];
+        s[19][0] = s[12][0] * s[17][0];
+        s[20][0] = s[12][0] * s[16][0];
+        s[21][0] = s[10][0] * s[16][0];
+        s[22][0] = k.k2 * s[18][0] + k.k5 * s[19][0];
+        s[23][0] = s[21][0] * s[22][0];
+        s[24][0] = k.k7 * s[18][0] + k.k8 * s[19][0];
+        s[25][0] = s[20][0] * s[24][0];
+        s[26][0] = s[23][0] + s[25][0];
+        s[27][0] = s[20][0] * s[26][0];
+        s[28][0] = k.k2 * s[18][0] + k.k5 * s[19][0] + k.k6 * s[27][0];
+        s[29][0] = s[21][0] * s[26][0];
+        s[30][0] = k.k7 * s[18][0] + k.k8 * s[19][0] + k.k9 * s[29][0];
+        s[31][0] = s[11][0] + s[13][0] - 1.0;
+        s[32][0] = s[2][0] * s[20][0];
+        s[33][0] = s[3][0] * s[21][0];
+        s[34][0] = k.k10 + s[33][0] - s[32][0];
+        s[0][1] = s[2][0];
+        s[1][1] = s[3][0];
+        s[2][1] = s[6][0];
+        s[3][1] = s[7][0];
+        s[4][1] = s[8][0];
+        s[5][1] = s[9][0];
+    }
+    /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
+    /// coefficient `N + 1` of every state. The order is a constant, so every
+    /// convolution is a loop of known length (unrolled by the compiler). Beyond the
+    /// storage's capacity it does nothing.
+    #[inline]
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = 0.0;
+        ts::set(&mut s[6], N, v);
+        let v = 0.0;
+        ts::set(&mut s[7], N, v);
+        let v = k.k0 * ts::at(&s[5], N);
+        ts::set(&mut s[8], N, v);
+        let v = k.k1 * ts::at(&s[4], N);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::square::<N>(&s[10]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[12], N, v);
+        let v = ts::square::<N>(&s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[14], N, v);
+        let v = ts::sqrt::<N>(&s[14], &s[15]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::reciprocal::<N>(&s[15], &s[16]);
+        ts::set(&mut s[16], N, v);
+        let v = -ts::at(&s[16], N);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[10], &s[17]);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[12], &s[17]);
+        ts::set(&mut s[19], N, v);
+        let v = ts::product::<N>(&s[12], &s[16]);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[10], &s[16]);
+        ts::set(&mut s[21], N, v);
+        let v = k.k2 * ts::at(&s[18], N) + k.k5 * ts::at(&s[19], N);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[21], &s[22]);
+        ts::set(&mut s[23], N, v);
+        let v = k.k7 * ts::at(&s[18], N) + k.k8 * ts::at(&s[19], N);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[20], &s[24]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::at(&s[23], N) + ts::at(&s[25], N);
+        ts::set(&mut s[26], N, v);
+        let v = ts::product::<N>(&s[20], &s[26]);
+        ts::set(&mut s[27], N, v);
+        let v = k.k2 * ts::at(&s[18], N) + k.k5 * ts::at(&s[19], N)
+            + k.k6 * ts::at(&s[27], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[21], &s[26]);
+        ts::set(&mut s[29], N, v);
+        let v = k.k7 * ts::at(&s[18], N) + k.k8 * ts::at(&s[19], N)
+            + k.k9 * ts::at(&s[29], N);
+        ts::set(&mut s[30], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[31], N, v);
+        let v = ts::product::<N>(&s[2], &s[20]);
+        ts::set(&mut s[32], N, v);
+        let v = ts::product::<N>(&s[3], &s[21]);
+        ts::set(&mut s[33], N, v);
+        let v = ts::at(&s[33], N) - ts::at(&s[32], N);
+        ts::set(&mut s[34], N, v);
+        let v = ts::at(&s[2], N) * ts::inverse::<N>();
+        ts::set(&mut s[0], N + 1, v);
+        let v = ts::at(&s[3], N) * ts::inverse::<N>();
+        ts::set(&mut s[1], N + 1, v);
+        let v = ts::at(&s[6], N) * ts::inverse::<N>();
+        ts::set(&mut s[2], N + 1, v);
+        let v = ts::at(&s[7], N) * ts::inverse::<N>();
+        ts::set(&mut s[3], N + 1, v);
+        let v = ts::at(&s[8], N) * ts::inverse::<N>();
+        ts::set(&mut s[4], N + 1, v);
+        let v = ts::at(&s[9], N) * ts::inverse::<N>();
+        ts::set(&mut s[5], N + 1, v);
+    }
+}
+/// A rub station rolling without slip: the restoring force K_c g(d) + λ t (= −f_c), λ the tangential force that keeps w = 0. The law's inputs (P, P' and while rolling a) are states of rate 0 that the caller sets from the matrix model's series before each order; the forcing phasor is carried with its rates.
+///
+/// Source: docs/MODEL.md §16, §17.
+/// Generated Taylor-coefficient recurrences (automatic differentiation of the field's
+/// elementary operations): `order0` evaluates every operation at the expansion point,
+/// `order` its coefficient n ≥ 1 from the lower ones, then each state's coefficient n + 1.
+pub mod station_rolling_taylor {
+    #[allow(unused_imports)]
+    use super::*;
+    #[allow(unused_imports)]
+    use crate::math as m;
+    use crate::taylor::kernels as ts;
+    /// Series the recurrences use (states first).
+    pub const SERIES: usize = 62;
+    /// States, stored first: x, y, x', y', cos θ, sin θ.
+    pub const STATES: usize = 8;
+    /// The series of P_x, the station's relative position (input).
+    pub const RELATIVE_X: usize = 0;
+    /// The series of P_y (input).
+    pub const RELATIVE_Y: usize = 1;
+    /// The series of P'_x, its rate (input).
+    pub const RELATIVE_VX: usize = 2;
+    /// The series of P'_y (input).
+    pub const RELATIVE_VY: usize = 3;
+    /// The series of cos θ.
+    pub const PHASOR_CT: usize = 4;
+    /// The series of sin θ.
+    pub const PHASOR_ST: usize = 5;
+    /// The series of a_x, the offset's acceleration but the contact's (input).
+    pub const DRIVE_X: usize = 6;
+    /// The series of a_y (input).
+    pub const DRIVE_Y: usize = 7;
+    /// The series of −f_c, x component: the contact force the rotor's point feels, with a minus.
+    pub const RESTORING_X: usize = 51;
+    /// The series of −f_c, y component.
+    pub const RESTORING_Y: usize = 54;
+    /// The series of h = z² − 1 (positive in contact).
+    pub const BOUNDARY: usize = 55;
+    /// The series of μN − λ (rolling needs it ≥ 0).
+    pub const CONE_UPPER: usize = 60;
+    /// The series of μN + λ (rolling needs it ≥ 0).
+    pub const CONE_LOWER: usize = 61;
+    /// Outputs of [`constants`].
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Constants {
+        /// time-constant sub-expression 0
+        pub k0: f64,
+        /// time-constant sub-expression 1
+        pub k1: f64,
+        /// time-constant sub-expression 2
+        pub k2: f64,
+        /// time-constant sub-expression 3
+        pub k3: f64,
+        /// time-constant sub-expression 4
+        pub k4: f64,
+        /// time-constant sub-expression 5
+        pub k5: f64,
+        /// time-constant sub-expression 6
+        pub k6: f64,
+        /// time-constant sub-expression 7
+        pub k7: f64,
+        /// time-constant sub-expression 8
+        pub k8: f64,
+        /// time-constant sub-expression 9
+        pub k9: f64,
+        /// time-constant sub-expression 10
+        pub k10: f64,
+        /// time-constant sub-expression 11
+        pub k11: f64,
+        /// time-constant sub-expression 12
+        pub k12: f64,
+        /// time-constant sub-expression 13
+        pub k13: f64,
+        /// time-constant sub-expression 14
+        pub k14: f64,
+    }
+    /// The time-constant sub-expressions of the station_rolling_taylor recurrences (parameters and their combinations), computed once per segment.
+    ///
+    /// Source: docs/MODEL.md §16, §17.
+    /// Derivation: the sub-expressions of the field that depend on no state.
+    #[inline]
+    #[must_use]
+    pub fn constants(
+        model: &ModelParams,
+        law: &ContactLaw,
+        compliance: &StationCompliance,
+    ) -> Constants {
+        let speed_ratio = model.speed_ratio;
+        let offset_x = model.offset_x;
+        let offset_y = model.offset_y;
+        let friction_coefficient = model.friction_coefficient;
+        let kc_xx = law.kc_xx;
+        let kc_xy = law.kc_xy;
+        let kc_yx = law.kc_yx;
+        let kc_yy = law.kc_yy;
+        let w_xx = compliance.w_xx;
+        let w_xy = compliance.w_xy;
+        let w_yx = compliance.w_yx;
+        let w_yy = compliance.w_yy;
+        Constants {
+            k0: -speed_ratio,
+            k1: speed_ratio,
+            k2: kc_xx,
+            k3: -offset_x,
+            k4: -offset_y,
+            k5: kc_xy,
+            k6: w_xx,
+            k7: w_xy,
+            k8: kc_yx,
+            k9: kc_yy,
+            k10: w_yx,
+            k11: w_yy,
+            k12: -w_xx,
+            k13: -w_yx,
+            k14: friction_coefficient,
+        }
+    }
+    /// Every operation at the expansion point (order 0; the states' order 0 set by the
+    /// caller), and every state's coefficient 1.
+    #[inline]
+    pub fn order0(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        s[8][0] = 0.0;
+        s[9][0] = 0.0;
+        s[10][0] = k.k0 * s[5][0];
+        s[11][0] = k.k1 * s[4][0];
+        s[12][0] = 0.0;
+        s[13][0] = 0.0;
+        s[14][0] = k.k3 + s[0][0];
+        s[15][0] = s[14][0] * s[14][0];
+        s[16][0] = k.k4 + s[1][0];
+        s[17][0] = s[16][0] * s[16][0];
+        s[18][0] = s[15][0] + s[17][0];
+        s[19][0] = m::sqrt(s[18][0]);
+        s[20][0] = 1.0 / s[19][0];
+        s[21][0] = 1.0 - s[20][0];
+        s[22][0] = s[14][0] * s[21][0];
+        s[23][0] = s[16][0] * s[21][0];
+        s[24][0] = s[16][0] * s[20][0];
+        s[25][0] = s[2][0] * s[24][0];
+        s[26][0] = s[14][0] * s[20][0];
+        s[27][0] = s[3][0] * s[26][0];
+        s[28][0] = s[27][0] - s[25][0];
+        s[29][0] = s[20][0] * s[28][0];
+        s[30][0] = s[2][0] * s[26][0];
+        s[31][0] = s[3][0] * s[24][0];
+        s[32][0] = s[30][0] + s[31][0];
+        s[33][0] = s[29][0] * s[32][0];
+        s[34][0] = s[6][0] * s[24][0];
+        s[35][0] = s[7][0] * s[26][0];
+        s[36][0] = k.k2 * s[22][0] + k.k5 * s[23][0];
+        s[37][0] = k.k8 * s[22][0] + k.k9 * s[23][0];
+        s[38][0] = k.k6 * s[36][0] + k.k7 * s[37][0];
+        s[39][0] = s[24][0] * s[38][0];
+        s[40][0] = k.k10 * s[36][0] + k.k11 * s[37][0];
+        s[41][0] = s[26][0] * s[40][0];
+        s[42][0] = s[35][0] + s[39][0] - s[33][0] - s[34][0] - s[41][0];
+        s[43][0] = s[24][0] * s[42][0];
+        s[44][0] = k.k12 * s[24][0] + k.k7 * s[26][0];
+        s[45][0] = s[24][0] * s[44][0];
+        s[46][0] = k.k13 * s[24][0] + k.k11 * s[26][0];
+        s[47][0] = s[26][0] * s[46][0];
+        s[48][0] = s[47][0] - s[45][0];
+        s[49][0] = 1.0 / s[48][0];
+        s[50][0] = s[43][0] * s[49][0];
+        s[51][0] = k.k2 * s[22][0] + k.k5 * s[23][0] - s[50][0];
+        s[52][0] = s[26][0] * s[42][0];
+        s[53][0] = s[49][0] * s[52][0];
+        s[54][0] = k.k8 * s[22][0] + k.k9 * s[23][0] + s[53][0];
+        s[55][0] = s[15][0] + s[17][0] - 1.0;
+        s[56][0] = s[26][0] * s[36][0];
+        s[57][0] = s[24][0] * s[37][0];
+        s[58][0] = s[56][0] + s[57][0];
+        s[59][0] = s[42][0] * s[49][0];
+        s[60][0] = k.k14 * s[58][0] - s[59][0];
+        s[61][0] = s[59][0] + k.k14 * s[58][0];
+        s[0][1] = s[2][0];
+        s[1][1] = s[3][0];
+        s[2][1] = s[8][0];
+        s[3][1] = s[9][0];
+        s[4][1] = s[10][0];
+        s[5][1] = s[11][0];
+        s[6][1] = s[12][0];
+        s[7][1] = s[13][0];
+    }
+    /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
+    /// coefficient `N + 1` of every state. The order is a constant, so every
+    /// convolution is a loop of known length (unrolled by the compiler). Beyond the
+    /// storage's capacity it does nothing.
+    #[inline]
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = 0.0;
+        ts::set(&mut s[8], N, v);
+        let v = 0.0;
+        ts::set(&mut s[9], N, v);
+        let v = k.k0 * ts::at(&s[5], N);
+        ts::set(&mut s[10], N, v);
+        let v = k.k1 * ts::at(&s[4], N);
+        ts::set(&mut s[11], N, v);
+        let v = 0.0;
+        ts::set(&mut s[12], N, v);
+        let v = 0.0;
+        ts::set(&mut s[13], N, v);
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[14], N, v);
+        let v = ts::square::<N>(&s[14]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::square::<N>(&s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::at(&s[15], N) + ts::at(&s[17], N);
+        ts::set(&mut s[18], N, v);
+        let v = ts::sqrt::<N>(&s[18], &s[19]);
+        ts::set(&mut s[19], N, v);
+        let v = ts::reciprocal::<N>(&s[19], &s[20]);
+        ts::set(&mut s[20], N, v);
+        let v = -ts::at(&s[20], N);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[14], &s[21]);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[16], &s[21]);
+        ts::set(&mut s[23], N, v);
+        let v = ts::product::<N>(&s[16], &s[20]);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[2], &s[24]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[14], &s[20]);
+        ts::set(&mut s[26], N, v);
+        let v = ts::product::<N>(&s[3], &s[26]);
+        ts::set(&mut s[27], N, v);
+        let v = ts::at(&s[27], N) - ts::at(&s[25], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[20], &s[28]);
+        ts::set(&mut s[29], N, v);
+        let v = ts::product::<N>(&s[2], &s[26]);
+        ts::set(&mut s[30], N, v);
+        let v = ts::product::<N>(&s[3], &s[24]);
+        ts::set(&mut s[31], N, v);
+        let v = ts::at(&s[30], N) + ts::at(&s[31], N);
+        ts::set(&mut s[32], N, v);
+        let v = ts::product::<N>(&s[29], &s[32]);
+        ts::set(&mut s[33], N, v);
+        let v = ts::product::<N>(&s[6], &s[24]);
+        ts::set(&mut s[34], N, v);
+        let v = ts::product::<N>(&s[7], &s[26]);
+        ts::set(&mut s[35], N, v);
+        let v = k.k2 * ts::at(&s[22], N) + k.k5 * ts::at(&s[23], N);
+        ts::set(&mut s[36], N, v);
+        let v = k.k8 * ts::at(&s[22], N) + k.k9 * ts::at(&s[23], N);
+        ts::set(&mut s[37], N, v);
+        let v = k.k6 * ts::at(&s[36], N) + k.k7 * ts::at(&s[37], N);
+        ts::set(&mut s[38], N, v);
+        let v = ts::product::<N>(&s[24], &s[38]);
+        ts::set(&mut s[39], N, v);
+        let v = k.k10 * ts::at(&s[36], N) + k.k11 * ts::at(&s[37], N);
+        ts::set(&mut s[40], N, v);
+        let v = ts::product::<N>(&s[26], &s[40]);
+        ts::set(&mut s[41], N, v);
+        let v = ts::at(&s[35], N) + ts::at(&s[39], N) - ts::at(&s[33], N)
+            - ts::at(&s[34], N) - ts::at(&s[41], N);
+        ts::set(&mut s[42], N, v);
+        let v = ts::product::<N>(&s[24], &s[42]);
+        ts::set(&mut s[43], N, v);
+        let v = k.k12 * ts::at(&s[24], N) + k.k7 * ts::at(&s[26], N);
+        ts::set(&mut s[44], N, v);
+        let v = ts::product::<N>(&s[24], &s[44]);
+        ts::set(&mut s[45], N, v);
+        let v = k.k13 * ts::at(&s[24], N) + k.k11 * ts::at(&s[26], N);
+        ts::set(&mut s[46], N, v);
+        let v = ts::product::<N>(&s[26], &s[46]);
+        ts::set(&mut s[47], N, v);
+        let v = ts::at(&s[47], N) - ts::at(&s[45], N);
+        ts::set(&mut s[48], N, v);
+        let v = ts::reciprocal::<N>(&s[48], &s[49]);
+        ts::set(&mut s[49], N, v);
+        let v = ts::product::<N>(&s[43], &s[49]);
+        ts::set(&mut s[50], N, v);
+        let v = k.k2 * ts::at(&s[22], N) + k.k5 * ts::at(&s[23], N) - ts::at(&s[50], N);
+        ts::set(&mut s[51], N, v);
+        let v = ts::product::<N>(&s[26], &s[42]);
+        ts::set(&mut s[52], N, v);
+        let v = ts::product::<N>(&s[49], &s[52]);
+        ts::set(&mut s[53], N, v);
+        let v = k.k8 * ts::at(&s[22], N) + k.k9 * ts::at(&s[23], N) + ts::at(&s[53], N);
+        ts::set(&mut s[54], N, v);
+        let v = ts::at(&s[15], N) + ts::at(&s[17], N);
+        ts::set(&mut s[55], N, v);
+        let v = ts::product::<N>(&s[26], &s[36]);
+        ts::set(&mut s[56], N, v);
+        let v = ts::product::<N>(&s[24], &s[37]);
+        ts::set(&mut s[57], N, v);
+        let v = ts::at(&s[56], N) + ts::at(&s[57], N);
+        ts::set(&mut s[58], N, v);
+        let v = ts::product::<N>(&s[42], &s[49]);
+        ts::set(&mut s[59], N, v);
+        let v = k.k14 * ts::at(&s[58], N) - ts::at(&s[59], N);
+        ts::set(&mut s[60], N, v);
+        let v = ts::at(&s[59], N) + k.k14 * ts::at(&s[58], N);
+        ts::set(&mut s[61], N, v);
+        let v = ts::at(&s[2], N) * ts::inverse::<N>();
+        ts::set(&mut s[0], N + 1, v);
+        let v = ts::at(&s[3], N) * ts::inverse::<N>();
+        ts::set(&mut s[1], N + 1, v);
+        let v = ts::at(&s[8], N) * ts::inverse::<N>();
+        ts::set(&mut s[2], N + 1, v);
+        let v = ts::at(&s[9], N) * ts::inverse::<N>();
+        ts::set(&mut s[3], N + 1, v);
+        let v = ts::at(&s[10], N) * ts::inverse::<N>();
+        ts::set(&mut s[4], N + 1, v);
+        let v = ts::at(&s[11], N) * ts::inverse::<N>();
+        ts::set(&mut s[5], N + 1, v);
+        let v = ts::at(&s[12], N) * ts::inverse::<N>();
+        ts::set(&mut s[6], N + 1, v);
+        let v = ts::at(&s[13], N) * ts::inverse::<N>();
+        ts::set(&mut s[7], N + 1, v);
+    }
+}
 /// The most series any Taylor system uses (the runtime's storage size).
-pub const TAYLOR_SERIES_MAX: usize = 45;
+pub const TAYLOR_SERIES_MAX: usize = 62;

@@ -3,7 +3,10 @@
 //! y(s) = y_p(s) + e^{As} (y0 − y_p(0)).
 //!
 //! q_p(s) = Re(Z e^{iηs}) + q_u with (K − η²M + iη(C + ηG)) Z = F (a complex LU solve) and
-//! K q_u = u (a real one, only when u ≠ 0). In first-order form y_p = (q_p, q_p'), i.e.
+//! K q_u = u (a real one, only when u ≠ 0). A singular matrix is solved when the force is
+//! consistent with it (`consistent.rs`: an undamped mode at η that F does not force, a free
+//! rigid-body mode u does not push along); otherwise the response does not exist and the error
+//! names η ([`LinalgError::Resonance`]) or the rigid-body mode ([`LinalgError::StaticSingular`]). In first-order form y_p = (q_p, q_p'), i.e.
 //! y_p(s) = Re(Y e^{iηs}) + (q_u, 0) with Y = (Z, iηZ). Both solves are backward stable; the
 //! response is exact to rounding relative to its size times the dynamic stiffness's condition
 //! number (large only near resonance, where the particular and homogeneous parts are both
@@ -13,6 +16,7 @@
 //! at a DOF pair (i, j) is F_i = η² m_e e^{i(θ0 + φ)}, F_j = −i η² m_e e^{i(θ0 + φ)}.
 
 use super::complex::Complex;
+use super::consistent::solve_consistent;
 use super::dense::ComplexMatrix;
 use super::error::LinalgError;
 use super::first_order::SecondOrder;
@@ -91,13 +95,16 @@ impl<const CAP: usize> HarmonicResponse<CAP> {
                     eta * (rotor.damping.get(i, j) + eta * rotor.gyroscopic.get(i, j)),
                 )
             })?;
-            let lu = Lu::factor(&dynamic, "dynamic stiffness").map_err(|e| match e {
-                LinalgError::Singular { .. } => LinalgError::Resonance { speed_ratio },
-                other => other,
-            })?;
             let mut z = [Complex::ZERO; CAP];
             z.iter_mut().zip(force).for_each(|(a, &f)| *a = f);
-            lu.solve(&mut z);
+            match Lu::factor(&dynamic, "dynamic stiffness") {
+                Ok(lu) => lu.solve(&mut z),
+                // Singular: a particular solution still exists when F does not force the
+                // undamped mode at η (`consistent.rs`).
+                Err(LinalgError::Singular { .. }) => solve_consistent(&dynamic, &mut z)
+                    .map_err(|_| LinalgError::Resonance { speed_ratio })?,
+                Err(other) => return Err(other),
+            }
             for (i, &zi) in z.iter().enumerate().take(n) {
                 if let Some(a) = amplitude.get_mut(i) {
                     *a = zi;
@@ -109,15 +116,20 @@ impl<const CAP: usize> HarmonicResponse<CAP> {
         }
         let mut constant = [0.0; CAP];
         if constant_force.iter().any(|&v| v != 0.0) {
-            let lu = Lu::factor(rotor.stiffness, "stiffness matrix").map_err(|e| match e {
-                LinalgError::Singular { column, .. } => LinalgError::StaticSingular { column },
-                other => other,
-            })?;
             constant
                 .iter_mut()
                 .zip(constant_force)
                 .for_each(|(a, &f)| *a = f);
-            lu.solve(&mut constant);
+            match Lu::factor(rotor.stiffness, "stiffness matrix") {
+                Ok(lu) => lu.solve(&mut constant),
+                // Singular: a static deflection exists when u does not push along the free
+                // rigid-body mode (`consistent.rs`).
+                Err(LinalgError::Singular { .. }) => {
+                    solve_consistent(rotor.stiffness, &mut constant)
+                        .map_err(|column| LinalgError::StaticSingular { column })?
+                }
+                Err(other) => return Err(other),
+            }
         }
         Ok(HarmonicResponse {
             m: 2 * n,
@@ -142,10 +154,20 @@ impl<const CAP: usize> HarmonicResponse<CAP> {
         self.amplitude.get(..self.m).unwrap_or(&[])
     }
 
+    /// The constant response y_u = (K⁻¹u, 0) (m entries).
+    pub fn constant(&self) -> &[f64] {
+        self.constant.get(..self.m).unwrap_or(&[])
+    }
+
     /// y_p(s) (m entries of `out`).
     pub fn state(&self, s: f64, out: &mut [f64]) {
         let (sin, cos) = math::sin_cos(self.speed_ratio * s);
-        let phasor = Complex::new(cos, sin);
+        self.state_at_phase(Complex::new(cos, sin), out);
+    }
+
+    /// y_p where the forcing's phasor e^{iηs} is `phasor` (a caller that keeps the forcing
+    /// phase itself: the matrix model's one forcing phase, `crate::field::phasor`).
+    pub fn state_at_phase(&self, phasor: Complex, out: &mut [f64]) {
         for ((o, &y), &c) in out
             .iter_mut()
             .zip(&self.amplitude)
@@ -209,11 +231,25 @@ pub struct ProjectedHarmonic {
 }
 
 impl ProjectedHarmonic {
+    /// P (x and y rows): d_p(s) = Re(P e^{iηs}) + d_u.
+    pub fn amplitude(&self) -> [Complex; 2] {
+        self.amplitude
+    }
+
+    /// d_u.
+    pub fn constant(&self) -> [f64; 2] {
+        self.constant
+    }
+
     /// d_p, d_p', d_p'' at s.
     pub fn at(&self, s: f64) -> ProjectedPoint {
+        let (sin, cos) = math::sin_cos(self.speed_ratio * s);
+        self.at_phase(Complex::new(cos, sin))
+    }
+
+    /// d_p, d_p', d_p'' where the phasor e^{iηs} is `phasor`.
+    pub fn at_phase(&self, phasor: Complex) -> ProjectedPoint {
         let eta = self.speed_ratio;
-        let (sin, cos) = math::sin_cos(eta * s);
-        let phasor = Complex::new(cos, sin);
         let [px, py] = self.amplitude.map(|a| a * phasor);
         let i_eta = Complex::new(0.0, eta);
         let rate = [(px * i_eta).re, (py * i_eta).re];

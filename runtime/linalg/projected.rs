@@ -327,6 +327,61 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
     }
 }
 
+impl<const CAP: usize> ProjectedMotion<CAP> {
+    /// Upper bounds of |d|, |d'|, |d''| valid for every s ≥ `lo` (finite, ≥ 0): the bound of
+    /// [`Self::bound`] with hi → ∞, finite when every block the projection sees decays or, for
+    /// its leading term only (i = 0), stays (Re λ = 0: an undamped mode rings for ever at its
+    /// amplitude). A growing mode, or a secular term (i ≥ 1) of an undamped block, with a
+    /// nonzero coefficient gives ∞. The switch search stops searching a free flight whose
+    /// reach over all later times is inside the clearance.
+    pub fn bound_after(&self, modal: &ModalExponential<CAP>, lo: f64) -> ProjectedBound {
+        let inf = ProjectedBound {
+            value: f64::INFINITY,
+            rate: f64::INFINITY,
+            acceleration: f64::INFINITY,
+        };
+        if !(0.0..f64::INFINITY).contains(&lo) {
+            return inf;
+        }
+        let mut sum = [0.0f64; 3];
+        for k in 0..modal.blocks.count {
+            let range = modal.blocks.range(k);
+            let alpha = range
+                .clone()
+                .map(|p| modal.j.get(p, p).re)
+                .fold(f64::NEG_INFINITY, f64::max);
+            for (i, p) in range.enumerate() {
+                let b = self
+                    .coefficients
+                    .get(p)
+                    .copied()
+                    .unwrap_or([f64::INFINITY; 3]);
+                if b.iter().all(|&x| x == 0.0) {
+                    continue;
+                }
+                let weight = if alpha < 0.0 {
+                    // e^{αs} s^i/i! falls after s = i/(−α): its maximum on [lo, ∞).
+                    peak(alpha, i, lo, lo.max(i as f64 / -alpha))
+                } else if alpha == 0.0 && i == 0 {
+                    1.0
+                } else {
+                    f64::INFINITY
+                };
+                for (acc, bj) in sum.iter_mut().zip(b) {
+                    let term = bj * weight;
+                    *acc += if term.is_nan() { f64::INFINITY } else { term };
+                }
+            }
+        }
+        let up = |x: f64| x * (1.0 + BOUND_MARGIN);
+        ProjectedBound {
+            value: up(sum[0]),
+            rate: up(sum[1]),
+            acceleration: up(sum[2]),
+        }
+    }
+}
+
 /// max over s ∈ [lo, hi] of e^{αs} s^i / i! (0 ≤ lo ≤ hi < ∞): for i = 0 at an end; for i ≥ 1
 /// the function rises while s < i/(−α) and falls after, so its maximum is at that point clamped
 /// into [lo, hi] (at hi when α ≥ 0). Computed with one `exp` and i nonnegative factors; the

@@ -51,6 +51,14 @@ pub enum MatrixError {
         /// The value.
         value: f64,
     },
+    /// A method option a rotor from matrices does not take (the analytic method's closed-form
+    /// contact schemes are the planar model's only).
+    MethodOption {
+        /// The method.
+        method: &'static str,
+        /// The option.
+        option: &'static str,
+    },
     /// A scalar outside its valid range.
     OutOfRange {
         /// Which value.
@@ -93,6 +101,10 @@ impl fmt::Display for MatrixError {
             MatrixError::NonFinite { what, index, value } => {
                 write!(f, "{what} [{index}] = {value} is not a finite number")
             }
+            MatrixError::MethodOption { method, option } => write!(
+                f,
+                "{option} is not available for a rotor from matrices: the {method} method's linearized closed forms are the paper's planar model's only; a rotor from matrices takes its contact as a Taylor segment at the method's tolerance (omit the option)"
+            ),
             MatrixError::OutOfRange { what, value, valid } => write!(
                 f,
                 "{what} = {} is out of range: it must be in {valid}",

@@ -10,17 +10,40 @@
 //! - `field.rs`: the regime fields and the station's quantities (generated station law).
 //! - `system.rs`: the model as a [`crate::driver::System`] (start side, slip, divergence).
 //! - `ring.rs`: the stator ring with mass from the parameter table.
+//! - `free/`: exact free flight and its contact search ([`ExactFree`]).
 //! - `error.rs`: [`MatrixError`].
+//! - `switches.rs`: the switch functions with their rates ([`MatrixSwitches`]).
+//! - `numerical.rs`: DOP853 and Dormand–Prince 5(4) on the whole system, every regime
+//!   ([`NumericalSolver`]); the stand-in free flight ([`NumericalFree`]).
+//! - `series.rs`, `taylor.rs`: Taylor series of the contact regimes, the station's law
+//!   generated ([`MatrixExpansion`], [`TaylorContact`]).
+//! - `methods.rs`: every method, and [`MatrixPropagator`] dispatching them by
+//!   [`crate::Method`].
 
 mod error;
 mod field;
+pub mod free;
+mod methods;
 mod model;
+mod numerical;
 mod ring;
+mod series;
 mod state;
+mod switches;
 mod system;
+mod taylor;
 
 pub use error::MatrixError;
 pub use field::StationMotion;
+pub use free::{ExactFree, FreeWork};
+pub use methods::{
+    FreeFlight, HybridPropagator, MatrixPropagator, NumericalPropagator, Split, TaylorPropagator,
+    hybrid, numerical, taylor,
+};
 pub use model::{MatrixModel, Running, SPEED_RANGE, Station, Unbalance};
+pub use numerical::{MatrixField, NumericalFree, NumericalSolver, STAND_IN_TOLERANCE, max_step};
 pub use ring::{RING_CAPACITY, RingModel, ring_model, ring_start};
+pub use series::{MatrixExpansion, Switch};
 pub use state::MatrixState;
+pub use switches::{Function, MatrixSwitches};
+pub use taylor::TaylorContact;

@@ -90,6 +90,23 @@ impl<const CAP: usize> MatrixState<CAP> {
         Ok(s)
     }
 
+    /// The state of `dofs` degrees of freedom whose y is the first 2·`dofs` entries of `y` (the
+    /// rest of the storage set to 0; `dofs` capped at CAP/2): what the numerical solvers, which
+    /// integrate the whole storage, hand back.
+    pub fn from_array(dofs: usize, y: [f64; CAP]) -> Self {
+        let dim = (2 * dofs).min(CAP - CAP % 2);
+        let mut s = MatrixState { dim, y };
+        for x in s.y.iter_mut().skip(dim) {
+            *x = 0.0;
+        }
+        s
+    }
+
+    /// The whole storage: y in its first 2n entries, 0 beyond.
+    pub const fn array(&self) -> &[f64; CAP] {
+        &self.y
+    }
+
     /// The number of degrees of freedom n.
     pub const fn dofs(&self) -> usize {
         self.dim / 2

@@ -105,7 +105,9 @@ impl<const N: usize> Scheme<N> for Dop853 {
         }
         let deno = s5 + 0.01 * s3;
         let deno = if deno > 0.0 { deno } else { 1.0 };
-        let err = crate::math::abs(h) * s5 * crate::math::sqrt(1.0 / (N.max(1) as f64 * deno));
+        let err = crate::math::abs(h)
+            * s5
+            * crate::math::sqrt(1.0 / (sys.dimension().max(1) as f64 * deno));
         Attempt { y1, err, stages: k }
     }
 

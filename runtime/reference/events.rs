@@ -57,6 +57,63 @@ fn refine_crossing<F: Fn(f64) -> (f64, f64)>(
     .s
 }
 
+/// Where `f` falls below −`band` (> 0) between `inside` and `outside` (f(outside) < −band): the
+/// root of `f` itself just before that point, as the taylor method's switch polynomials locate
+/// it (`taylor::roots`). The point where f passes −band is refined first (rounding noise of f
+/// near 0 cannot draw that refinement), then a point with f ≥ 0 is searched back from it in
+/// widening steps (the root lies about band/|f'| earlier) and the root refined between the two;
+/// when f stays below 0 back to `inside`, the root is refined from `inside` (f leaves at once).
+fn crossing_through_band<F: Fn(f64) -> (f64, f64)>(
+    f: F,
+    (inside, at_inside): (f64, (f64, f64)),
+    (outside, at_outside): (f64, (f64, f64)),
+    band: f64,
+) -> f64 {
+    let lowered = |(v, d): (f64, f64)| (v + band, d);
+    let through = refine_crossing(
+        |t| lowered(f(t)),
+        (inside, lowered(at_inside)),
+        (outside, lowered(at_outside)),
+        true,
+    );
+    let at_through = f(through);
+    let mut width = if at_through.1 < 0.0 {
+        2.0 * band / -at_through.1
+    } else {
+        f64::EPSILON * (1.0 + math::abs(through))
+    };
+    loop {
+        let before = through - width;
+        if before <= inside || before.is_nan() {
+            return refine_crossing(&f, (inside, at_inside), (through, at_through), true);
+        }
+        let at_before = f(before);
+        if at_before.0 >= 0.0 {
+            return refine_crossing(&f, (before, at_before), (through, at_through), true);
+        }
+        width *= 4.0;
+    }
+}
+
+/// The crossing of `f` in the bracket `inside` → `outside` (f(outside) < −`band`): the one
+/// refinement ([`refine_crossing`]), kept where f falls there; where it does not (f rises at
+/// the point found: the refinement was drawn to a zero of rounding noise, as near a segment's
+/// start on its own switch surface, f = 0 to rounding with f' > 0), the band rule
+/// ([`crossing_through_band`]). With `band` = 0 the refinement alone.
+fn crossing<F: Fn(f64) -> (f64, f64)>(
+    f: F,
+    inside: (f64, (f64, f64)),
+    outside: (f64, (f64, f64)),
+    band: f64,
+) -> f64 {
+    let t = refine_crossing(&f, inside, outside, true);
+    if band > 0.0 && f(t).1 > 0.0 {
+        crossing_through_band(f, inside, outside, band)
+    } else {
+        t
+    }
+}
+
 /// The first time in `(t0, t1]` of the step described by `dense` (with exact end states `y0` at
 /// `t0` and `y1` at `t1`) at which `g(y).0` becomes negative, or `None`.
 ///
@@ -94,6 +151,33 @@ where
     D: Interpolant<N>,
     G: Fn(f64, &[f64; N]) -> (f64, f64),
 {
+    first_crossing_beyond(subdivisions, dense, y0, y1, 0.0, g)
+}
+
+/// As [`first_crossing_subdivided`] with a rounding band: a crossing is where `g` falls below
+/// −`band` (≥ 0); a dip that stays within the band is rounding, not a switch (`docs/MODEL.md`
+/// §12: a touch within rounding is not a crossing, for every method). The crossing found is the
+/// root of `g` itself between the last point examined with g ≥ 0 (or the step start, inside by
+/// definition) and the first below the band. With `band` = 0 this is
+/// [`first_crossing_subdivided`], bit for bit.
+///
+/// Why a band: a segment that starts on its own switch surface with a vanishing rate as well
+/// (after `slip`, σw = 0 and σw' = λ − μσN = 0 together: trap 1 of `docs/MODEL.md` §10) has g
+/// equal to 0 to rounding for a few ulps of time, with either sign; without a band the search
+/// takes that noise for a crossing and the run chatters (`slip`, `roll`, `slip` within 1e-14).
+#[inline(always)]
+pub fn first_crossing_beyond<const N: usize, D, G>(
+    subdivisions: usize,
+    dense: &D,
+    y0: &[f64; N],
+    y1: &[f64; N],
+    band: f64,
+    g: G,
+) -> Option<f64>
+where
+    D: Interpolant<N>,
+    G: Fn(f64, &[f64; N]) -> (f64, f64),
+{
     let subdivisions = subdivisions.max(1);
     let t0 = dense.start();
     let t1 = dense.end();
@@ -102,6 +186,9 @@ where
     // The start is inside by definition.
     let mut sa = s0.max(0.0);
     let mut ta = t0;
+    // The last point examined inside (g ≥ 0, or the start): a bracket's inside end. Points with
+    // g within the band below 0 are neither inside nor a crossing.
+    let mut inside = (ta, (sa, ra));
     let n = subdivisions as f64;
     for k in 1..=subdivisions {
         let (tb, yb) = if k == subdivisions {
@@ -111,8 +198,8 @@ where
             (tb, dense.eval(tb))
         };
         let (sb, rb) = g(tb, &yb);
-        if sb < 0.0 {
-            return Some(refine_crossing(at, (ta, (sa, ra)), (tb, (sb, rb)), true));
+        if sb < -band {
+            return Some(crossing(at, inside, (tb, (sb, rb)), band));
         }
         if ra < 0.0 && rb > 0.0 {
             // A minimum of s inside (ta, tb): find it from the derivative (secant steps: its
@@ -123,13 +210,18 @@ where
             };
             let tm = refine_crossing(rate, (ta, (-ra, 0.0)), (tb, (-rb, 0.0)), false);
             let (sm, rm) = at(tm);
-            if sm < 0.0 {
-                return Some(refine_crossing(at, (ta, (sa, ra)), (tm, (sm, rm)), true));
+            if sm < -band {
+                // The crossing lies after the last inside point and before the minimum.
+                let from = if sa >= 0.0 { (ta, (sa, ra)) } else { inside };
+                return Some(crossing(at, from, (tm, (sm, rm)), band));
             }
         }
         ta = tb;
         sa = sb;
         ra = rb;
+        if sb >= 0.0 {
+            inside = (tb, (sb, rb));
+        }
     }
     None
 }

@@ -44,7 +44,9 @@ mod tableau_dop853;
 mod tableau_rk45;
 
 pub use dop853::{Dop853, Dop853Dense, Dop853Step};
-pub use events::{SUBDIVISIONS, first_crossing, first_crossing_subdivided, polish_switch};
+pub use events::{
+    SUBDIVISIONS, first_crossing, first_crossing_beyond, first_crossing_subdivided, polish_switch,
+};
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;
 pub use propagator::{

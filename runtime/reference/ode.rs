@@ -13,6 +13,15 @@
 pub trait OdeSystem<const N: usize> {
     /// The right-hand side f(t, y).
     fn rhs(&self, t: f64, y: &[f64; N]) -> [f64; N];
+
+    /// The number of states the system uses (≤ N): the error norm is the root mean square over
+    /// this many components. A system whose size is a runtime property (a matrix model of 2n
+    /// states in storage of N ≥ 2n, `crate::matrix`) keeps its unused entries at 0 and says how
+    /// many it uses, so that its tolerance means what it means for 2n states.
+    #[inline(always)]
+    fn dimension(&self) -> usize {
+        N
+    }
 }
 
 impl<const N: usize, F> OdeSystem<N> for F

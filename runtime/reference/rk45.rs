@@ -86,7 +86,7 @@ impl<const N: usize> Scheme<N> for Rk45 {
             let r = h * ei / tol.scale(*a, *b);
             sum += r * r;
         }
-        let err = crate::math::sqrt(sum / N.max(1) as f64);
+        let err = crate::math::sqrt(sum / sys.dimension().max(1) as f64);
         Attempt { y1, err, stages: k }
     }
 

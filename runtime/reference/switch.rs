@@ -13,7 +13,7 @@
 use core::cell::OnceCell;
 
 use super::dop853::{Dop853, Dop853Dense, Dop853Step};
-use super::events::{first_crossing_subdivided, polish_switch};
+use super::events::{first_crossing_beyond, polish_switch};
 use super::integrator::{AcceptedStep, Integrator};
 use super::ode::OdeSystem;
 use super::scheme::{Interpolant, Scheme};
@@ -22,6 +22,7 @@ use crate::coefficients::{ModelParams, Phasor};
 use crate::field::{self, SlipZero};
 use crate::params::{Params, State};
 use crate::propagate::{EventKind, Regime};
+use crate::{math, rounding};
 
 /// Touches (w = 0 without a change) looked past in one step before the rest of the step is
 /// taken as free of friction switches: each needs σw to turn back up, so more than a few in one
@@ -43,13 +44,16 @@ pub enum Function {
 /// The switch functions of one segment: its regime, slip direction, and the offsets that make
 /// a friction function start at ≥ 0 (`docs/MODEL.md` §10, traps 1–2: after `slip` or `reverse`
 /// the segment starts on w = 0 to rounding, after `roll` on |λ| ≈ μN; the offset, the start's
-/// value when it is negative, keeps that start from being found again).
+/// value when it is negative, keeps that start from being found again), and the size of the
+/// terms each function is computed from, which sets its rounding band ([`Switches::band`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Switches {
     model: ModelParams,
     regime: Regime,
     slip: f64,
     offset: f64,
+    /// The friction function's scale at the segment start (1 without one).
+    scale: f64,
 }
 
 impl Switches {
@@ -67,11 +71,49 @@ impl Switches {
             regime,
             slip,
             offset: 0.0,
+            scale: 1.0,
         };
         if let Some(f) = s.friction_function() {
             s.offset = s.measure(f, t, y).0.min(0.0);
+            s.scale = s.friction_scale(f, t, y);
         }
         s
+    }
+
+    /// The size of the terms `f`'s value at `(t, y)` is computed from (its rounding is relative
+    /// to it), as the other methods measure it: 1 + ρ_R η + |q'| for σw (the analytic method's
+    /// W, `analytic::switch::SlipVelocity::scale_at`), μN + |λ| for the cone's margin (the
+    /// taylor method's).
+    fn friction_scale<const N: usize>(&self, f: Function, t: f64, y: &[f64; N]) -> f64 {
+        let state = rotor_state(y);
+        let scale = match f {
+            Function::SlipVelocity => {
+                1.0 + math::abs(self.model.radius_ratio * self.model.speed_ratio)
+                    + math::hypot(state.vx, state.vy)
+            }
+            Function::SlipLimit => {
+                let friction =
+                    field::friction_with_phasor(&self.model, &phasor(&self.model, t, y), &state);
+                self.model.friction_coefficient * math::abs(friction.normal)
+                    + math::abs(friction.lambda)
+            }
+            Function::Boundary => 1.0,
+        };
+        if scale.is_finite() {
+            scale.max(1.0)
+        } else {
+            1.0
+        }
+    }
+
+    /// The rounding band of `f` along a step's dense output ([`rounding::SOLUTION`] of its
+    /// scale: 1 for z² − 1): a dip of the function that stays within it is rounding, not a
+    /// switch ([`super::first_crossing_beyond`]; `docs/MODEL.md` §12).
+    pub fn band(&self, f: Function) -> f64 {
+        match f {
+            Function::Boundary => rounding::SOLUTION,
+            Function::SlipVelocity | Function::SlipLimit => rounding::SOLUTION * self.scale,
+        }
     }
 
     /// The friction function's offset (≤ 0) from the segment start.
@@ -86,6 +128,7 @@ impl Switches {
             regime,
             slip,
             offset,
+            scale: 1.0,
         }
     }
 
@@ -205,7 +248,8 @@ fn first_switch<const N: usize, D: Interpolant<N>>(
     if switches.friction_function().is_none() {
         // The boundary alone (no friction): the loop below with one function and no touch.
         let boundary = |t: f64, y: &[f64; N]| switches.measure(Function::Boundary, t, y);
-        let t = first_crossing_subdivided(subdivisions, dense, y0, y1, boundary)?;
+        let band = switches.band(Function::Boundary);
+        let t = first_crossing_beyond(subdivisions, dense, y0, y1, band, boundary)?;
         let (t, y) = on_step_solution(t, (t0, t1, *y1), &mut redo, &mut rhs, boundary);
         return switches
             .classify(Function::Boundary, t, &y)
@@ -217,7 +261,8 @@ fn first_switch<const N: usize, D: Interpolant<N>>(
         let window = After { dense, start: from };
         let mut first: Option<(f64, Function)> = None;
         for f in functions.iter().flatten() {
-            let found = first_crossing_subdivided(subdivisions, &window, &y_from, y1, |t, y| {
+            let band = switches.band(*f);
+            let found = first_crossing_beyond(subdivisions, &window, &y_from, y1, band, |t, y| {
                 switches.measure(*f, t, y)
             });
             if let Some(t) = found

@@ -17,6 +17,10 @@ use crate::coefficients::{self as coef, ModelParams, SpeedChange};
 use crate::math;
 use crate::params::{Parameter, Params};
 
+/// How many times its rounding (ε of the phases' size) a phase difference must exceed for the
+/// held speed to be taken from it (it then errs by less than 1e-6 relative).
+const UNRESOLVED_PHASE: f64 = 1e6;
+
 /// The speed and rate held over one step, with the phase that goes with them:
 /// θ(τ) ≈ η_h τ + c_h on the step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,14 +46,35 @@ impl HeldSpeed {
 
     /// The speed held over [t0, t1] from the speed and phase at both ends (taken from the
     /// pieces holding them).
+    ///
+    /// Over an interval too short for its phase difference (that difference within
+    /// [`UNRESOLVED_PHASE`] of the phases' rounding: a sliver of ~1e-13 left at a piece's end)
+    /// the speed is the mean of the end speeds — the exact mean on one linear piece — and the
+    /// rate the piece's, instead of a cancelled difference over the length (which gave 0, or
+    /// 1.43 for 1.47, issue 32).
     pub fn between(start: (&SpeedPiece, f64), end: (&SpeedPiece, f64)) -> Self {
         let ((p0, t0), (p1, t1)) = (start, end);
         let length = t1 - t0;
         let (theta0, theta1) = (p0.phase_at(t0), p1.phase_at(t1));
+        let (eta0, eta1) = (p0.speed_at(t0), p1.speed_at(t1));
+        let rounding = f64::EPSILON * math::abs(theta0).max(math::abs(theta1));
+        let resolved = math::abs(theta1 - theta0) > UNRESOLVED_PHASE * rounding;
+        if !resolved {
+            let speed_ratio = 0.5 * (eta0 + eta1);
+            return HeldSpeed {
+                speed_ratio,
+                rate: if p0 == p1 {
+                    p0.rate
+                } else {
+                    (eta1 - eta0) / length
+                },
+                phase_constant: theta0 - speed_ratio * t0,
+            };
+        }
         let speed_ratio = (theta1 - theta0) / length;
         HeldSpeed {
             speed_ratio,
-            rate: (p1.speed_at(t1) - p0.speed_at(t0)) / length,
+            rate: (eta1 - eta0) / length,
             phase_constant: theta0 - speed_ratio * t0,
         }
     }

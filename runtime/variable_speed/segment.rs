@@ -120,7 +120,10 @@ impl Program<'_> {
     }
 
     /// The end of the held step starting at `time` on `piece`: the next point of the phase
-    /// grid θ_origin + k·2π/holds after `time`, or the piece's end.
+    /// grid θ_origin + k·2π/holds after `time`, or the piece's end — also where the grid point
+    /// lies within a sliver of it (a ramp over whole periods ends on the grid, in floating
+    /// point up to ~1e-13 before the piece's end: that sliver joins the step before it instead
+    /// of being a held step of its own, issue 32).
     fn hold_end(&self, piece: &SpeedPiece, time: f64) -> f64 {
         let step = core::f64::consts::TAU / f64::from(self.options.speed_holds);
         let done = (piece.phase_at(time) - self.phase_origin) / step;
@@ -131,7 +134,10 @@ impl Program<'_> {
             let end = piece
                 .time_of_phase(self.phase_origin + k * step)
                 .map_or(piece.end, |t| t.min(piece.end));
-            if end - time > min_length || end >= piece.end {
+            if piece.end - end <= min_length {
+                return piece.end;
+            }
+            if end - time > min_length {
                 return end;
             }
             k += 1.0;

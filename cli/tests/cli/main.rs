@@ -12,6 +12,7 @@ mod pipes;
 mod profiles;
 mod reliability;
 mod resonance;
+mod runtime_reliability;
 mod runup;
 mod signals;
 mod simulate;

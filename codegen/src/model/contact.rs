@@ -9,6 +9,8 @@ use crate::expr::ExprId;
 
 pub(super) fn derive(m: &mut Model) {
     contact_particular(m);
+    contact_particular_residual(m);
+    contact_particular_correction(m);
     contact_particular_eval(m);
     contact_modes(m);
     mode_shapes(m);
@@ -43,28 +45,104 @@ fn input_contact_constant(m: &mut Model) {
 /// Harmonic + constant ansatz in Kl q + Fd: c11 … c44 from cos θ / sin θ, c55, c66 from the
 /// constant part.
 fn contact_particular(m: &mut Model) {
-    let mut rates = Rates::new();
-    let ph = m.forcing_phasor(&mut rates);
-    let c = ["cp11", "cp22", "cp33", "cp44"].map(|n| m.var(n));
-    let h = harmonic(m, ph, c);
-    let (c55, c66) = (m.var("cp55"), m.var("cp66"));
-    let q = [m.graph.add(h[0], c55), m.graph.add(h[1], c66)];
-    let (kl, fd) = m.linearized_inputs();
-    let stiffness = m.linear_stiffness_term(kl, fd, q);
-    let forcing = m.unbalance(ph);
-    let r = m.equations_of_motion(q, &rates, stiffness, forcing);
-    let zero = m.graph.constant(0.0);
-    let mut eqs = Vec::new();
-    for ri in r {
-        eqs.extend(m.coefficients(ri, &ph));
-        eqs.push(m.subst(ri, &[("ct", zero), ("st", zero)]));
-    }
+    let eqs = particular_equations(m, true, |m, ph| m.unbalance(ph));
     let s = m.solve(&eqs, &["cp11", "cp22", "cp33", "cp44", "cp55", "cp66"]);
     m.add_formula(
         "contact_particular",
         "Particular solution of the linearized contact equations: xp = c11 cos θ + c22 sin θ + c55, yp = c33 cos θ + c44 sin θ + c66.",
         "docs/MODEL.md §5 (particular part), eqs. (8)–(9)",
         "harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd = F(cos θ, sin θ); the system splits into a 2×2 block (constants, Kl⁻¹) and a 4×4 block (harmonic), each solved by Cramer's rule.",
+        "ContactParticular",
+        vec![
+            ("c11", "c11, cos θ coefficient of x", s[0]),
+            ("c22", "c22, sin θ coefficient of x", s[1]),
+            ("c33", "c33, cos θ coefficient of y", s[2]),
+            ("c44", "c44, sin θ coefficient of y", s[3]),
+            ("c55", "c55, constant of x: −(Kl⁻¹ Fd)_x", s[4]),
+            ("c66", "c66, constant of y: −(Kl⁻¹ Fd)_y", s[5]),
+        ],
+    );
+}
+
+/// The six equations the particular constants c11 … c66 solve: the linearized contact
+/// equations with the harmonic-plus-constant ansatz, split into their cos θ, sin θ and constant
+/// parts (x equation, then y), with Fd in the stiffness term or not (`with_fd`) and the forces
+/// `forcing` gives for the phasor.
+fn particular_equations(
+    m: &mut Model,
+    with_fd: bool,
+    forcing: fn(&mut Model, [ExprId; 2]) -> [ExprId; 2],
+) -> Vec<ExprId> {
+    let mut rates = Rates::new();
+    let ph = m.forcing_phasor(&mut rates);
+    let c = ["cp11", "cp22", "cp33", "cp44"].map(|n| m.var(n));
+    let h = harmonic(m, ph, c);
+    let (c55, c66) = (m.var("cp55"), m.var("cp66"));
+    let q = [m.graph.add(h[0], c55), m.graph.add(h[1], c66)];
+    let (kl, kl_fd) = m.linearized_inputs();
+    let zero = m.graph.constant(0.0);
+    let fd = if with_fd { kl_fd } else { [zero, zero] };
+    let stiffness = m.linear_stiffness_term(kl, fd, q);
+    let forcing = forcing(m, ph);
+    let r = m.equations_of_motion(q, &rates, stiffness, forcing);
+    let mut eqs = Vec::new();
+    for ri in r {
+        eqs.extend(m.coefficients(ri, &ph));
+        eqs.push(m.subst(ri, &[("ct", zero), ("st", zero)]));
+    }
+    eqs
+}
+
+/// The residual of particular constants: what the six equations of [`contact_particular`] (with
+/// the input force on the right-hand side, so that c55, c66 may hold Kl⁻¹u) leave when the
+/// constants are put in. Cramer's rule solves them with an error of about ε·cond in the
+/// constants, and the stiff mode of Kl turns that into a residual force of up to ε·cond·‖Kl‖
+/// (1e-7 at K̂ = 1e5 near z = 1, where Kl's condition is 1e5): the closed form's velocity then
+/// drifts from the linearized equations' solution at that rate, whatever the step. One
+/// correction ([`contact_particular_correction`]) brings the residual to the rounding of its
+/// own evaluation (`docs/MODEL.md` §5).
+fn contact_particular_residual(m: &mut Model) {
+    let eqs = particular_equations(m, true, |m, ph| m.forcing(ph));
+    m.add_formula(
+        "contact_particular_residual",
+        "Residual of particular constants c11 … c66 in the linearized contact equations with the input force (cos θ, sin θ and constant parts of the x and y equations): zero for the exact constants.",
+        "docs/MODEL.md §5 (particular part), §15",
+        "the harmonic-plus-constant ansatz substituted into q'' + 2νq' + Kl q + Fd − F(cos θ, sin θ) − u, split by partial derivatives in cos θ, sin θ and the rest.",
+        "ParticularResidual",
+        vec![
+            ("x_cos", "cos θ part of the x equation", eqs[0]),
+            ("x_sin", "sin θ part of the x equation", eqs[1]),
+            ("x_constant", "constant part of the x equation", eqs[2]),
+            ("y_cos", "cos θ part of the y equation", eqs[3]),
+            ("y_sin", "sin θ part of the y equation", eqs[4]),
+            ("y_constant", "constant part of the y equation", eqs[5]),
+        ],
+    );
+}
+
+/// The correction of particular constants from their residual ([`contact_particular_residual`]):
+/// δ with M δ + r = 0, M the equations' matrix (their part linear in the constants: Kl − η²I
+/// with the damping's 2νη coupling for the harmonic constants, Kl for the constant ones), by
+/// the same block-triangular Cramer solve as [`contact_particular`]. Added to the constants it
+/// is one step of iterative refinement: the residual falls from ε·cond·‖Kl‖·|c| to the
+/// rounding of its evaluation.
+fn contact_particular_correction(m: &mut Model) {
+    let eqs = particular_equations(m, false, |m, _| {
+        let zero = m.graph.constant(0.0);
+        [zero, zero]
+    });
+    let residual = ["pr_xc", "pr_xs", "pr_x0", "pr_yc", "pr_ys", "pr_y0"].map(|n| m.var(n));
+    let eqs: Vec<ExprId> = eqs
+        .iter()
+        .zip(residual)
+        .map(|(&e, r)| m.graph.add(e, r))
+        .collect();
+    let s = m.solve(&eqs, &["cp11", "cp22", "cp33", "cp44", "cp55", "cp66"]);
+    m.add_formula(
+        "contact_particular_correction",
+        "Correction δ of particular constants from their residual r (`contact_particular_residual`): M δ + r = 0, the equations' matrix M without forcing; c + δ is one step of iterative refinement.",
+        "docs/MODEL.md §5 (particular part)",
+        "the ansatz substituted into q'' + 2νq' + Kl q with no forcing and no Fd, the residual added to each of the six equations, solved by Cramer's rule as for the particular constants.",
         "ContactParticular",
         vec![
             ("c11", "c11, cos θ coefficient of x", s[0]),

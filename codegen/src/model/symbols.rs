@@ -216,6 +216,20 @@ pub const GROUPS: &[Group] = &[
         external: None,
     },
     Group {
+        ty: "ParticularResidual",
+        arg: "residual",
+        doc: "What the linearized contact equations leave at particular constants: their cos θ, sin θ and constant parts (`docs/MODEL.md` §5).",
+        fields: &[
+            ("pr_xc", "x_cos", "cos θ part of the x equation"),
+            ("pr_xs", "x_sin", "sin θ part of the x equation"),
+            ("pr_x0", "x_constant", "constant part of the x equation"),
+            ("pr_yc", "y_cos", "cos θ part of the y equation"),
+            ("pr_ys", "y_sin", "sin θ part of the y equation"),
+            ("pr_y0", "y_constant", "constant part of the y equation"),
+        ],
+        external: None,
+    },
+    Group {
         ty: "HomogeneousInitial",
         arg: "initial",
         doc: "Initial state of the homogeneous part of a contact segment (state minus particular).",
@@ -413,6 +427,16 @@ pub const GROUPS: &[Group] = &[
         fields: &[
             ("drive_u", "au", "u'' without contact forces"),
             ("drive_v", "av", "v'' without contact forces"),
+        ],
+        external: None,
+    },
+    Group {
+        ty: "DriveRate",
+        arg: "drive_rate",
+        doc: "The rate a' of a rub station's offset acceleration from every force but the contact's (`docs/MODEL.md` §17).",
+        fields: &[
+            ("drive_rate_u", "au_rate", "(u'')' without contact forces"),
+            ("drive_rate_v", "av_rate", "(v'')' without contact forces"),
         ],
         external: None,
     },

@@ -87,6 +87,25 @@ pub struct Linearization {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Singular;
 
+/// One step of iterative refinement of the particular constants (`docs/MODEL.md` §5): their
+/// residual in the linearized equations (generated `contact_particular_residual`, input force
+/// included) and the correction that cancels it (`contact_particular_correction`, the same
+/// Cramer solve). Cramer's rule leaves a residual force of about ε·cond(Kl)·‖Kl‖·|c|: at
+/// K̂ = 1e5 near z = 1 (cond ≈ 1e5) up to 1e-7, which the closed form's velocity follows at
+/// that rate whatever the sub-step (the analytic method's error floor of 1e-12 per contact on
+/// stiff stators, issue 32); after the correction the residual is the rounding of its own
+/// evaluation, ε·‖Kl‖·|c|.
+fn refine_particular(model: &ModelParams, kl: &LinearizedContact, c: &mut ContactParticular) {
+    let residual = coef::contact_particular_residual(model, kl, c);
+    let d = coef::contact_particular_correction(model, kl, &residual);
+    c.c11 += d.c11;
+    c.c22 += d.c22;
+    c.c33 += d.c33;
+    c.c44 += d.c44;
+    c.c55 += d.c55;
+    c.c66 += d.c66;
+}
+
 impl Linearization {
     /// Linearize the contact force about position (x0, y0) for a segment starting at time `t0`
     /// (`docs/MODEL.md` §2–3, §5). Fails when Kl is singular or the forcing resonant (§6 cases 9–10).
@@ -144,6 +163,7 @@ impl Linearization {
             particular.c55 += q.x;
             particular.c66 += q.y;
         }
+        refine_particular(model, &kl, &mut particular);
         let c = &particular;
         if [c.c55, c.c66, modes.disc, modes.omega_sq_mean]
             .iter()
