@@ -5,8 +5,8 @@
 //! naming the Python keyword (`M`, `rub.clearance`, `unbalance[0].m_e`, …).
 //!
 //! [`simulate_matrix`] is THE Python entry point of a matrix run: it calls the CLI library's
-//! `model_file::simulate_matrix`, whose propagation loop is the one place to wire the matrix
-//! propagator; the result dict (arrays, columns) is assembled here and in the Python layer.
+//! `model_file::simulate_matrix` (the matrix propagator); the result dict (arrays, columns) is
+//! assembled here and in the Python layer.
 
 use numpy::{IntoPyArray, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -312,8 +312,8 @@ fn run_dict<'py>(
 }
 
 /// THE Python entry point of a matrix run (`rr.simulate(model=…)`): the model and its start
-/// checked, the run length and samples, then the CLI library's `simulate_matrix` (which returns
-/// "not yet available" until the matrix propagator is wired there), and the result dict.
+/// checked, the run length and samples, then the CLI library's `simulate_matrix` (the matrix
+/// propagator, every method) with the GIL released, and the result dict.
 #[pyfunction]
 #[pyo3(signature = (model, *, t_end=None, periods=None, method=None, tol=None,
     contact_scheme=None, step=None, samples=None, initial=None))]
@@ -361,14 +361,11 @@ pub fn simulate_matrix<'py>(
         Err(MatrixRunError::Model(e)) => Err(model_error(&e)),
         Err(MatrixRunError::Input(m)) => Err(input(m)),
         Err(MatrixRunError::Propagation(e)) => Err(cli(rotor_rub_cli::error::CliError::from(e))),
-        Err(e @ MatrixRunError::NotYetAvailable) => Err(
-            pyo3::exceptions::PyNotImplementedError::new_err(e.to_string()),
-        ),
     }
 }
 
 /// The result assembly of a matrix run from synthetic events and samples (tests of the Python
-/// layer before the propagator is wired; the same [`run_dict`] the real run uses): `events` and
+/// layer's arrays and plots; the same [`run_dict`] the real run uses): `events` and
 /// `samples` as (time, code, SI state row) triples.
 #[pyfunction]
 pub fn matrix_result_of<'py>(

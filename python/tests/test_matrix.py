@@ -23,11 +23,12 @@ ROSS_NOTE = ROOT / "tests" / "data" / "ross" / "rotor_example_with_damping.json"
 
 
 def jeffcott(**rub):
-    """A Jeffcott rotor in SI: 2 kg, k = 2e4 N/m (ω_n = 100 rad/s), ζ = 0.01."""
+    """A Jeffcott rotor in SI: 2 kg, k = 2e4 N/m (ω_n = 100 rad/s), ζ = 0.01, at 150 rad/s with
+    an unbalance whose free whirl (1.8 mm) exceeds the 1 mm clearance."""
     kw = dict(clearance=1e-3, contact_stiffness=1e6)
     kw.update(rub)
     return rr.Model.from_matrices(2 * np.eye(2), 4 * np.eye(2), 2e4 * np.eye(2),
-                                  unbalance=[(0, 1, 1e-4, 0.0)], rub=rr.Rub(0, 1, **kw),
+                                  unbalance=[(0, 1, 2e-3, 0.0)], rub=rr.Rub(0, 1, **kw),
                                   speed=150.0, dofs=["x", "y"])
 
 
@@ -303,24 +304,47 @@ def test_simulate_routes_model_runs():
         rr.simulate(model=m, method="euler")
 
 
-def simulated_or_skip(model, **kw):
-    """rr.simulate(model=…), skipping while the matrix propagator is not wired in this build."""
-    try:
-        return rr.simulate(model=model, **kw)
-    except NotImplementedError as e:
-        assert "not yet available" in str(e)
-        pytest.skip("the matrix propagator is not wired in this build yet")
-
-
 def test_simulate_a_model_run():
     m = jeffcott()
-    run = simulated_or_skip(m, periods=20, samples=201, initial=[0.0] * 4)
+    run = rr.simulate(model=m, periods=20, samples=201, method="hybrid")
     assert isinstance(run, rr.MatrixRun) and isinstance(run, rr.Run)
     assert run.columns == tuple(m.columns())
     assert run.samples.state.shape == (201, 6)
     assert run.end_time == pytest.approx(20 * 2 * np.pi / 150.0)
-    r = np.hypot(run.column("rub_x"), run.column("rub_y"))
-    assert r.max() > 0.0
+    # Above the critical speed the unbalance whirls the rotor beyond the clearance: it rubs.
+    assert len(run.events) > 0 and set(run.events.kind[:2]) == {"enter", "exit"}
+    r = np.hypot(run.events.state[:, 4], run.events.state[:, 5])
+    assert np.allclose(r, 1e-3, rtol=1e-9)  # every switch on the clearance circle, SI
+    assert np.array_equal(run.column("rub_x"), run.column("x"))  # fixed stator: P = q
+    assert run.problem.method == "hybrid" and run.problem.params["clearance"] == 1e-3
+    assert 0.0 < run.contact_fraction < 1.0
+    # Every method finds the same switches.
+    ref = rr.simulate(model=m, periods=20, samples=0, method="dop853", tol=1e-12)
+    assert len(ref.events) == len(run.events)
+    gap = np.abs(ref.events.time - run.events.time)
+    assert gap[:10].max() < 1e-9 and gap.max() < 1e-6, gap  # s; heavy rub: errors grow
+    # A start: positions then velocities, SI.
+    moved = rr.simulate(model=m, periods=1, samples=2, initial=[5e-4, 0, 0, 0])
+    assert moved.samples.state[0, 0] == pytest.approx(5e-4)
+
+
+def test_simulate_a_model_file_as_the_cli_does(cli, tmp_path):
+    import subprocess
+
+    events = tmp_path / "ev.csv"
+    subprocess.run([str(cli), "simulate", "--model", str(TWO_DISK), "--periods", "5",
+                    "--method", "hybrid", "--events", str(events)], check=True,
+                   capture_output=True)
+    lines = events.read_text().splitlines()
+    header = lines[0].split(",")
+    run = rr.simulate(model=rr.Model.from_file(TWO_DISK), periods=5, method="hybrid",
+                      samples=0)
+    assert header == ["t", "kind"] + list(run.columns)
+    rows = [line.split(",") for line in lines[1:]]
+    assert [float(r[0]) for r in rows] == list(run.events.time)
+    assert [r[1] for r in rows] == list(run.events.kind)
+    assert np.array_equal(np.array([[float(x) for x in r[2:]] for r in rows]),
+                          run.events.state)
 
 
 def synthetic_run(model):

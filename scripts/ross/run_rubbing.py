@@ -16,7 +16,11 @@ tests/data/ross/rubbing.json:
 and to tests/data/ross/rubbing_h<h>.npz the rub node's (x, y) every ``--keep``-th step (float32:
 the checked-in data stay small).
 
-    scripts/ross/run run_rubbing.py [--quick] [--periods P] [--steps 1e-4,5e-5,...]
+    scripts/ross/run run_rubbing.py [--quick] [--periods P] [--steps 1e-4,5e-5,...] [--tag T]
+
+What is checked in: ``--periods 10 --steps 1e-4,5e-5,2.5e-5,1e-5`` (rubbing.json: the
+comparison of steps) and ``--periods 100 --steps 1e-4 --tag _100`` (rubbing_100.json: the time
+for 100 forcing periods at the tutorial's step, issue 29 item 4).
 
 rotor-rub's side of the comparison (events located to rounding, the same model from
 tests/data/ross/rotor_example_with_damping.npz) is the lead's, when the matrix propagator lands.
@@ -69,6 +73,8 @@ def main():
                         help="forcing periods (1200 rpm: 0.05 s each); default 10")
     parser.add_argument("--steps", default="1e-4,5e-5,2.5e-5",
                         help="time steps h, s (ROSS's tutorial: 1e-4)")
+    parser.add_argument("--tag", default="",
+                        help="name the outputs rubbing<TAG>.json, rubbing<TAG>_h<h>.npz")
     parser.add_argument("--keep", type=int, default=0,
                         help="save every k-th step of (x, y) (default: 100 points per period)")
     a = parser.parse_args()
@@ -84,6 +90,7 @@ def main():
         "host": {"cpus": os.cpu_count(), "platform": platform.platform(),
                  "note": "wall times on a machine shared by several jobs: ratios, not absolutes"},
         "rub": {"element": c.RUB_ELEMENT, "node": c.RUB_NODE, "clearance_m": c.CLEARANCE,
+                "tutorial_clearance_m": c.TUTORIAL_CLEARANCE,
                 "contact_stiffness_N_per_m": c.CONTACT_STIFFNESS,
                 "contact_damping_N_s_per_m": c.CONTACT_DAMPING, "friction": c.FRICTION},
         "unbalance": {"node": c.UNBALANCE_NODE, "m_e_kg_m": c.UNBALANCE,
@@ -96,7 +103,7 @@ def main():
         r = np.hypot(x, y)
         cross = crossings(t, r, c.CLEARANCE)
         keep = a.keep or max(1, int(round(c.PERIOD / h / 100)))
-        name = f"rubbing_h{h:g}.npz"
+        name = f"rubbing{a.tag}_h{h:g}.npz"
         np.savez_compressed(os.path.join(c.DATA, name), t=t[::keep].astype(np.float32),
                             x=x[::keep].astype(np.float32), y=y[::keep].astype(np.float32),
                             step=np.array(h), keep=np.array(keep))
@@ -113,7 +120,7 @@ def main():
         note["runs"].append(entry)
         print(f"h = {h:g} s: {len(t) - 1} steps, {wall:.1f} s wall, {len(cross)} switches, "
               f"max r/δ = {r.max() / c.CLEARANCE:.4f}", flush=True)
-        c.write_json("rubbing.json", note)
+        c.write_json(f"rubbing{a.tag}.json", note)
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ use rotor_rub::linalg::Complex;
 
 use super::read::load;
 use super::run::{MatrixRun, MatrixRunError, end_time, simulate_matrix};
-use super::spec::ModelSpec;
+use super::spec::{ModelSpec, on_large_stack};
 use crate::error::{CliError, Result, num};
 use crate::output::{CsvOut, check_distinct, commit_all};
 use crate::stdio;
@@ -247,11 +247,11 @@ pub fn simulate(input: &SimulateModel<'_>) -> Result<()> {
     }
     check_distinct(&outputs, &[("--model", input.path)])?;
     let times: Vec<f64> = uniform_times(0.0, end, input.sample_count).collect();
-    let run = simulate_matrix(&spec, &input.options, end, &times, None).map_err(|e| match e {
+    let run = on_large_stack(|| simulate_matrix(&spec, &input.options, end, &times, None));
+    let run = run.map_err(|e| match e {
         MatrixRunError::Model(e) => CliError::input(format!("{}: {e}", input.path.display())),
         MatrixRunError::Input(m) => CliError::input(m),
         MatrixRunError::Propagation(e) => CliError::from(e),
-        MatrixRunError::NotYetAvailable => CliError::failure(e.to_string()),
     })?;
     write_run(&run, input.events, input.samples)?;
     let mut r = String::new();

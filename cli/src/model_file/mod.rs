@@ -6,8 +6,8 @@
 //!   naming the [`Key`]; the statement [`ModelSpec::build`] (a boxed `MatrixModel<128>`), the
 //!   start, the modes, the speed-dependent matrices.
 //! - `read.rs`: TOML and `.npz` → [`ModelSpec`] ([`load`]); `npz.rs`: the `.npz` reader.
-//! - `run.rs`: [`simulate_matrix`], THE entry point to wire to the matrix propagator (today it
-//!   returns [`MatrixRunError::NotYetAvailable`]), and the result assembly ([`Recorder`] →
+//! - `run.rs`: [`simulate_matrix`], THE entry point of a matrix run (the matrix propagator,
+//!   every method), and the result assembly ([`Recorder`] →
 //!   [`MatrixRun`], SI, columns named after the DOFs).
 //! - `command.rs`: `rotor-rub check-model FILE` and `rotor-rub simulate --model FILE`.
 
@@ -21,8 +21,8 @@ pub use command::{CheckArgs, SimulateModel, check, report, simulate, write_run};
 pub use npz::{Array, read_npy, read_npz};
 pub use read::{FORMAT, MAX_MODEL_BYTES, NPZ_KEYS, from_npz, from_toml, load, locate, npz_message};
 pub use run::{
-    MatrixRun, MatrixRunError, NOT_YET_AVAILABLE, Recorder, Rows, end_time, kind_code, regime_code,
-    simulate_matrix, state_columns,
+    MatrixRun, MatrixRunError, Recorder, Rows, end_time, kind_code, regime_code, simulate_matrix,
+    state_columns,
 };
 pub use spec::{
     CAPACITY, Dense, Key, MAX_DOFS, Model, ModelError, ModelSpec, ModelState, RubSpec, SpeedPoint,

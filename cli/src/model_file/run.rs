@@ -2,15 +2,16 @@
 //! the result assembly every front end shares ([`Recorder`] → [`MatrixRun`], in SI units, with
 //! the columns named after the model's DOFs).
 //!
-//! The matrix methods' propagator is not in this build yet: [`simulate_matrix`] builds the model
-//! and its start, checks them, and returns [`MatrixRunError::NotYetAvailable`]. Wiring it is the
-//! propagation loop marked in its body; everything around it (columns, units, CSV, Python's
-//! arrays) is here and tested on synthetic events.
+//! [`simulate_matrix`] builds the model and its start, runs the matrix methods' propagator
+//! (`rotor_rub::matrix::MatrixPropagator`, every method) and records every switch and sample in
+//! SI units; everything around it (columns, units, CSV, Python's arrays) is shared by the CLI
+//! and Python.
 
 use std::sync::Arc;
 use std::time::Duration;
 
-use rotor_rub::{Event, EventKind, Options, PropagationError, Regime, Sample};
+use rotor_rub::matrix::MatrixPropagator;
+use rotor_rub::{Event, EventKind, Options, Propagate, PropagationError, Regime, Sample};
 
 use super::spec::{Model, ModelError, ModelSpec, ModelState};
 
@@ -21,10 +22,8 @@ pub enum MatrixRunError {
     Model(ModelError),
     /// A run option is wrong (the end time, the initial state's length, …).
     Input(String),
-    /// The propagation failed.
+    /// The propagation failed (or the method refused an option).
     Propagation(PropagationError),
-    /// The model is valid but this build has no propagator for matrix models yet.
-    NotYetAvailable,
 }
 
 impl std::fmt::Display for MatrixRunError {
@@ -33,7 +32,6 @@ impl std::fmt::Display for MatrixRunError {
             MatrixRunError::Model(e) => write!(f, "{e}"),
             MatrixRunError::Input(m) => f.write_str(m),
             MatrixRunError::Propagation(e) => write!(f, "propagation failed: {e}"),
-            MatrixRunError::NotYetAvailable => f.write_str(NOT_YET_AVAILABLE),
         }
     }
 }
@@ -51,9 +49,6 @@ impl From<PropagationError> for MatrixRunError {
         MatrixRunError::Propagation(e)
     }
 }
-
-/// What [`MatrixRunError::NotYetAvailable`] says.
-pub const NOT_YET_AVAILABLE: &str = "simulating a model from matrices is not yet available in this build: the model and its start are valid (`rotor-rub check-model FILE` prints its modes and station); the matrix methods' propagator is still to be wired in";
 
 /// The state columns of a model's results: the DOFs (m, or rad on rotations), their velocities
 /// (`v` + name), then the rub station's relative displacement P = q_rotor − q_stator (`rub_x`,
@@ -185,8 +180,19 @@ impl Recorder {
         row
     }
 
-    /// A switch.
+    /// The run starts at `time` in `regime` (the regime account's origin).
+    pub fn begin(&mut self, time: f64, regime: Regime) {
+        self.last = Some((time, regime));
+    }
+
+    /// A switch (also the regime's time account: the regime before it holds until it).
     pub fn event(&mut self, e: &Event<ModelState>) {
+        let after = match e.kind {
+            EventKind::Exit => Regime::Free,
+            EventKind::Roll => Regime::Rolling,
+            EventKind::Enter | EventKind::Reverse | EventKind::Slip => Regime::Contact,
+        };
+        self.account(e.time, after);
         let row = self.row(&e.state);
         self.run.events.time.push(e.time);
         self.run.events.code.push(kind_code(e.kind));
@@ -212,7 +218,8 @@ impl Recorder {
     }
 
     /// The result, ending at the sample `end` after `elapsed` of propagation. `time_in` is
-    /// what the propagator reports when it has it, else the samples' account.
+    /// what the propagator reports when it has it, else the account of the switches and
+    /// samples.
     pub fn finish(
         mut self,
         end: &Sample<ModelState>,
@@ -259,13 +266,13 @@ pub fn end_time(spec: &ModelSpec, t_end: Option<f64>, periods: Option<f64>) -> R
 /// `sample_times` (increasing, within [0, end]); `initial` replaces the spec's start (positions
 /// then velocities, SI; `None`: the spec's, rest by default).
 ///
-/// THE ENTRY POINT TO WIRE: today it builds and checks the model and its start, then returns
-/// [`MatrixRunError::NotYetAvailable`]. With the matrix methods' propagator the body's marked
-/// loop becomes the run (the `Recorder` and everything after it are in place and tested).
+/// THE entry point of a matrix run for every front end (the CLI's `simulate --model`, Python's
+/// `rr.simulate(model=…)`). Sample times at or after `end` are sampled at `end`. Run it on a
+/// large stack ([`super::on_large_stack`]): the propagator of a capacity-128 model is large.
 ///
 /// # Errors
 /// [`MatrixRunError::Model`] for a model or start that is wrong, `Input` for a bad run length or
-/// initial state, `Propagation` for a failed run, `NotYetAvailable` for now.
+/// initial state, `Propagation` for a failed run or an option the method refuses.
 pub fn simulate_matrix(
     spec: &ModelSpec,
     options: &Options,
@@ -294,17 +301,22 @@ pub fn simulate_matrix(
     }
     let model: Arc<Model> = Arc::from(spec.build()?);
     let start = spec.start()?;
-    let recorder = Recorder::new(Arc::clone(&model), &spec);
-    // ---- The propagation loop, to wire when `MatrixPropagator` lands: ----
-    //   let clock = std::time::Instant::now();
-    //   let mut propagator = MatrixPropagator::new(Arc::clone(&model), start, options)?;
-    //   let mut recorder = recorder;
-    //   for &t in sample_times {
-    //       let s = rotor_rub::advance_to(&mut propagator, t, |e| recorder.event(&e))?;
-    //       recorder.sample(&s);
-    //   }
-    //   let last = rotor_rub::advance_to(&mut propagator, end, |e| recorder.event(&e))?;
-    //   return Ok(recorder.finish(&last, Some(propagator.time_in()), clock.elapsed()));
-    let _ = (recorder, start, sample_times);
-    Err(MatrixRunError::NotYetAvailable)
+    let mut recorder = Recorder::new(Arc::clone(&model), &spec);
+    let clock = std::time::Instant::now();
+    let mut propagator = Box::new(MatrixPropagator::new(
+        Arc::clone(&model),
+        0.0,
+        start,
+        options,
+    )?);
+    recorder.begin(0.0, propagator.regime());
+    for &t in sample_times.iter().filter(|&&t| t < end) {
+        let s = rotor_rub::advance_to(propagator.as_mut(), t, |e| recorder.event(e))?;
+        recorder.sample(&s);
+    }
+    let last = rotor_rub::advance_to(propagator.as_mut(), end, |e| recorder.event(e))?;
+    if sample_times.last().is_some_and(|&t| t >= end) {
+        recorder.sample(&last);
+    }
+    Ok(recorder.finish(&last, None, clock.elapsed()))
 }
