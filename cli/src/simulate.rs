@@ -88,6 +88,17 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let budget = args.limits.budget();
     budget.plan("--sample-count", count)?;
+    if problem.params.stator_mass_ratio > 0.0 {
+        // A stator ring with mass: the n = 4 matrix model (issue 28).
+        return crate::model_file::simulate_ring_command(
+            &problem,
+            &options,
+            end,
+            usize::try_from(count).map_err(|_| CliError::input("--sample-count is too large"))?,
+            args.events.as_deref(),
+            args.samples.as_deref(),
+        );
+    }
     let propagator = trajectory::start(&problem, &options)?;
     let mut events_out = args
         .events

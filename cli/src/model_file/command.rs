@@ -253,7 +253,7 @@ pub fn simulate(input: &SimulateModel<'_>) -> Result<()> {
         MatrixRunError::Input(m) => CliError::input(m),
         MatrixRunError::Propagation(e) => CliError::from(e),
     })?;
-    write_run(&run, input.events, input.samples)?;
+    write_run(&run, "t", input.events, input.samples)?;
     let mut r = String::new();
     let _ = writeln!(
         r,
@@ -273,14 +273,85 @@ pub fn simulate(input: &SimulateModel<'_>) -> Result<()> {
     stdio::out(&r)
 }
 
-/// Write a matrix run's events (`t,kind,<columns>`) and samples (`t,<columns>,contact,regime`)
-/// as CSV, SI units, each file whole or not at all.
-pub fn write_run(run: &MatrixRun, events: Option<&Path>, samples: Option<&Path>) -> Result<()> {
+/// `rotor-rub simulate` of the paper's rotor with a ring of mass (`stator_mass_ratio` > 0):
+/// the run from the problem's start to `end` (τ) with `count` uniform samples, the CSV files
+/// (the planar columns, then `xs, ys, vxs, vys`), and the summary with the ring's largest
+/// displacement.
+///
+/// # Errors
+/// An output path that is an input, a refused option, a failed run, a file not written.
+pub fn simulate_ring_command(
+    problem: &rotor_rub::Problem,
+    options: &Options,
+    end: f64,
+    count: usize,
+    events: Option<&Path>,
+    samples: Option<&Path>,
+) -> Result<()> {
+    let start = problem.start_time;
+    let times: Vec<f64> = uniform_times(start, end, count).collect();
+    let run = on_large_stack(|| super::ring::simulate_ring(problem, options, end, &times))
+        .map_err(|e| match e {
+            MatrixRunError::Model(e) => CliError::input(e.to_string()),
+            MatrixRunError::Input(m) => CliError::input(m),
+            MatrixRunError::Propagation(e) => CliError::from(e),
+        })?;
+    write_run(&run, "tau", events, samples)?;
+    let mut r = String::new();
+    let _ = writeln!(
+        r,
+        "method: {}; τ from {} to {} ({} forcing periods); stator ring with mass m̂ = {}",
+        crate::options::describe(options),
+        num(start),
+        num(end),
+        num((end - start) / problem.params.forcing_period()),
+        num(problem.params.stator_mass_ratio)
+    );
+    let _ = writeln!(
+        r,
+        "switches: {} ({} contact starts, {} contact ends)",
+        run.events.len(),
+        run.count(rotor_rub::EventKind::Enter),
+        run.count(rotor_rub::EventKind::Exit)
+    );
+    let _ = writeln!(r, "contact fraction: {}", run.contact_fraction());
+    let _ = writeln!(
+        r,
+        "ring: largest displacement |(xs, ys)| = {} clearances",
+        num(super::ring::largest_ring_displacement(&run))
+    );
+    let e = &run.end_state;
+    let at = |i: usize| num(e.get(i).copied().unwrap_or(f64::NAN));
+    let _ = writeln!(
+        r,
+        "final state: x = {}, y = {}, vx = {}, vy = {}; ring xs = {}, ys = {}, vxs = {}, vys = {}",
+        at(0),
+        at(1),
+        at(2),
+        at(3),
+        at(4),
+        at(5),
+        at(6),
+        at(7)
+    );
+    let _ = writeln!(r, "run time: {:.3} ms", run.elapsed.as_secs_f64() * 1e3);
+    stdio::out(&r)
+}
+
+/// Write a matrix run's events (`<time>,kind,<columns>`) and samples
+/// (`<time>,<columns>,contact,regime`) as CSV (`time`: the time column's name, `t` in s for a
+/// model file, `tau` for the paper's dimensionless ring), each file whole or not at all.
+pub fn write_run(
+    run: &MatrixRun,
+    time: &str,
+    events: Option<&Path>,
+    samples: Option<&Path>,
+) -> Result<()> {
     let width = run.columns.len();
     let columns = run.columns.iter().map(String::as_str);
     let mut files = Vec::new();
     if let Some(path) = events {
-        let header: Vec<&str> = ["t", "kind"].into_iter().chain(columns.clone()).collect();
+        let header: Vec<&str> = [time, "kind"].into_iter().chain(columns.clone()).collect();
         let mut out = CsvOut::create(path, &header)?;
         for (i, (&t, &code)) in run.events.time.iter().zip(&run.events.code).enumerate() {
             let kind = rotor_rub::EventKind::ALL
@@ -299,7 +370,7 @@ pub fn write_run(run: &MatrixRun, events: Option<&Path>, samples: Option<&Path>)
         files.push(out.finish()?);
     }
     if let Some(path) = samples {
-        let header: Vec<&str> = ["t"]
+        let header: Vec<&str> = [time]
             .into_iter()
             .chain(columns)
             .chain(["contact", "regime"])

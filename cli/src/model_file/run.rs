@@ -13,7 +13,9 @@ use std::time::Duration;
 use rotor_rub::matrix::MatrixPropagator;
 use rotor_rub::{Event, EventKind, Options, Propagate, PropagationError, Regime, Sample};
 
-use super::spec::{Model, ModelError, ModelSpec, ModelState};
+use rotor_rub::matrix::{MatrixModel, MatrixState};
+
+use super::spec::{CAPACITY, Model, ModelError, ModelSpec};
 
 /// Why a matrix run did not produce a result.
 #[derive(Debug, Clone, PartialEq)]
@@ -140,21 +142,32 @@ pub fn regime_code(regime: Regime) -> u8 {
 }
 
 /// Collects a run's events and samples as they come, in SI units.
-pub struct Recorder {
-    model: Arc<Model>,
+pub struct Recorder<const CAP: usize = CAPACITY> {
+    model: Arc<MatrixModel<CAP>>,
     clearance: f64,
     width: usize,
     run: MatrixRun,
     last: Option<(f64, Regime)>,
 }
 
-impl Recorder {
+impl Recorder<CAPACITY> {
     /// A recorder for runs of `model` (stated from `spec`).
     pub fn new(model: Arc<Model>, spec: &ModelSpec) -> Self {
-        let columns = state_columns(spec);
+        Recorder::with_columns(model, state_columns(spec), spec.rub.clearance)
+    }
+}
+
+impl<const CAP: usize> Recorder<CAP> {
+    /// A recorder for runs of `model` whose rows are named `columns` (the state's 2n entries
+    /// then the station's relative displacement) and scaled by `clearance` (1: dimensionless).
+    pub fn with_columns(
+        model: Arc<MatrixModel<CAP>>,
+        columns: Vec<String>,
+        clearance: f64,
+    ) -> Self {
         Recorder {
             model,
-            clearance: spec.rub.clearance,
+            clearance,
             width: columns.len(),
             run: MatrixRun {
                 columns,
@@ -170,7 +183,7 @@ impl Recorder {
     }
 
     /// The row of `state` (clearances) in SI: q·δ, q'·δ, P·δ.
-    pub fn row(&self, state: &ModelState) -> Vec<f64> {
+    pub fn row(&self, state: &MatrixState<CAP>) -> Vec<f64> {
         let y = state.as_slice();
         let p = self.model.station_motion(y).at;
         let mut row = Vec::with_capacity(self.width);
@@ -186,7 +199,7 @@ impl Recorder {
     }
 
     /// A switch (also the regime's time account: the regime before it holds until it).
-    pub fn event(&mut self, e: &Event<ModelState>) {
+    pub fn event(&mut self, e: &Event<MatrixState<CAP>>) {
         let after = match e.kind {
             EventKind::Exit => Regime::Free,
             EventKind::Roll => Regime::Rolling,
@@ -200,7 +213,7 @@ impl Recorder {
     }
 
     /// A sample (also the regime's time account: each sample's regime holds until the next).
-    pub fn sample(&mut self, s: &Sample<ModelState>) {
+    pub fn sample(&mut self, s: &Sample<MatrixState<CAP>>) {
         let row = self.row(&s.state);
         self.account(s.time, s.regime);
         self.run.samples.time.push(s.time);
@@ -222,7 +235,7 @@ impl Recorder {
     /// samples.
     pub fn finish(
         mut self,
-        end: &Sample<ModelState>,
+        end: &Sample<MatrixState<CAP>>,
         time_in: Option<[f64; 3]>,
         elapsed: Duration,
     ) -> MatrixRun {
@@ -301,15 +314,27 @@ pub fn simulate_matrix(
     }
     let model: Arc<Model> = Arc::from(spec.build()?);
     let start = spec.start()?;
-    let mut recorder = Recorder::new(Arc::clone(&model), &spec);
+    let recorder = Recorder::new(Arc::clone(&model), &spec);
+    propagate(model, 0.0, start, options, end, sample_times, recorder)
+}
+
+/// The run of `model` from `(t0, start)` to `end` with `options`: every switch and a sample at
+/// each of `sample_times` (those at or after `end` at `end`), into `recorder`.
+///
+/// # Errors
+/// [`MatrixRunError::Propagation`] for an option the method refuses or a failed run.
+pub fn propagate<const CAP: usize>(
+    model: Arc<MatrixModel<CAP>>,
+    t0: f64,
+    start: MatrixState<CAP>,
+    options: &Options,
+    end: f64,
+    sample_times: &[f64],
+    mut recorder: Recorder<CAP>,
+) -> Result<MatrixRun, MatrixRunError> {
     let clock = std::time::Instant::now();
-    let mut propagator = Box::new(MatrixPropagator::new(
-        Arc::clone(&model),
-        0.0,
-        start,
-        options,
-    )?);
-    recorder.begin(0.0, propagator.regime());
+    let mut propagator = Box::new(MatrixPropagator::new(model, t0, start, options)?);
+    recorder.begin(t0, propagator.regime());
     for &t in sample_times.iter().filter(|&&t| t < end) {
         let s = rotor_rub::advance_to(propagator.as_mut(), t, |e| recorder.event(e))?;
         recorder.sample(&s);
