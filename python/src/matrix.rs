@@ -419,6 +419,56 @@ pub fn matrix_result_of<'py>(
     run_dict(py, &spec, &Options::with_method(Method::Hybrid), run)
 }
 
+/// `rr.simulate` of the paper's rotor with a ring of mass (`stator_mass_ratio` > 0): the n = 4
+/// matrix model run by the matrix propagator (GIL released; no progress callback), as the
+/// planar result dict with 8 state columns (x, y, vx, vy, xs, ys, vxs, vys).
+pub fn simulate_ring<'py>(
+    py: Python<'py>,
+    problem: &rotor_rub::Problem,
+    options: &Options,
+    end: f64,
+    count: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let start = problem.start_time;
+    let times: Vec<f64> = uniform_times(start, end, count).collect();
+    let result = py.detach(|| {
+        model_file::on_large_stack(|| model_file::simulate_ring(problem, options, end, &times))
+    });
+    let run = match result {
+        Ok(run) => run,
+        Err(MatrixRunError::Model(e)) => return Err(model_error(&e)),
+        Err(MatrixRunError::Input(m)) => return Err(input(m)),
+        Err(MatrixRunError::Propagation(e)) => {
+            return Err(cli(rotor_rub_cli::error::CliError::from(e)));
+        }
+    };
+    let width = run.columns.len();
+    let table = |rows: usize, data: Vec<f64>| -> PyResult<Bound<'py, PyAny>> {
+        let a = numpy::ndarray::Array2::from_shape_vec((rows, width), data)
+            .map_err(|e| input(e.to_string()))?;
+        Ok(a.into_pyarray(py).into_any())
+    };
+    let fraction = run.contact_fraction();
+    let out = PyDict::new(py);
+    let (events, samples) = (run.events, run.samples);
+    out.set_item("event_state", table(events.time.len(), events.state)?)?;
+    out.set_item("event_time", events.time.into_pyarray(py))?;
+    out.set_item("event_kind", events.code.into_pyarray(py))?;
+    out.set_item("sample_state", table(samples.time.len(), samples.state)?)?;
+    out.set_item("sample_time", samples.time.into_pyarray(py))?;
+    out.set_item("sample_regime", samples.code.into_pyarray(py))?;
+    out.set_item("start_time", start)?;
+    out.set_item("end_time", run.end_time)?;
+    out.set_item("end_state", run.end_state.into_pyarray(py))?;
+    out.set_item("time_in", run.time_in)?;
+    out.set_item("contact_fraction", fraction)?;
+    out.set_item("elapsed", run.elapsed.as_secs_f64())?;
+    out.set_item("forcing_period", problem.params.forcing_period())?;
+    out.set_item("samples", count)?;
+    out.set_item("problem", crate::meta::problem(py, problem, options)?)?;
+    Ok(out)
+}
+
 /// Add the matrix functions to the module (`_core.matrix_*`, `_core.simulate_matrix`).
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(matrix_check, m)?)?;

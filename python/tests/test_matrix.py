@@ -410,3 +410,24 @@ def test_rub_orbit_plot(tmp_path):
     ax.figure.savefig(tmp_path / "ring.png")
     assert (tmp_path / "ring.png").stat().st_size > 1000
     plt.close(ax.figure)
+
+
+def test_the_stator_ring_with_mass_runs_as_the_cli(cli, tmp_path):
+    """stator_mass_ratio > 0: the n = 4 ring model; the rotor's columns first, the ring's
+    after them, the same switches as `rotor-rub simulate --set stator_mass_ratio=…`."""
+    import subprocess
+
+    run = rr.simulate(stator_mass_ratio=1.0, periods=10, samples=11, method="hybrid")
+    assert run.samples.state.shape == (11, 8) and run.events.state.shape[1] == 8
+    assert run.problem.params["stator_mass_ratio"] == 1.0
+    xs = run.events.state[:, 4:6]
+    assert np.hypot(xs[:, 0], xs[:, 1]).max() > 0.01  # the ring moves
+    events = tmp_path / "ring.csv"
+    subprocess.run([str(cli), "simulate", "--set", "stator_mass_ratio=1", "--periods", "10",
+                    "--method", "hybrid", "--events", str(events)], check=True,
+                   capture_output=True)
+    lines = events.read_text().splitlines()
+    assert lines[0] == "tau,kind,x,y,vx,vy,xs,ys,vxs,vys"
+    assert [float(r.split(",")[0]) for r in lines[1:]] == list(run.events.time)
+    with pytest.raises(ValueError, match="contact_stiffness"):
+        rr.simulate(contact_stiffness=10.0, periods=1)
