@@ -328,6 +328,95 @@ fn check_model_prints_the_model_and_exits_2_on_bad_files() {
     );
 }
 
+#[test]
+fn simulate_runs_model_files_and_the_ring() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let events = dir.path().join("ev.csv");
+    let samples = dir.path().join("s.csv");
+    let out = bin()
+        .args([
+            "simulate",
+            "--periods",
+            "5",
+            "--method",
+            "hybrid",
+            "--model",
+        ])
+        .arg(example("two_disk.toml"))
+        .arg("--events")
+        .arg(&events)
+        .arg("--samples")
+        .arg(&samples)
+        .args(["--sample-count", "11"])
+        .output()
+        .expect("runs");
+    assert!(out.status.success(), "{out:?}");
+    let text = std::fs::read_to_string(&events).expect("events");
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("t,kind,x1,y1,a1,b1,x2,y2,a2,b2,vx1,vy1,va1,vb1,vx2,vy2,va2,vb2,rub_x,rub_y")
+    );
+    // Every switch on the clearance circle (0.2 mm), in SI.
+    let mut count = 0;
+    for line in lines {
+        let f: Vec<f64> = line
+            .split(',')
+            .skip(2)
+            .map(|x| x.parse().expect("number"))
+            .collect();
+        let r = f[16].hypot(f[17]);
+        assert!((r - 2e-4).abs() < 1e-15, "{line}");
+        count += 1;
+    }
+    assert!(count > 0);
+    let s = std::fs::read_to_string(&samples).expect("samples");
+    assert_eq!(s.lines().count(), 12);
+    assert!(
+        s.lines()
+            .next()
+            .is_some_and(|h| h.ends_with("rub_x,rub_y,contact,regime"))
+    );
+
+    // The ring with mass: the rotor's columns, then the ring's.
+    let ring = dir.path().join("ring.csv");
+    let out = bin()
+        .args([
+            "simulate",
+            "--set",
+            "stator_mass_ratio=1",
+            "--periods",
+            "5",
+            "--events",
+        ])
+        .arg(&ring)
+        .output()
+        .expect("runs");
+    assert!(out.status.success(), "{out:?}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("ring: largest displacement"), "{stdout}");
+    let text = std::fs::read_to_string(&ring).expect("ring events");
+    assert_eq!(
+        text.lines().next(),
+        Some("tau,kind,x,y,vx,vy,xs,ys,vxs,vys")
+    );
+    assert!(text.lines().count() > 1);
+
+    // m̂ = 0 is the paper's model, byte for byte.
+    let a = dir.path().join("a.csv");
+    let b = dir.path().join("b.csv");
+    for (path, extra) in [(&a, None), (&b, Some("stator_mass_ratio=0"))] {
+        let mut cmd = bin();
+        cmd.args(["simulate", "--periods", "5", "--events"])
+            .arg(path);
+        if let Some(set) = extra {
+            cmd.args(["--set", set]);
+        }
+        assert!(cmd.output().expect("runs").status.success());
+    }
+    assert_eq!(std::fs::read(&a).expect("a"), std::fs::read(&b).expect("b"));
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 

@@ -342,9 +342,9 @@ class Model:
         return _core.matrix_modes(self._core_dict())
 
     def natural_frequencies(self) -> FloatArray:
-        """The damped natural frequencies Im λ > 0 of :meth:`modes`, rad/s, increasing."""
-        lam = self.modes()
-        return np.sort(lam.imag[lam.imag > 0])
+        """The damped natural frequencies Im λ of :meth:`modes` with Im λ > 0, rad/s, in order
+        of |λ| (as ``rotor-rub check-model`` lists the modes)."""
+        return _damped_frequencies(self.modes())
 
     def with_speed(self, speed: float) -> "Model":
         """The same model at another running speed (C and K re-evaluated there when the model
@@ -519,8 +519,15 @@ def _first_order_frequencies(M: Any, C: Any, K: Any, G: Any, speed: float) -> Fl
     n = M.shape[0]
     A = np.block([[np.zeros((n, n)), np.eye(n)],
                   [-np.linalg.solve(M, K), -np.linalg.solve(M, C + speed * G)]])
-    lam = np.linalg.eigvals(A)
-    return np.sort(lam.imag[lam.imag > 0])
+    return _damped_frequencies(np.linalg.eigvals(A))
+
+
+def _damped_frequencies(lam: Any) -> FloatArray:
+    """Im λ of the eigenvalues with Im λ > 0, in order of |λ| (a heavily damped high mode has a
+    small Im λ: ordering by Im λ would put it first)."""
+    lam = np.asarray(lam)
+    lam = lam[lam.imag > 0]
+    return np.asarray(lam[np.argsort(np.abs(lam), kind="stable")].imag, dtype=np.float64)
 
 
 def _frequency_error(full: Tuple[Any, ...], reduced: Tuple[Any, ...], speed: float,

@@ -431,3 +431,20 @@ def test_the_stator_ring_with_mass_runs_as_the_cli(cli, tmp_path):
     assert [float(r.split(",")[0]) for r in lines[1:]] == list(run.events.time)
     with pytest.raises(ValueError, match="contact_stiffness"):
         rr.simulate(contact_stiffness=10.0, periods=1)
+
+
+def test_the_docs_examples_run(monkeypatch):
+    """docs/PYTHON.md's "Rotors from matrices" examples, as shown, from the repository root
+    (the one that needs ROSS only where ROSS is installed)."""
+    import importlib.util
+
+    page = (ROOT / "docs" / "PYTHON.md").read_text()
+    blocks = page.split("<!-- matrix-example")[1:]
+    assert len(blocks) == 3
+    monkeypatch.chdir(ROOT)
+    for block in blocks:
+        code = block[block.index("```python\n") + 10:]
+        code = code[:code.index("```")]
+        if block.startswith(": needs ross") and importlib.util.find_spec("ross") is None:
+            continue
+        exec(compile(code, "docs/PYTHON.md", "exec"), {})
