@@ -23,7 +23,7 @@ use rotor_rub::coefficients as coef;
 use rotor_rub::coefficients::ModelParams;
 use rotor_rub::geometry;
 use rotor_rub::reference::{
-    Dop853, Integrator, RotorSystem, Switches, Tolerance, first_crossing as dense_crossing,
+    Dop853, Integrator, RotorSystem, SUBDIVISIONS, Switches, Tolerance, first_crossing_subdivided,
     inside_measure, switch_in_step,
 };
 use rotor_rub::{Event, EventKind, Regime, State, events};
@@ -217,13 +217,25 @@ fn main() {
         let g_in = |y: &[f64; 4]| inside_measure(&ModelParams::of(&params), Regime::Contact, y);
         let dstep = loop {
             let st = integ.step(&sys, f64::INFINITY).expect("steps");
-            if dense_crossing(&st.dense, &st.y0, &st.y1, g_in).is_some() {
+            if first_crossing_subdivided(SUBDIVISIONS, &st.dense, &st.y0, &st.y1, |_, y| g_in(y))
+                .is_some()
+            {
                 break st;
             }
         };
         g.bench_function(
             "exit on a DOP853 step (dense output, 8 sub-intervals)",
-            |b| b.iter(|| dense_crossing(&dstep.dense, &dstep.y0, &dstep.y1, g_in)),
+            |b| {
+                b.iter(|| {
+                    first_crossing_subdivided(
+                        SUBDIVISIONS,
+                        &dstep.dense,
+                        &dstep.y0,
+                        &dstep.y1,
+                        |_, y| g_in(y),
+                    )
+                })
+            },
         );
         let switches = Switches::new(
             &params,

@@ -269,9 +269,9 @@ impl HybridPropagator {
                 Dop853Contact::unstarted(&params, tol, t0, s0)
             };
             let rolling = if regime == Regime::Rolling {
-                ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol)
+                ReferenceSolver::new(params, Regime::Rolling, 0.0, t0, s0, tol)
             } else {
-                ReferenceSolver::unstarted(&params, Regime::Rolling, t0, s0, tol)
+                ReferenceSolver::unstarted(params, Regime::Rolling, t0, s0, tol)
             };
             Ok(ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),

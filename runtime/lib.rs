@@ -10,7 +10,8 @@
 //! - [`propagate`]: the `Propagate` trait and its consumers (`events`, `samples`, `advance_to`,
 //!   `poincare`). [`driver`]: `Piecewise`, the state machine every method runs on.
 //!   [`registration`]: what a method tells the registry; [`method`]: the registry (`Method`,
-//!   `Options`, `Propagator`). [`compare`]: matching two runs' events, and how deep a contact only one run has reaches against what both resolve.
+//!   `Options`, `Propagator`). [`compare`]: matching two runs' events, and how deep a contact
+//!   only one run has reaches against what both resolve.
 //! - The methods: [`analytic`] (exact free flight, closed-form contact by exprb43/exprb2, the
 //!   switch kernel that proves intervals free), [`hybrid`] (exact free flight + DOP853 in
 //!   contact), [`taylor`] (generated Taylor recurrences, switches as polynomial roots),

@@ -160,15 +160,31 @@ fn a_serialized_state_restores_the_run() {
 
 #[test]
 fn the_descriptions_list_every_table_entry_with_its_range() {
+    use Parameter as P;
     for version in [Version::Fmi2, Version::Fmi3] {
         let xml = model_description(version, Units::Dimensionless);
         assert!(xml.contains(&guid(Units::Dimensionless)));
         for p in Parameter::ALL {
             let info = p.info();
             let name = match p {
-                Parameter::ForceX => "fx",
-                Parameter::ForceY => "fy",
-                Parameter::StartTime => continue,
+                P::ForceX => "fx",
+                P::ForceY => "fy",
+                P::StartTime => continue,
+                // The ring with mass is a matrix model the stepper does not run: not offered.
+                P::StatorMassRatio
+                | P::ContactStiffness
+                | P::StatorDamping
+                | P::Xs0
+                | P::Ys0
+                | P::Vxs0
+                | P::Vys0 => {
+                    assert!(
+                        !xml.contains(&format!("name=\"{}\"", info.name)),
+                        "{}",
+                        info.name
+                    );
+                    continue;
+                }
                 _ => info.name,
             };
             let lines: Vec<&str> = xml.lines().collect();

@@ -270,9 +270,9 @@ impl AnalyticPropagator {
                 // method's tolerance, started by the driver at the first roll unless the run
                 // starts rolling.
                 rolling: if regime == Regime::Rolling {
-                    ReferenceSolver::new(&params, Regime::Rolling, 0.0, t0, s0, tol)
+                    ReferenceSolver::new(params, Regime::Rolling, 0.0, t0, s0, tol)
                 } else {
-                    ReferenceSolver::unstarted(&params, Regime::Rolling, t0, s0, tol)
+                    ReferenceSolver::unstarted(params, Regime::Rolling, t0, s0, tol)
                 },
             };
             if regime == Regime::Contact {

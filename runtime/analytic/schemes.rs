@@ -49,21 +49,8 @@ impl SubStep {
 /// exprb2: the linearized closed form from `state` at time `t` over `h`.
 pub fn exprb2(params: &Params, t: f64, state: State, h: f64) -> Result<SubStep, Singular> {
     let mut out = SubStep::zeroed();
-    exprb2_into(params, 0.0, t, state, h, &mut out)?;
+    exprb2_with(&ContactConstants::new(params), 0.0, t, state, h, &mut out)?;
     Ok(out)
-}
-
-/// [`exprb2`] written into `out` (no copy of the large segment), slipping in direction `slip`
-/// under friction (0: frictionless); `out` is unspecified on error.
-pub fn exprb2_into(
-    params: &Params,
-    slip: f64,
-    t: f64,
-    state: State,
-    h: f64,
-    out: &mut SubStep,
-) -> Result<(), Singular> {
-    exprb2_with(&ContactConstants::new(params), slip, t, state, h, out)
 }
 
 /// A sub-step's start, shared by both schemes: the linearization at `state` written in place
@@ -87,7 +74,9 @@ fn linearize<'a>(
     Ok((lin, part))
 }
 
-/// [`exprb2_into`] with the parameter set's [`ContactConstants`].
+/// [`exprb2`] written into `out` (no copy of the large segment) with the parameter set's
+/// [`ContactConstants`], slipping in direction `slip` under friction (0: frictionless); `out` is
+/// unspecified on error.
 pub fn exprb2_with(
     constants: &ContactConstants,
     slip: f64,
@@ -114,25 +103,21 @@ pub fn exprb43(
     tol: f64,
 ) -> Result<SubStep, Singular> {
     let mut out = SubStep::zeroed();
-    exprb43_into(params, 0.0, t, state, h, tol, &mut out)?;
+    exprb43_with(
+        &ContactConstants::new(params),
+        0.0,
+        t,
+        state,
+        h,
+        tol,
+        &mut out,
+    )?;
     Ok(out)
 }
 
-/// [`exprb43`] written into `out` (no copy of the large segment), slipping in direction `slip`
-/// under friction (0: frictionless); `out` is unspecified on error.
-pub fn exprb43_into(
-    params: &Params,
-    slip: f64,
-    t: f64,
-    state: State,
-    h: f64,
-    tol: f64,
-    out: &mut SubStep,
-) -> Result<(), Singular> {
-    exprb43_with(&ContactConstants::new(params), slip, t, state, h, tol, out)
-}
-
-/// [`exprb43_into`] with the parameter set's [`ContactConstants`]. The linearization is written
+/// [`exprb43`] written into `out` (no copy of the large segment) with the parameter set's
+/// [`ContactConstants`], slipping in direction `slip` under friction (0: frictionless); `out` is
+/// unspecified on error. The linearization is written
 /// in place into the output slot and the stages are parts evaluated with it (no copy of it).
 pub fn exprb43_with(
     constants: &ContactConstants,

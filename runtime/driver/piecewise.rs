@@ -27,13 +27,15 @@ impl<S: Solvers> Piecewise<S> {
     /// paper's planar model.
     ///
     /// # Errors
-    /// As [`Piecewise::start`].
+    /// [`crate::ParamError::RingNeedsMatrixModel`] for a ring with mass (the planar model has
+    /// none; see [`crate::matrix`]), else as [`Piecewise::start`].
     #[inline(always)]
     pub fn new(
         problem: &Problem,
         budget: Option<StepBudget>,
         build: impl FnOnce(Regime, f64, crate::params::State) -> Result<S, PropagationError>,
     ) -> Result<Self, PropagationError> {
+        problem.params.planar()?;
         Piecewise::start(
             problem.params,
             problem.start_time,

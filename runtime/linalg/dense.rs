@@ -263,6 +263,22 @@ impl<T: Scalar, const CAP: usize> Matrix<T, CAP> {
         }
     }
 
+    /// Check that the matrix is square and finite (`what` names it in the error); its size.
+    pub fn check_square(&self, what: &'static str) -> Result<usize, LinalgError> {
+        let n = self.rows;
+        if self.cols != n {
+            return Err(LinalgError::Shape {
+                what,
+                got: self.cols,
+                expected: n,
+            });
+        }
+        if let Some((row, col)) = self.first_non_finite() {
+            return Err(LinalgError::NonFinite { what, row, col });
+        }
+        Ok(n)
+    }
+
     /// Whether every used entry is finite; the first that is not, otherwise.
     pub fn first_non_finite(&self) -> Option<(usize, usize)> {
         for i in 0..self.rows {

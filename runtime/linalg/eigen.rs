@@ -8,7 +8,7 @@ use super::complex::Complex;
 use super::dense::RealMatrix;
 use super::error::LinalgError;
 use super::hessenberg::{balance, hessenberg};
-use super::schur::{check_square, triangularize};
+use super::schur::triangularize;
 
 /// The eigenvalues of a real square matrix (any: a monodromy matrix for its Floquet
 /// multipliers), sorted by modulus, largest first (ties by argument), written to `out`
@@ -27,7 +27,7 @@ pub fn eigenvalues<const CAP: usize>(
     a: &RealMatrix<CAP>,
     out: &mut [Complex],
 ) -> Result<usize, LinalgError> {
-    let n = check_square(a, "matrix")?;
+    let n = a.check_square("matrix")?;
     if out.len() < n {
         return Err(LinalgError::Shape {
             what: "eigenvalue output",

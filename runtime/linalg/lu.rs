@@ -34,17 +34,7 @@ impl<T: Scalar, const CAP: usize> Lu<T, CAP> {
     /// assert_eq!(lu.determinant(), -2.0);
     /// ```
     pub fn factor(a: &Matrix<T, CAP>, what: &'static str) -> Result<Self, LinalgError> {
-        let n = a.rows();
-        if a.cols() != n {
-            return Err(LinalgError::Shape {
-                what,
-                got: a.cols(),
-                expected: n,
-            });
-        }
-        if let Some((row, col)) = a.first_non_finite() {
-            return Err(LinalgError::NonFinite { what, row, col });
-        }
+        let n = a.check_square(what)?;
         let tiny = n as f64 * f64::EPSILON * a.max_magnitude();
         let mut lu = a.clone();
         let mut pivots = [0usize; CAP];

@@ -24,7 +24,7 @@ use super::cluster::{Blocks, Clusters, MERGE_DISTANCE, decouple, make_contiguous
 use super::complex::Complex;
 use super::dense::{ComplexMatrix, RealMatrix, dot};
 use super::error::LinalgError;
-use super::schur::{Schur, check_square};
+use super::schur::Schur;
 
 /// Modal coordinates c = S⁻¹ y of a state (the first m entries are used).
 #[derive(Clone, Debug, PartialEq)]
@@ -81,7 +81,7 @@ impl<const CAP: usize> ModalExponential<CAP> {
     /// assert!((y[0] - 4.0 * x).abs() < 1e-15 && (y[1] + 3.0 * x).abs() < 1e-15);
     /// ```
     pub fn new(a: &RealMatrix<CAP>) -> Result<Self, LinalgError> {
-        let m = check_square(a, "matrix")?;
+        let m = a.check_square("matrix")?;
         let mut e = ModalExponential {
             m,
             schur: Schur::zeros(m)?,
@@ -105,7 +105,7 @@ impl<const CAP: usize> ModalExponential<CAP> {
     /// error the instance is left empty (m = 0).
     pub fn rebuild(&mut self, a: &RealMatrix<CAP>) -> Result<(), LinalgError> {
         self.m = 0;
-        let m = check_square(a, "matrix")?;
+        let m = a.check_square("matrix")?;
         let mut work = RealMatrix::<CAP>::zeros(m, m)?;
         let mut work_q = RealMatrix::<CAP>::zeros(m, m)?;
         self.schur.decompose(a, &mut work, &mut work_q)?;

@@ -303,22 +303,3 @@ impl<const CAP: usize> Schur<CAP> {
         triangularize(&mut self.t, Some(&mut self.q))
     }
 }
-
-/// Check that `a` is a finite square matrix; its size.
-pub(crate) fn check_square<const CAP: usize>(
-    a: &RealMatrix<CAP>,
-    what: &'static str,
-) -> Result<usize, LinalgError> {
-    let n = a.rows();
-    if a.cols() != n {
-        return Err(LinalgError::Shape {
-            what,
-            got: a.cols(),
-            expected: n,
-        });
-    }
-    if let Some((row, col)) = a.first_non_finite() {
-        return Err(LinalgError::NonFinite { what, row, col });
-    }
-    Ok(n)
-}

@@ -108,19 +108,7 @@ impl<const CAP: usize> MatrixModel<CAP> {
                 (f.fx, f.fy)
             }
             Field::Rolling => {
-                let (d, r) = self.station_offset(y);
-                let drive = OffsetAcceleration {
-                    au: self.station_component(dv, 0),
-                    av: self.station_component(dv, 1),
-                };
-                let f = coef::station_rolling(
-                    self.running(),
-                    &d,
-                    &r,
-                    self.law(),
-                    self.compliance(),
-                    &drive,
-                );
+                let f = self.rolling_law(y, dv);
                 (f.fx, f.fy)
             }
         };
@@ -128,6 +116,24 @@ impl<const CAP: usize> MatrixModel<CAP> {
         for ((acc, x), y) in dv.iter_mut().zip(cx).zip(cy) {
             *acc += x * fx + y * fy;
         }
+    }
+
+    /// The generated rolling law at `y` (`docs/MODEL.md` §17: λ with W = B M⁻¹ Bᵀ), the station
+    /// driven by `acceleration`, the DOFs' accelerations from every force but the contact's.
+    fn rolling_law(&self, y: &[f64], acceleration: &[f64]) -> coef::StationRolling {
+        let (d, r) = self.station_offset(y);
+        let drive = OffsetAcceleration {
+            au: self.station_component(acceleration, 0),
+            av: self.station_component(acceleration, 1),
+        };
+        coef::station_rolling(
+            self.running(),
+            &d,
+            &r,
+            self.law(),
+            self.compliance(),
+            &drive,
+        )
     }
 
     /// The friction quantities of a contact state `y` (`docs/MODEL.md` §10, §17): N, w, the
@@ -141,18 +147,7 @@ impl<const CAP: usize> MatrixModel<CAP> {
         let mut dy = [0.0; CAP];
         self.derivative(Field::Free, phasor, y, &mut dy);
         let acceleration = dy.get(n..2 * n).unwrap_or(&[]);
-        let drive = OffsetAcceleration {
-            au: self.station_component(acceleration, 0),
-            av: self.station_component(acceleration, 1),
-        };
-        let rolling = coef::station_rolling(
-            self.running(),
-            &d,
-            &r,
-            self.law(),
-            self.compliance(),
-            &drive,
-        );
+        let rolling = self.rolling_law(y, acceleration);
         Friction {
             normal: rolling.normal,
             slip_velocity: slipping.slip_velocity,

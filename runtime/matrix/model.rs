@@ -122,22 +122,7 @@ impl<const CAP: usize> MatrixModel<CAP> {
                 *y += Complex::new(a.im, -a.re);
             }
         }
-        let mut forces = [0.0; CAP];
-        if !input.is_empty() {
-            if input.len() != n {
-                return Err(MatrixError::Shape {
-                    what: "input force",
-                    got: input.len(),
-                    expected: n,
-                });
-            }
-            for (i, &f) in input.iter().enumerate() {
-                check_finite("input force", i, f)?;
-            }
-            for (slot, &f) in forces.iter_mut().zip(input) {
-                *slot = f;
-            }
-        }
+        let forces = input_forces::<CAP>(input, n)?;
         let params = Params {
             speed_ratio: running.speed_ratio,
             phase: running.phase,
@@ -244,22 +229,7 @@ impl<const CAP: usize> MatrixModel<CAP> {
     /// [`MatrixError::Shape`] or [`MatrixError::NonFinite`].
     pub fn set_input(&mut self, input: &[f64]) -> Result<(), MatrixError> {
         let n = self.dofs;
-        let mut forces = [0.0; CAP];
-        if !input.is_empty() {
-            if input.len() != n {
-                return Err(MatrixError::Shape {
-                    what: "input force",
-                    got: input.len(),
-                    expected: n,
-                });
-            }
-            for (i, &f) in input.iter().enumerate() {
-                check_finite("input force", i, f)?;
-            }
-            for (slot, &f) in forces.iter_mut().zip(input) {
-                *slot = f;
-            }
-        }
+        let forces = input_forces::<CAP>(input, n)?;
         self.input = forces;
         self.input_acceleration = forces;
         self.mass_lu.solve(&mut self.input_acceleration);
@@ -420,4 +390,24 @@ fn check_station(s: &Station, n: usize) -> Result<(), MatrixError> {
         Parameter::RadiusRatio.range(),
     )?;
     Ok(())
+}
+
+/// The input force vector of an n-DOF model (`input` empty: none) in CAP storage.
+fn input_forces<const CAP: usize>(input: &[f64], n: usize) -> Result<[f64; CAP], MatrixError> {
+    let mut forces = [0.0; CAP];
+    if input.is_empty() {
+        return Ok(forces);
+    }
+    if input.len() != n {
+        return Err(MatrixError::Shape {
+            what: "input force",
+            got: input.len(),
+            expected: n,
+        });
+    }
+    for (i, (slot, &f)) in forces.iter_mut().zip(input).enumerate() {
+        check_finite("input force", i, f)?;
+        *slot = f;
+    }
+    Ok(forces)
 }

@@ -127,6 +127,15 @@ pub enum ParamError {
         /// Its value.
         value: f64,
     },
+    /// `stator_mass_ratio` > 0 (a stator ring with mass, an 8-state model) given to an entry
+    /// point that runs the planar 4-state model only (the planar methods' propagators, the
+    /// fixed-step stepper and what drives it: the C ABI, the FMU). The ring runs through the
+    /// matrix models (`crate::matrix::ring_model`), which the CLI and Python choose by
+    /// themselves; refused here rather than run as if the ring were massless.
+    RingNeedsMatrixModel {
+        /// The stator mass ratio m̂.
+        stator_mass_ratio: f64,
+    },
 }
 
 impl ParamError {
@@ -138,6 +147,7 @@ impl ParamError {
             }
             ParamError::FrictionNeedsDefiniteStator { .. } => Some(Parameter::FrictionCoefficient),
             ParamError::RingWithoutMass { parameter, .. } => Some(parameter),
+            ParamError::RingNeedsMatrixModel { .. } => Some(Parameter::StatorMassRatio),
         }
     }
 }
@@ -171,6 +181,11 @@ impl fmt::Display for ParamError {
                 "{parameter} = {} has no effect while stator_mass_ratio = 0 (the massless ring's support K_s is the contact spring): set stator_mass_ratio in (0, 1e3] for a ring with mass, or leave {parameter} at its default {}",
                 Number(value),
                 Number(parameter.info().default)
+            ),
+            ParamError::RingNeedsMatrixModel { stator_mass_ratio } => write!(
+                f,
+                "stator_mass_ratio = {} states a stator ring with mass, which this entry point does not run: it runs the planar model (stator_mass_ratio = 0) only; the ring runs as a matrix model (the CLI's and Python's simulate choose it themselves)",
+                Number(stator_mass_ratio)
             ),
         }
     }
@@ -221,6 +236,17 @@ impl fmt::Display for Parameter {
 }
 
 impl Params {
+    /// Refuse a ring with mass ([`ParamError::RingNeedsMatrixModel`]) where only the planar
+    /// model runs: the planar driver ([`crate::driver::Piecewise::new`]) and the stepper call it.
+    pub fn planar(&self) -> Result<(), ParamError> {
+        if self.stator_mass_ratio > 0.0 {
+            return Err(ParamError::RingNeedsMatrixModel {
+                stator_mass_ratio: self.stator_mass_ratio,
+            });
+        }
+        Ok(())
+    }
+
     /// Check every model parameter against the table, then the rules that tie parameters together
     /// (`cross_checks`). Returns the first violation in table order.
     pub fn validate(&self) -> Result<(), ParamError> {

@@ -4,7 +4,11 @@
 //! `CONTD8`). The stage f(t + h, y1) computed at acceptance is the next step's first stage.
 
 use super::ode::{OdeSystem, lin};
-use super::scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance, stage_input, weighted};
+use core::marker::PhantomData;
+
+use super::scheme::{
+    Attempt, Controller, Dense, DenseForm, Scheme, Tolerance, stage_input, weighted,
+};
 use super::tableau_dop853 as tab;
 
 /// The Dormand–Prince 8(5,3) method (marker type; see [`Scheme`]).
@@ -13,28 +17,11 @@ pub struct Dop853;
 
 /// Dense output of one DOP853 step: a degree-7 polynomial in s = (t − t0)/h,
 /// `r0 + s(r1 + s'(r2 + s(r3 + s'(r4 + s(r5 + s'(r6 + s r7))))))` with s' = 1 − s.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dop853Dense<const N: usize> {
-    t0: f64,
-    h: f64,
-    r: [[f64; N]; 8],
-}
+pub type Dop853Dense<const N: usize> = Dense<N, 8, Dop853>;
 
-impl<const N: usize> Interpolant<N> for Dop853Dense<N> {
-    fn start(&self) -> f64 {
-        self.t0
-    }
-
-    fn end(&self) -> f64 {
-        self.t0 + self.h
-    }
-
-    fn eval(&self, t: f64) -> [f64; N] {
-        let [r0, r1, r2, r3, r4, r5, r6, r7] = &self.r;
-        if self.h == 0.0 {
-            return *r0;
-        }
-        let s = (t - self.t0) / self.h;
+impl<const N: usize> DenseForm<N, 8> for Dop853 {
+    fn at(r: &[[f64; N]; 8], s: f64) -> [f64; N] {
+        let [r0, r1, r2, r3, r4, r5, r6, r7] = r;
         let s1 = 1.0 - s;
         let mut out = [0.0; N];
         let low = out.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3);
@@ -162,7 +149,12 @@ fn dense_output<S: OdeSystem<N> + ?Sized, const N: usize>(
         lin(&[(h, &weighted(d6, &k))]),
         lin(&[(h, &weighted(d7, &k))]),
     ];
-    Dop853Dense { t0: t, h, r }
+    Dense {
+        t0: t,
+        h,
+        r,
+        form: PhantomData,
+    }
 }
 
 /// An accepted DOP853 step whose dense output is built only on demand

@@ -115,30 +115,17 @@ fn crossing<F: Fn(f64) -> (f64, f64)>(
 }
 
 /// The first time in `(t0, t1]` of the step described by `dense` (with exact end states `y0` at
-/// `t0` and `y1` at `t1`) at which `g(y).0` becomes negative, or `None`.
+/// `t0` and `y1` at `t1`) at which `g(t, y).0` becomes negative, or `None` (a switching function
+/// of time and state: friction's functions depend on the forcing phase).
 ///
-/// The step is split into [`SUBDIVISIONS`] sub-intervals. In each, a negative end value gives a
-/// bracket; otherwise, if the derivative goes from negative to positive, the minimum is located
+/// The step is split into `subdivisions` (≥ 1; the reference methods use [`SUBDIVISIONS`])
+/// sub-intervals. In each, a negative end value gives a bracket; otherwise, if the derivative goes from negative to positive, the minimum is located
 /// by root finding on the derivative and a negative value there gives a bracket (a crossing and
 /// return within the sub-interval). The bracket is then refined on the dense output to the
 /// resolution of `f64` (the one refinement, [`crate::refine`]).
-pub fn first_crossing<const N: usize, D, G>(
-    dense: &D,
-    y0: &[f64; N],
-    y1: &[f64; N],
-    g: G,
-) -> Option<f64>
-where
-    D: Interpolant<N>,
-    G: Fn(&[f64; N]) -> (f64, f64),
-{
-    first_crossing_subdivided(SUBDIVISIONS, dense, y0, y1, |_, y: &[f64; N]| g(y))
-}
-
-/// As [`first_crossing`] with the step split into `subdivisions` (≥ 1) sub-intervals and a
-/// switching function of time and state, `g(t, y)` (friction's functions depend on the forcing
-/// phase). With one sub-interval, only the exact end states are examined unless they show a
-/// crossing or a minimum, so a lazy interpolant is evaluated only then.
+///
+/// With one sub-interval, only the exact end states are examined unless they show a crossing or
+/// a minimum, so a lazy interpolant is evaluated only then.
 #[inline(always)]
 pub fn first_crossing_subdivided<const N: usize, D, G>(
     subdivisions: usize,

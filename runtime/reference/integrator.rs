@@ -102,13 +102,19 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
     /// Restart at `(t, y)` on the field `sys` (for example after a regime switch): fresh first
     /// stage, fresh initial step guess, controller memory cleared. Counters are kept.
     pub fn restart<F: OdeSystem<N> + ?Sized>(&mut self, sys: &F, t: f64, y: [f64; N]) {
+        self.reset(sys, t, y);
+        self.h = self.initial_step(sys);
+    }
+
+    /// Move to `(t, y)` on `sys` with a fresh first stage and the controller's memory cleared;
+    /// the step size is the caller's to set.
+    fn reset<F: OdeSystem<N> + ?Sized>(&mut self, sys: &F, t: f64, y: [f64; N]) {
         self.t = t;
         self.y = y;
         self.f = sys.rhs(t, &y);
         self.stats.evaluations = self.stats.evaluations.saturating_add(1);
         self.err_old = 1e-4;
         self.rejected_last = false;
-        self.h = self.initial_step(sys);
     }
 
     /// As [`Self::restart`], but with `h` (> 0, clamped to the largest step) as the first step
@@ -125,12 +131,7 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             self.restart(sys, t, y);
             return;
         }
-        self.t = t;
-        self.y = y;
-        self.f = sys.rhs(t, &y);
-        self.stats.evaluations = self.stats.evaluations.saturating_add(1);
-        self.err_old = 1e-4;
-        self.rejected_last = false;
+        self.reset(sys, t, y);
         self.h = h.min(self.h_max);
     }
 

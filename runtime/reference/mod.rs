@@ -5,7 +5,7 @@
 //!   fixed-size `[f64; N]` states (no heap), reusable on other systems (the hybrid method's
 //!   6-state [`PhasorRotorSystem`]).
 //! - [`Rk45`], [`Dop853`]: the two pairs with their dense outputs.
-//! - [`first_crossing`]: event location on a dense output, grazing contacts included.
+//! - [`first_crossing_subdivided`]: event location on a dense output, grazing contacts included.
 //! - [`Dop853Propagator`], [`Rk45Propagator`]: the [`crate::Propagate`] implementations.
 //!
 //! ```
@@ -44,9 +44,7 @@ mod tableau_dop853;
 mod tableau_rk45;
 
 pub use dop853::{Dop853, Dop853Dense, Dop853Step};
-pub use events::{
-    SUBDIVISIONS, first_crossing, first_crossing_beyond, first_crossing_subdivided, polish_switch,
-};
+pub use events::{SUBDIVISIONS, first_crossing_beyond, first_crossing_subdivided, polish_switch};
 pub use integrator::{AcceptedStep, Integrator, MAX_REJECTIONS, Stats};
 pub use ode::OdeSystem;
 pub use propagator::{

@@ -5,7 +5,7 @@
 //! - The regime at the start is decided by [`crate::field::regime_of`]; the field is always the current
 //!   regime's, never chosen by the sign of h.
 //! - Steps are taken freely (never shortened to a requested time); after each accepted step the
-//!   first switch inside it is searched by [`first_crossing`]. A found switch is refined on the
+//!   first switch inside it is searched by [`first_crossing_subdivided`]. A found switch is refined on the
 //!   dense output to the resolution of `f64`, and the state there is recomputed by one explicit
 //!   step of exactly the needed size from the step's start; a few Newton corrections on that
 //!   step solution ([`super::polish_switch`]) then put the switch state on z = 1 to
@@ -95,19 +95,13 @@ pub struct ReferenceSolver<S: Scheme<4>, F: FieldFamily = Params> {
     pending: Option<Event>,
 }
 
-impl<S: Scheme<4>> ReferenceSolver<S> {
-    /// A solver of `regime`'s field (slip direction `slip`) started at `(t0, state)` with
-    /// `rtol = atol = tol`.
-    #[inline]
-    pub fn new(
-        params: &Params,
-        regime: Regime,
-        slip: f64,
-        t0: f64,
-        state: State,
-        tol: f64,
-    ) -> Self {
-        Self::with_field(*params, regime, slip, t0, state, tol)
+impl<S: Scheme<4>, F: FieldFamily> ReferenceSolver<S, F> {
+    /// A solver of `regime`'s field in `field`'s family (the model's [`Params`], or a ramp's
+    /// fields), slip direction `slip`, started at `(t0, state)` with `rtol = atol = tol`.
+    pub fn new(field: F, regime: Regime, slip: f64, t0: f64, state: State, tol: f64) -> Self {
+        let mut solver = Self::unstarted(field, regime, t0, state, tol);
+        solver.begin(regime, slip, t0, state);
+        solver
     }
 
     /// A solver of `regime`'s field built ahead of its segment: nothing is evaluated until the
@@ -115,35 +109,7 @@ impl<S: Scheme<4>> ReferenceSolver<S> {
     /// regimes a run does not start in (building a started one costs two field evaluations, the
     /// initial step's power and the switch measures, for a solver that is restarted anyway).
     #[inline]
-    pub(crate) fn unstarted(
-        params: &Params,
-        regime: Regime,
-        t0: f64,
-        state: State,
-        tol: f64,
-    ) -> Self {
-        Self::unstarted_with(*params, regime, t0, state, tol)
-    }
-}
-
-impl<S: Scheme<4>, F: FieldFamily> ReferenceSolver<S, F> {
-    /// As [`ReferenceSolver::new`] on any family of fields.
-    pub fn with_field(
-        field: F,
-        regime: Regime,
-        slip: f64,
-        t0: f64,
-        state: State,
-        tol: f64,
-    ) -> Self {
-        let mut solver = Self::unstarted_with(field, regime, t0, state, tol);
-        solver.begin(regime, slip, t0, state);
-        solver
-    }
-
-    /// As [`ReferenceSolver::unstarted`] on any family of fields.
-    #[inline]
-    fn unstarted_with(field: F, regime: Regime, t0: f64, state: State, tol: f64) -> Self {
+    pub(crate) fn unstarted(field: F, regime: Regime, t0: f64, state: State, tol: f64) -> Self {
         let params = field.params();
         ReferenceSolver {
             switches: Switches::with_offset(params, regime, 0.0, 0.0),
@@ -277,7 +243,7 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         let params = problem.params;
         let t0 = problem.start_time;
         let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, start| {
-            Ok(ReferenceSolver::new(&params, regime, slip, t0, start, tol))
+            Ok(ReferenceSolver::new(params, regime, slip, t0, start, tol))
         })?;
         Ok(ReferencePropagator { driver, events: 0 })
     }

@@ -2,9 +2,11 @@
 //! (the 5th-order solution is propagated), error from the embedded 4th-order solution, and
 //! Shampine's 4th-order dense output.
 
+use core::marker::PhantomData;
+
 use super::ode::{OdeSystem, lin};
 use super::scheme::{
-    Attempt, Controller, Interpolant, Scheme, Tolerance, stage_input_slice, weighted_slice,
+    Attempt, Controller, Dense, DenseForm, Scheme, Tolerance, stage_input_slice, weighted_slice,
 };
 use super::tableau_rk45 as tab;
 
@@ -14,28 +16,11 @@ pub struct Rk45;
 
 /// Dense output of one DOPRI5 step: a quartic in θ = (t − t0)/h,
 /// `r0 + θ(r1 + (1−θ)(r2 + θ(r3 + (1−θ) r4)))` (Hairer's `CONTD5`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rk45Dense<const N: usize> {
-    t0: f64,
-    h: f64,
-    r: [[f64; N]; 5],
-}
+pub type Rk45Dense<const N: usize> = Dense<N, 5, Rk45>;
 
-impl<const N: usize> Interpolant<N> for Rk45Dense<N> {
-    fn start(&self) -> f64 {
-        self.t0
-    }
-
-    fn end(&self) -> f64 {
-        self.t0 + self.h
-    }
-
-    fn eval(&self, t: f64) -> [f64; N] {
-        let [r0, r1, r2, r3, r4] = &self.r;
-        if self.h == 0.0 {
-            return *r0;
-        }
-        let th = (t - self.t0) / self.h;
+impl<const N: usize> DenseForm<N, 5> for Rk45 {
+    fn at(r: &[[f64; N]; 5], th: f64) -> [f64; N] {
+        let [r0, r1, r2, r3, r4] = r;
         let th1 = 1.0 - th;
         let mut out = [0.0; N];
         let rows = out.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3).zip(r4);
@@ -105,6 +90,14 @@ impl<const N: usize> Scheme<N> for Rk45 {
         let r3 = lin(&[(1.0, &ydiff), (-h, k7), (-1.0, &bspl)]);
         let r4 = lin(&[(h, &weighted_slice(&tab::D, k))]);
         let r = [*y, ydiff, bspl, r3, r4];
-        (*k7, Rk45Dense { t0: t, h, r })
+        (
+            *k7,
+            Dense {
+                t0: t,
+                h,
+                r,
+                form: PhantomData,
+            },
+        )
     }
 }

@@ -2,6 +2,8 @@
 //! ([`super::Integrator`]): one trial step with its error norm, and, once the step is accepted, the
 //! derivative at its end and its dense output.
 
+use core::marker::PhantomData;
+
 use super::ode::OdeSystem;
 
 /// Error-control tolerances: a component is within tolerance when its local error estimate is at
@@ -58,6 +60,48 @@ pub trait Interpolant<const N: usize> {
     fn end(&self) -> f64;
     /// The interpolated state at `t` (meant for `t` in `[start, end]`; extrapolates outside).
     fn eval(&self, t: f64) -> [f64; N];
+}
+
+/// A scheme's continuous extension as a polynomial in s = (t − t0)/h with `R` vector
+/// coefficients (the scheme's own form, e.g. Hairer's `CONTD8`).
+pub trait DenseForm<const N: usize, const R: usize> {
+    /// The polynomial's value at `s`.
+    fn at(r: &[[f64; N]; R], s: f64) -> [f64; N];
+}
+
+/// Dense output of one step of scheme `F`: its polynomial's coefficients on `[t0, t0 + h]`.
+#[derive(Debug, PartialEq)]
+pub struct Dense<const N: usize, const R: usize, F> {
+    pub(super) t0: f64,
+    pub(super) h: f64,
+    pub(super) r: [[f64; N]; R],
+    pub(super) form: PhantomData<F>,
+}
+
+// Derived Clone/Copy would ask F (a marker) to be Copy as well.
+impl<const N: usize, const R: usize, F> Clone for Dense<N, R, F> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<const N: usize, const R: usize, F> Copy for Dense<N, R, F> {}
+
+impl<const N: usize, const R: usize, F: DenseForm<N, R>> Interpolant<N> for Dense<N, R, F> {
+    fn start(&self) -> f64 {
+        self.t0
+    }
+
+    fn end(&self) -> f64 {
+        self.t0 + self.h
+    }
+
+    fn eval(&self, t: f64) -> [f64; N] {
+        if self.h == 0.0 {
+            return self.r[0];
+        }
+        F::at(&self.r, (t - self.t0) / self.h)
+    }
 }
 
 /// One trial step: the new state, the scaled error norm (accept when ≤ 1; may be `inf` or NaN
@@ -120,25 +164,13 @@ pub(crate) fn stage_input<const N: usize, const M: usize>(
     row: &[f64; M],
     k: &[[f64; N]],
 ) -> [f64; N] {
-    let mut acc = [0.0; N];
-    for (c, kj) in row.iter().zip(k.iter()) {
-        if *c != 0.0 {
-            for (a, v) in acc.iter_mut().zip(kj.iter()) {
-                *a += c * v;
-            }
-        }
-    }
-    let mut out = *y;
-    for (o, a) in out.iter_mut().zip(acc.iter()) {
-        *o += h * a;
-    }
-    out
+    combine(y, h, row, k)
 }
 
 /// `Σ_j row_j·k_j`.
 #[inline(always)]
 pub(crate) fn weighted<const N: usize, const M: usize>(row: &[f64; M], k: &[[f64; N]]) -> [f64; N] {
-    stage_input(&[0.0; N], 1.0, row, k)
+    combine(&[0.0; N], 1.0, row, k)
 }
 
 /// [`stage_input`] for a row of run-time length (DOPRI5's loop over its stages measured
@@ -150,6 +182,19 @@ pub(crate) fn stage_input_slice<const N: usize>(
     row: &[f64],
     k: &[[f64; N]],
 ) -> [f64; N] {
+    combine(y, h, row, k)
+}
+
+/// [`weighted`] for a row of run-time length.
+#[inline]
+pub(crate) fn weighted_slice<const N: usize>(row: &[f64], k: &[[f64; N]]) -> [f64; N] {
+    combine(&[0.0; N], 1.0, row, k)
+}
+
+/// `y + h·Σ_j row_j·k_j`, the sums in stage order (zero coefficients skipped); inlined into its
+/// callers, so a constant row's length and zeros are known where it is one.
+#[inline(always)]
+fn combine<const N: usize>(y: &[f64; N], h: f64, row: &[f64], k: &[[f64; N]]) -> [f64; N] {
     let mut acc = [0.0; N];
     for (c, kj) in row.iter().zip(k.iter()) {
         if *c != 0.0 {
@@ -163,10 +208,4 @@ pub(crate) fn stage_input_slice<const N: usize>(
         *o += h * a;
     }
     out
-}
-
-/// [`weighted`] for a row of run-time length.
-#[inline]
-pub(crate) fn weighted_slice<const N: usize>(row: &[f64], k: &[[f64; N]]) -> [f64; N] {
-    stage_input_slice(&[0.0; N], 1.0, row, k)
 }

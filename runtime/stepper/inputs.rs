@@ -80,6 +80,7 @@ impl Stepper {
     pub fn restore(snapshot: &Snapshot) -> Result<Stepper, StepperError> {
         let s = snapshot;
         s.params.validate()?;
+        s.params.planar()?;
         s.config.validate()?;
         super::check_dt(s.dt, s.time)?;
         let numbers = [

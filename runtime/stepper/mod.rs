@@ -131,6 +131,7 @@ impl Stepper {
     /// switch is reported at the start (`docs/MODEL.md` §6 cases 14–15).
     pub fn new(problem: &Problem, config: StepperConfig) -> Result<Self, StepperError> {
         problem.validate()?;
+        problem.params.planar()?;
         config.validate()?;
         check_dt(config.dt, problem.start_time)?;
         let params = problem.params;
@@ -253,6 +254,7 @@ impl Stepper {
     /// that. On error nothing changes.
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
+        params.planar()?;
         self.params = *params;
         self.transition.set_params(params);
         self.anchor_time = self.time;

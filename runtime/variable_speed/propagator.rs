@@ -18,7 +18,7 @@
 //! method's output is then the constant-speed run's, bit for bit.
 
 use super::options::{SPEED_HOLDS_RANGE, VariableSpeedError, VariableSpeedOptions};
-use super::segment::{Inner, Program, check_held_unbalance};
+use super::segment::{Inner, Program, check_held_unbalance, check_profile_fits};
 use crate::method::Method;
 use crate::params::{Params, Problem, State};
 use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target};
@@ -64,18 +64,7 @@ impl<'a> VariableSpeedPropagator<'a> {
             }
             .into());
         }
-        let mu = problem.params.friction_coefficient;
-        if mu > 0.0 && !profile.is_constant() {
-            return Err(VariableSpeedError::Friction {
-                friction_coefficient: mu,
-            });
-        }
-        if problem.start_time != profile.start() {
-            return Err(VariableSpeedError::StartTime {
-                start_time: problem.start_time,
-                profile_start: profile.start(),
-            });
-        }
+        check_profile_fits(problem, &profile)?;
         if options.options.method == Method::Analytic {
             check_held_unbalance(&profile, &problem.params)?;
         }

@@ -107,14 +107,10 @@ impl Program<'_> {
         let budget = Some(REFERENCE_BUDGET);
         Ok(match self.options.options.method {
             Method::Rk45 => Inner::Rk45(Piecewise::new(&problem, budget, |regime, slip, s0| {
-                Ok(ReferenceSolver::with_field(
-                    field, regime, slip, time, s0, tol,
-                ))
+                Ok(ReferenceSolver::new(field, regime, slip, time, s0, tol))
             })?),
             _ => Inner::Dop853(Piecewise::new(&problem, budget, |regime, slip, s0| {
-                Ok(ReferenceSolver::with_field(
-                    field, regime, slip, time, s0, tol,
-                ))
+                Ok(ReferenceSolver::new(field, regime, slip, time, s0, tol))
             })?),
         })
     }
@@ -143,6 +139,27 @@ impl Program<'_> {
             k += 1.0;
         }
     }
+}
+
+/// A profile the problem can run on: friction only at a constant speed (a changing speed's
+/// slip direction is not modelled), and the profile starts at the problem's start time.
+pub(super) fn check_profile_fits(
+    problem: &Problem,
+    profile: &SpeedProfile,
+) -> Result<(), VariableSpeedError> {
+    let mu = problem.params.friction_coefficient;
+    if mu > 0.0 && !profile.is_constant() {
+        return Err(VariableSpeedError::Friction {
+            friction_coefficient: mu,
+        });
+    }
+    if problem.start_time != profile.start() {
+        return Err(VariableSpeedError::StartTime {
+            start_time: problem.start_time,
+            profile_start: profile.start(),
+        });
+    }
+    Ok(())
 }
 
 /// The analytic method's held steps carry the speed-change force in the unbalance: check that

@@ -9,7 +9,7 @@
 //! 0.08 µs), about doubling a free step's cost.
 
 use super::options::VariableSpeedError;
-use super::segment::check_held_unbalance;
+use super::segment::{check_held_unbalance, check_profile_fits};
 use crate::params::{Params, Problem};
 use crate::speed::{HeldSpeed, SpeedPiece, SpeedProfile};
 use crate::stepper::{StepReport, Stepper, StepperConfig, StepperError};
@@ -33,18 +33,7 @@ impl<'a> SpeedProfileStepper<'a> {
         config: StepperConfig,
     ) -> Result<Self, VariableSpeedError> {
         let cursor = profile.first_piece(problem.params.phase);
-        let mu = problem.params.friction_coefficient;
-        if mu > 0.0 && !profile.is_constant() {
-            return Err(VariableSpeedError::Friction {
-                friction_coefficient: mu,
-            });
-        }
-        if problem.start_time != profile.start() {
-            return Err(VariableSpeedError::StartTime {
-                start_time: problem.start_time,
-                profile_start: profile.start(),
-            });
-        }
+        check_profile_fits(problem, &profile)?;
         check_held_unbalance(&profile, &problem.params)?;
         let start = Problem {
             params: HeldSpeed::of_piece(&cursor).params(&problem.params),

@@ -1,8 +1,8 @@
 //! Switch location: grazing contacts and starts on the clearance circle.
 
 use rotor_rub::reference::{
-    Dop853, Dop853Propagator, Integrator, Interpolant, Rk45Propagator, RotorSystem, Tolerance,
-    first_crossing,
+    Dop853, Dop853Propagator, Integrator, Interpolant, Rk45Propagator, RotorSystem, SUBDIVISIONS,
+    Tolerance, first_crossing_subdivided,
 };
 use rotor_rub::refine::{Knot, Refinement, refine};
 use rotor_rub::{Event, EventKind, Params, Problem, Propagate, Regime, State, advance_to};
@@ -168,7 +168,8 @@ fn crossing_between_samples_is_found() {
     let centre = 0.53;
     let depth = 1e-6;
     let g = |y: &[f64; 1]| ((y[0] - centre).powi(2) - depth, 2.0 * (y[0] - centre));
-    let t = first_crossing(&Line, &[0.0], &[1.0], g).expect("dip found");
+    let t = first_crossing_subdivided(SUBDIVISIONS, &Line, &[0.0], &[1.0], |_, y| g(y))
+        .expect("dip found");
     let want = centre - depth.sqrt();
     assert!((t - want).abs() < 1e-15, "{t} vs {want}");
     assert!(
@@ -177,10 +178,16 @@ fn crossing_between_samples_is_found() {
     );
     // A dip that stays positive is not a crossing.
     let g = |y: &[f64; 1]| ((y[0] - centre).powi(2) + depth, 2.0 * (y[0] - centre));
-    assert_eq!(first_crossing(&Line, &[0.0], &[1.0], g), None);
+    assert_eq!(
+        first_crossing_subdivided(SUBDIVISIONS, &Line, &[0.0], &[1.0], |_, y| g(y)),
+        None
+    );
     // The start counts as inside even when the function is slightly negative there.
     let g = |y: &[f64; 1]| (y[0] - 1e-12, 1.0);
-    assert_eq!(first_crossing(&Line, &[0.0], &[1.0], g), None);
+    assert_eq!(
+        first_crossing_subdivided(SUBDIVISIONS, &Line, &[0.0], &[1.0], |_, y| g(y)),
+        None
+    );
 }
 
 /// The paper preset with the stator centre at (0.5, −0.25) (exact in binary) and the rotor on

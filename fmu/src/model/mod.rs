@@ -97,7 +97,11 @@ impl Model {
     pub fn requested_problem(&self) -> Problem {
         let scales = self.scales();
         let mut problem = Problem::DEFAULT;
-        for p in Parameter::ALL {
+        // Entries the FMU does not offer (the ring's) keep their defaults in model units.
+        let offered = Parameter::ALL
+            .into_iter()
+            .filter(|&p| variables::of_parameter(p, self.units).is_some());
+        for p in offered {
             let value = p.get(&self.requested);
             p.set(&mut problem, scales.to_model(dimension(p), value));
         }

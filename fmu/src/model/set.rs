@@ -226,6 +226,12 @@ impl Model {
                     k(params.k_yy)
                 )
             }
+            ParamError::RingNeedsMatrixModel { stator_mass_ratio } => {
+                msg!(
+                    "{context}: stator_mass_ratio = {} states a stator ring with mass, which this FMU does not run (it runs the massless ring only)",
+                    Number(stator_mass_ratio)
+                )
+            }
             ParamError::RingWithoutMass { parameter, value } => {
                 let d = dimension(parameter);
                 msg!(
