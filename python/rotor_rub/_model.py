@@ -19,7 +19,7 @@ import math
 import numbers
 import os
 from dataclasses import dataclass
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -192,8 +192,8 @@ class Model:
                              "contact_stiffness, …)")
         self.station: Rub = rub._resolved(self.dofs)
         ub = []
-        for i, u in enumerate(unbalance):
-            u = tuple(u)
+        for i, given in enumerate(unbalance):
+            u: Tuple[Any, ...] = tuple(given)
             if len(u) != 4:
                 raise ValueError(f"unbalance[{i}] = {u!r} must be (dof_x, dof_y, m_e, phase): "
                                  "DOFs, kg·m, rad")
@@ -295,8 +295,8 @@ class Model:
 
         rub_pair = pair("node", node)
         ub = []
-        for i, u in enumerate(unbalance):
-            u = tuple(u)
+        for i, given_u in enumerate(unbalance):
+            u: Tuple[Any, ...] = tuple(given_u)
             if len(u) != 3:
                 raise ValueError(f"unbalance[{i}] = {u!r} must be (node, m_e, phase): a node, "
                                  "kg·m, rad")
@@ -402,9 +402,10 @@ class Model:
 
     def __repr__(self) -> str:
         s = self.station
-        where = f"({self.dofs[s.dof_x]}, {self.dofs[s.dof_y]})"
+        name = self.dofs.__getitem__
+        where = f"({name(cast(int, s.dof_x))}, {name(cast(int, s.dof_y))})"
         against = "a fixed stator" if s.stator is None else \
-            f"the stator point ({self.dofs[s.stator[0]]}, {self.dofs[s.stator[1]]})"
+            f"the stator point ({name(cast(int, s.stator[0]))}, {name(cast(int, s.stator[1]))})"
         red = "" if self.reduction is None else \
             f", reduced from {self.reduction['full_dofs']} DOFs ({self.reduction['method']})"
         label = f"{self.name!r}, " if self.name else ""
@@ -534,8 +535,8 @@ def _frequency_error(full: Tuple[Any, ...], reduced: Tuple[Any, ...], speed: flo
                      count: int = 6) -> List[Tuple[float, float, float]]:
     """The first ``count`` damped natural frequencies (rad/s) of the full and the reduced
     model at ``speed`` and their relative difference."""
-    f = _first_order_frequencies(*full, speed)
-    r = _first_order_frequencies(*reduced, speed)
+    f = _first_order_frequencies(full[0], full[1], full[2], full[3], speed)
+    r = _first_order_frequencies(reduced[0], reduced[1], reduced[2], reduced[3], speed)
     k = min(count, len(f), len(r))
     return [(float(f[j]), float(r[j]), float(abs(r[j] - f[j]) / f[j])) for j in range(k)]
 

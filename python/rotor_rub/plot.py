@@ -259,11 +259,12 @@ def rub_orbit(
     ax.set_aspect("equal")
     ax.set_xlabel(f"rub x ({unit_name})")
     ax.set_ylabel(f"rub y ({unit_name})")
-    ax.set_title(f"Rub station ({names[station.dof_x]}, {names[station.dof_y]}), {run.method}")
+    rx, ry = int(station.dof_x), int(station.dof_y)  # indices once the model has stated them
+    ax.set_title(f"Rub station ({names[rx]}, {names[ry]}), {run.method}")
     ax.legend(loc="upper right", fontsize="small")
     if moving and bodies_ax is not None:
-        sx, sy = station.stator  # type: ignore[misc]
-        for (i, j), label, color in (((station.dof_x, station.dof_y), "rotor point", "tab:blue"),
+        sx, sy = (int(d) for d in station.stator)  # type: ignore[union-attr]
+        for (i, j), label, color in (((rx, ry), "rotor point", "tab:blue"),
                                      ((sx, sy), "stator point (ring centre)", "tab:orange")):
             bodies_ax.plot(state[:, i] / unit, state[:, j] / unit, lw=0.8, color=color,
                            label=f"{label} ({names[i]}, {names[j]})")
