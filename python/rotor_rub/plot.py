@@ -7,7 +7,7 @@ DejaVu fonts, never the system's.
 
 - :func:`orbit`: the orbit (x, y) of a :class:`rotor_rub.Run`, the clearance circle around the
   stator centre, contact starts and ends marked (reversals, rolling starts and ends with
-  friction).
+  friction); with a stator ring with mass, the ring's centre orbit beside the rotor's.
 - :func:`bifurcation`: the Poincaré x of a :class:`rotor_rub.Sweep` against the swept value.
 - :func:`poincare`: the points of a :class:`rotor_rub.Section` in the (x, y) plane.
 - :func:`spectrum`: a :class:`rotor_rub.Spectrum`; a whirl spectrum shades backward (negative
@@ -78,6 +78,11 @@ def orbit(
     angle = np.linspace(0.0, 2.0 * np.pi, 361)
     ax.plot(offset[0] + np.cos(angle), offset[1] + np.sin(angle), color="0.5", lw=0.8,
             ls="--", label="clearance")
+    if state.shape[1] == 8:
+        # A stator ring with mass (stator_mass_ratio > 0): its centre (xs, ys) beside the
+        # rotor's orbit, around the stator centre it rests at.
+        ax.plot(offset[0] + state[:, 4], offset[1] + state[:, 5], lw=0.8, color="tab:orange",
+                label="ring centre")
     if events and len(run.events):
         ev_keep = (np.ones(len(run.events), dtype=bool) if from_time is None
                    else run.events.time >= from_time)

@@ -448,3 +448,19 @@ def test_the_docs_examples_run(monkeypatch):
         if block.startswith(": needs ross") and importlib.util.find_spec("ross") is None:
             continue
         exec(compile(code, "docs/PYTHON.md", "exec"), {})
+
+
+def test_the_orbit_plot_draws_the_ring(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rotor_rub import plot
+
+    run = rr.simulate(stator_mass_ratio=1.0, periods=5, samples=201, method="hybrid")
+    ax = plot.orbit(run)
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert "ring centre" in labels
+    ax.figure.savefig(tmp_path / "ring_orbit.png")
+    plt.close(ax.figure)
