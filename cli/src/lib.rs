@@ -7,7 +7,8 @@
 //! Commands: `fig2` (the main job), `simulate`, `compare`, `sweep` and `merge` (shards with
 //! metadata, `shard`), `poincare`, `spectrum`, `friction_fig`, `runup` (the speed program from a
 //! preset, options or a profile CSV; per-period and event files; jumps and hysteresis), `params`,
-//! `presets`. Shared: `problem` (presets, TOML configs, `--set`), `options`, `trajectory`
+//! `presets`; `model_file` (rotors from matrices: `check-model`, `simulate --model`, and the
+//! stator ring with mass that `simulate` runs when `stator_mass_ratio` > 0). Shared: `problem` (presets, TOML configs, `--set`), `options`, `trajectory`
 //! (passes over a run), `analysis` (response classes, Lyapunov exponents, spectra, switch
 //! counts), `plot`. Files and streams: `stdio` is the one writer to stdout and stderr (a closed
 //! pipe ends quietly, exit 141; `.ci/run` refuses a print anywhere else); `output` writes each

@@ -7,7 +7,8 @@
 //! Ctrl-C and progress every ~50 ms), `runs` (simulate, poincare, spectrum), `sweep` (sweeps with
 //! response classes, Lyapunov exponents and continuation, on a thread pool per call), `runup` +
 //! `runup_speed`, `stepper` + `stepper_state` (the stepper and its checked saved state), `meta`
-//! (the problem a result carries), `errors` (CLI errors → ValueError / PropagationError, flags
+//! (the problem a result carries), `matrix` (rotors from matrices: `rotor_rub.Model`'s checks,
+//! modes and runs through the CLI library's model files; the ring with mass), `errors` (CLI errors → ValueError / PropagationError, flags
 //! named as keywords). The typed layer is `python/rotor_rub/` (results as dataclasses of numpy
 //! arrays, plots, pandas/xarray/Parquet/NetCDF, progress bars, Dask sweeps).
 
