@@ -22,6 +22,8 @@
 //!   propagation on it, one row per forcing period, jumps.
 //! - [`linalg`]: dense linear algebra for matrix models (modal exponential, bounds, harmonic
 //!   response), caller-sized and heap-free.
+//! - [`orbit`]: periodic orbits by shooting on the stroboscopic map, the monodromy matrix from the
+//!   segments (closed-form free flight, variational equations, saltation), Floquet multipliers.
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -47,6 +49,7 @@ pub mod linalg;
 pub mod math;
 pub mod matrix;
 pub mod method;
+pub mod orbit;
 pub mod params;
 pub mod propagate;
 pub mod reference;

@@ -8,8 +8,8 @@ use clap::{Parser, Subcommand};
 
 use rotor_rub_cli::error::{CliError, EXIT_INPUT};
 use rotor_rub_cli::{
-    compare, fig2, friction_fig, merge, model_file, output, params, poincare, presets, runup,
-    simulate, spectrum, stdio, sweep,
+    compare, fig2, friction_fig, merge, model_file, orbit, output, params, poincare, presets,
+    runup, simulate, spectrum, stdio, sweep,
 };
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
@@ -79,6 +79,15 @@ enum Command {
     /// hysteresis)
     #[command(after_help = UNITS)]
     Runup(runup::Args),
+    /// One periodic orbit by shooting: its state on the section, period, Floquet multipliers
+    /// and stability (each map by --method, default hybrid, at --tol, default 1e-12 here)
+    #[command(after_help = UNITS)]
+    Orbit(orbit::command::Args),
+    /// Continue periodic orbits over a range of one parameter: branches with their stability,
+    /// folds, period doublings, Neimark-Sacker and grazing points (CSV and plot; each map by
+    /// --method, default hybrid, at --tol, default 1e-12 here)
+    #[command(after_help = UNITS)]
+    Continue(orbit::continue_command::Args),
     /// Read and check a model file (TOML or .npz, SI units: docs/MODEL_FILES.md); print its
     /// degrees of freedom, station, clearance and modes
     CheckModel(model_file::CheckArgs),
@@ -121,6 +130,8 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(&args),
         Some(Command::Friction(args)) => friction_fig::run(&args),
         Some(Command::Runup(args)) => runup::run(&args),
+        Some(Command::Orbit(args)) => orbit::command::run(&args),
+        Some(Command::Continue(args)) => orbit::continue_command::run(&args),
         Some(Command::CheckModel(args)) => model_file::check(&args),
         Some(Command::Presets) => presets::run(),
         Some(Command::Params) => params::run(),

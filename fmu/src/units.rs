@@ -5,7 +5,7 @@
 //! its own model description and instantiation token (`description.rs`).
 //!
 //! An SI value is the dimensionless one times a factor built from three scales — the natural
-//! frequency ω_n [rad/s], the radial clearance δ [m] and the rotor mass M [kg]
+//! frequency ω_n (rad/s), the radial clearance δ (m) and the rotor mass M (kg)
 //! ([`Scales::factor`]): lengths δ, velocities δ ω_n, stiffnesses M ω_n² (the rotor's
 //! stiffness k = M ω_n²), forces M ω_n² δ, speeds ω_n, time 1/ω_n. The dimensionless FMU is the
 //! same code with every scale 1, so its numbers pass through unchanged, bit for bit.

@@ -12,8 +12,8 @@ Quantities are dimensionless as in the paper: lengths in radial clearances, time
 speed ratio η = Ω/ω_n, forcing period 2π/η, stiffnesses relative to the rotor stiffness.
 
 Functions: :func:`simulate`, :func:`poincare`, :func:`spectrum`, :func:`sweep`,
-:func:`sweep_grid`, :func:`runup`, :func:`presets`, :func:`parameters`, :func:`load`; the
-fixed-step :class:`Stepper`. Every function takes the model parameters as keywords
+:func:`sweep_grid`, :func:`runup`, :func:`orbit`, :func:`continuation`, :func:`presets`,
+:func:`parameters`, :func:`load`; the fixed-step :class:`Stepper`. Every function takes the model parameters as keywords
 (``speed_ratio=2.5``, ``friction_coefficient=0.2``; :func:`parameters` lists them with ranges),
 on top of a ``preset`` (default ``paper``) and an optional TOML ``config`` file, in that order of
 precedence. Numbers may be Python or numpy scalars (``np.float32``, ``np.int64``); booleans,
@@ -71,9 +71,13 @@ __all__ = [
     "WHIRL_DIRECTIONS",
     "Count",
     "Events",
+    "Bifurcation",
+    "Branch",
+    "Continuation",
     "Jump",
     "MatrixRun",
     "Model",
+    "Orbit",
     "Parameter",
     "Problem",
     "PropagationError",
@@ -90,7 +94,9 @@ __all__ = [
     "StepperState",
     "Sweep",
     "Values",
+    "continuation",
     "load",
+    "orbit",
     "parameters",
     "poincare",
     "presets",
@@ -308,6 +314,7 @@ def spectrum(
 from ._sweeps import grid_points, sweep, sweep_grid  # noqa: E402
 from ._runup import runup  # noqa: E402
 from ._stepper import Stepper  # noqa: E402
+from ._orbits import Bifurcation, Branch, Continuation, Orbit, continuation, orbit  # noqa: E402
 
 
 def _parameter_section() -> str:
@@ -319,5 +326,5 @@ def _parameter_section() -> str:
     return "\n".join(lines) + "\n"
 
 
-for _function in (simulate, poincare, spectrum, sweep, sweep_grid, runup):
+for _function in (simulate, poincare, spectrum, sweep, sweep_grid, runup, orbit, continuation):
     _function.__doc__ = (_function.__doc__ or "").rstrip() + "\n" + _parameter_section()

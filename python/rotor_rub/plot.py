@@ -17,6 +17,9 @@ DejaVu fonts, never the system's.
 - :func:`rub_orbit`: a :class:`rotor_rub.MatrixRun` (a rotor from matrices, SI): the rub
   station's relative orbit with the clearance circle, switches marked; with a moving stator
   point (a ring with mass) the rotor point's and the stator point's orbits beside it.
+- :func:`branches`: a :class:`rotor_rub.Continuation`, its orbits' section x (or largest
+  radius) against the parameter, stable solid, unstable dashed, bifurcations marked, optionally
+  over a sweep's points.
 
 Each takes what it needs from the result's :class:`rotor_rub.Problem` (the stator centre, the
 method, the swept parameter), so no extra argument is needed.
@@ -31,9 +34,9 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from . import MatrixRun, Run, Runup, Section, Spectrum, Sweep
+    from . import Continuation, MatrixRun, Run, Runup, Section, Spectrum, Sweep
 
-__all__ = ["orbit", "bifurcation", "poincare", "spectrum", "runup", "rub_orbit"]
+__all__ = ["orbit", "bifurcation", "poincare", "spectrum", "runup", "branches", "rub_orbit"]
 
 #: Marker and colour per event kind (as the CLI's figures: starts red, ends green).
 EVENT_STYLE = {
@@ -278,4 +281,65 @@ def rub_orbit(
         bodies_ax.set_ylabel(f"y ({unit_name})")
         bodies_ax.set_title("Rotor and stator orbits")
         bodies_ax.legend(loc="upper right", fontsize="small")
+    return ax
+
+
+#: Colour of period-k orbits' branches (as the CLI's figure).
+PERIOD_COLOR = {1: "tab:blue", 2: "tab:orange", 4: "tab:green"}
+#: Marker, colour and label per bifurcation kind.
+BIFURCATION_STYLE = {
+    "fold": ("o", "tab:red", "fold"),
+    "period-doubling": ("^", "tab:purple", "period doubling"),
+    "neimark-sacker": ("s", "tab:cyan", "Neimark-Sacker"),
+    "grazing": ("x", "black", "grazing"),
+}
+
+
+def branches(cont: "Continuation", ax: Optional["Axes"] = None, *,
+             sweep: Optional["Sweep"] = None, quantity: str = "x") -> "Axes":
+    """Branch diagram: each orbit's ``quantity`` (``"x"`` on the section, ``"max_radius"`` or
+    ``"min_radius"``) against the continued parameter, stable runs solid and unstable ones
+    dashed, one colour per period, the located bifurcations marked; with ``sweep`` (a
+    :class:`rotor_rub.Sweep` over the same parameter and ``quantity="x"``) its Poincaré points
+    in grey behind, which the stable branches run through."""
+    ax = _axes(ax, (9.0, 5.5))
+    if quantity == "x":
+        values = cont.state[:, 0]
+        label = "x on the section τ = 0 mod 2π/η (clearances)"
+    elif quantity in ("max_radius", "min_radius"):
+        values = getattr(cont, quantity)
+        label = quantity.replace("_", " ") + " |q| (clearances)"
+    else:
+        raise ValueError(f"quantity: {quantity!r} is not 'x', 'max_radius' or 'min_radius'")
+    if sweep is not None:
+        ax.scatter(sweep.value, sweep.state[:, 0], s=1, color="0.7", linewidths=0,
+                   label="sweep", zorder=1)
+    plain = cont.kind == ""
+    seen = set()
+    for b in np.unique(cont.branch):
+        rows = np.flatnonzero((cont.branch == b) & plain)
+        if rows.size == 0:
+            continue
+        color = PERIOD_COLOR.get(int(cont.period[rows[0]]), "tab:gray")
+        start = 0
+        for k in range(1, rows.size + 1):
+            if k < rows.size and cont.stable[rows[k]] == cont.stable[rows[start]]:
+                continue
+            run = rows[start:k + 1] if k < rows.size else rows[start:k]
+            stable = bool(cont.stable[rows[start]])
+            name = f"period-{int(cont.period[rows[0]])} " + ("stable" if stable else "unstable")
+            ax.plot(cont.value[run], values[run], color=color, lw=1.6 if stable else 0.8,
+                    ls="-" if stable else "--", label=None if name in seen else name, zorder=2)
+            seen.add(name)
+            start = k
+    for kind, (marker, color, text) in BIFURCATION_STYLE.items():
+        sel = cont.kind == kind
+        if sel.any():
+            ax.scatter(cont.value[sel], values[sel], marker=marker, color=color, s=36,
+                       zorder=3, label=text)
+    ax.set_xlabel(cont.param)
+    ax.set_ylabel(label)
+    ax.set_title(f"Periodic orbits over {cont.param}: {len(cont.branches)} branch(es), "
+                 f"{len(cont.bifurcations)} bifurcations\n{cont.method}", fontsize="medium")
+    ax.legend(fontsize="small")
     return ax

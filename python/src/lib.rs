@@ -6,9 +6,10 @@
 //! the CLI library's problem and options), `watch` (long calls under the CLI library's watch:
 //! Ctrl-C and progress every ~50 ms), `runs` (simulate, poincare, spectrum), `sweep` (sweeps with
 //! response classes, Lyapunov exponents and continuation, on a thread pool per call), `runup` +
-//! `runup_speed`, `stepper` + `stepper_state` (the stepper and its checked saved state), `meta`
-//! (the problem a result carries), `matrix` (rotors from matrices: `rotor_rub.Model`'s checks,
-//! modes and runs through the CLI library's model files; the ring with mass), `errors` (CLI errors → ValueError / PropagationError, flags
+//! `runup_speed`, `orbit` (rr.orbit, rr.continuation), `stepper` + `stepper_state` (the stepper
+//! and its checked saved state), `meta`
+//! (the problem a result carries), `matrix` (rotors from matrices: `rotor_rub.Model`'s
+//! checks, modes and runs through the CLI library's model files; the ring with mass), `errors` (CLI errors → ValueError / PropagationError, flags
 //! named as keywords). The typed layer is `python/rotor_rub/` (results as dataclasses of numpy
 //! arrays, plots, pandas/xarray/Parquet/NetCDF, progress bars, Dask sweeps).
 
@@ -23,6 +24,7 @@ mod errors;
 mod inputs;
 mod matrix;
 mod meta;
+mod orbit;
 mod runs;
 mod runup;
 mod runup_speed;
@@ -82,6 +84,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_points, m)?)?;
     m.add_function(wrap_pyfunction!(runup::runup, m)?)?;
+    m.add_function(wrap_pyfunction!(orbit::orbit, m)?)?;
+    m.add_function(wrap_pyfunction!(orbit::continuation, m)?)?;
     matrix::register(m)?;
     m.add_function(wrap_pyfunction!(timing::rust_simulate_seconds, m)?)?;
     m.add_class::<stepper::PyStepper>()?;

@@ -35,7 +35,7 @@ fn remainder(lin: &Linearization, s: &State) -> (f64, f64) {
 }
 
 impl SubStep {
-    /// A sub-step with every coefficient zero: a slot for [`exprb2_into`] and [`exprb43_into`].
+    /// A sub-step with every coefficient zero: a slot for [`exprb2_with`] and [`exprb43_with`].
     pub fn zeroed() -> SubStep {
         SubStep {
             segment: LinearSegment::zeroed(),

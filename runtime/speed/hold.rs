@@ -48,7 +48,7 @@ impl HeldSpeed {
     /// pieces holding them).
     ///
     /// Over an interval too short for its phase difference (that difference within
-    /// [`UNRESOLVED_PHASE`] of the phases' rounding: a sliver of ~1e-13 left at a piece's end)
+    /// `UNRESOLVED_PHASE` of the phases' rounding: a sliver of ~1e-13 left at a piece's end)
     /// the speed is the mean of the end speeds — the exact mean on one linear piece — and the
     /// rate the piece's, instead of a cancelled difference over the length (which gave 0, or
     /// 1.43 for 1.47, issue 32).

@@ -1,5 +1,5 @@
 //! Limits checked before a run starts or while it runs: counts held in memory (by what this
-//! process may hold: [`memory`]) and the work of a run (`--max-work`), so that a request that
+//! process may hold: `memory`) and the work of a run (`--max-work`), so that a request that
 //! would take days or exhaust memory is refused with a clear message instead of hanging or
 //! aborting.
 

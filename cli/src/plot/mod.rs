@@ -2,6 +2,7 @@
 //! (DejaVu Sans, registered with plotters' ab_glyph backend), so PNGs render the same on a
 //! machine without system fonts.
 
+pub mod branch;
 pub mod orbit;
 pub mod runup;
 pub mod scatter;

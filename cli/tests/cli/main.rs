@@ -8,6 +8,7 @@ mod friction;
 mod inputs;
 mod memory;
 mod messages;
+mod orbit;
 mod pipes;
 mod profiles;
 mod reliability;

@@ -74,13 +74,26 @@ const COMMANDS: &[&[&str]] = &[
         "--one-way",
         "--no-plot",
     ],
+    &["orbit", "--set", "speed_ratio=3", "--start", "free"],
+    &[
+        "continue",
+        "--from",
+        "3",
+        "--to",
+        "2.9",
+        "--start",
+        "free",
+        "--max-period",
+        "1",
+        "--no-plot",
+    ],
     &["presets"],
     &["params"],
 ];
 
-const SUBCOMMANDS: [&str; 11] = [
+const SUBCOMMANDS: [&str; 13] = [
     "fig2", "simulate", "compare", "sweep", "merge", "poincare", "spectrum", "friction", "runup",
-    "presets", "params",
+    "orbit", "continue", "presets", "params",
 ];
 
 /// What the command printed on stderr and its exit status, with stdout a pipe whose reader

@@ -52,6 +52,7 @@ mod station;
 pub mod symbols;
 mod taylor;
 mod tools;
+mod variational;
 
 use std::collections::HashMap;
 
@@ -86,6 +87,7 @@ pub fn derive_all() -> Model {
     taylor::derive(&mut m);
     regimes::derive(&mut m);
     station::derive(&mut m);
+    variational::derive(&mut m);
     m
 }
 

@@ -440,6 +440,34 @@ pub const GROUPS: &[Group] = &[
         ],
         external: None,
     },
+    Group {
+        ty: "FieldJacobian",
+        arg: "jacobian",
+        doc: "The Jacobian of a regime's acceleration (x'', y'') with respect to the state (x, y, x', y'), row by row: the variational equations' matrix (`docs/MODEL.md` §18).",
+        fields: &[
+            ("jxx", "xx", "∂x''/∂x"),
+            ("jxy", "xy", "∂x''/∂y"),
+            ("jxvx", "xvx", "∂x''/∂x'"),
+            ("jxvy", "xvy", "∂x''/∂y'"),
+            ("jyx", "yx", "∂y''/∂x"),
+            ("jyy", "yy", "∂y''/∂y"),
+            ("jyvx", "yvx", "∂y''/∂x'"),
+            ("jyvy", "yvy", "∂y''/∂y'"),
+        ],
+        external: None,
+    },
+    Group {
+        ty: "StateGradient",
+        arg: "gradient",
+        doc: "The gradient of a scalar function of the state with respect to (x, y, x', y'): a switching surface's normal in the state space (`docs/MODEL.md` §18).",
+        fields: &[
+            ("gx", "x", "∂/∂x"),
+            ("gy", "y", "∂/∂y"),
+            ("gvx", "vx", "∂/∂x'"),
+            ("gvy", "vy", "∂/∂y'"),
+        ],
+        external: None,
+    },
 ];
 
 /// Symbols that only live inside derivations (unknowns, variables substituted away).
