@@ -151,23 +151,23 @@
 //
 // Taylor recurrences per system: series, order 0, and order n >= 1 as fixed + n x per-n
 // (per-n counts bound the convolutions from above: a square or a square root takes about half):
-// contact_taylor               21 series; order 0:    16 add    14 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    11 add    23 mul    1 div   0 sqrt   0 trans
+// contact_taylor               20 series; order 0:    16 add    14 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    10 add    22 mul    1 div   0 sqrt   0 trans
 //                              order n per n:     3 add     6 mul    0 div   0 sqrt   0 trans
-// slipping_taylor              33 series; order 0:    23 add    28 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    17 add    37 mul    1 div   0 sqrt   0 trans
+// slipping_taylor              32 series; order 0:    23 add    28 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    16 add    36 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    11 add    14 mul    0 div   0 sqrt   0 trans
-// rolling_taylor               45 series; order 0:    41 add    42 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    34 add    51 mul    1 div   0 sqrt   0 trans
+// rolling_taylor               44 series; order 0:    41 add    42 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    33 add    50 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    17 add    20 mul    0 div   0 sqrt   0 trans
-// station_contact_taylor       23 series; order 0:     8 add    10 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:     5 add    19 mul    1 div   0 sqrt   0 trans
+// station_contact_taylor       22 series; order 0:     8 add    10 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:     4 add    18 mul    1 div   0 sqrt   0 trans
 //                              order n per n:     3 add     6 mul    0 div   0 sqrt   0 trans
-// station_slipping_taylor      35 series; order 0:    15 add    24 mul    1 div   1 sqrt   0 trans
-//                              order n fixed:    11 add    33 mul    1 div   0 sqrt   0 trans
+// station_slipping_taylor      34 series; order 0:    15 add    24 mul    1 div   1 sqrt   0 trans
+//                              order n fixed:    10 add    32 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    11 add    14 mul    0 div   0 sqrt   0 trans
-// station_rolling_taylor       62 series; order 0:    26 add    45 mul    2 div   1 sqrt   0 trans
-//                              order n fixed:    23 add    57 mul    1 div   0 sqrt   0 trans
+// station_rolling_taylor       61 series; order 0:    26 add    45 mul    2 div   1 sqrt   0 trans
+//                              order n fixed:    22 add    56 mul    1 div   0 sqrt   0 trans
 //                              order n per n:    25 add    28 mul    0 div   0 sqrt   0 trans
 
 use crate::math as m;
@@ -3439,11 +3439,11 @@ pub mod contact_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 21;
+    pub const SERIES: usize = 20;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 20;
+    pub const BOUNDARY: usize = 19;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -3515,24 +3515,23 @@ pub mod contact_taylor {
         s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
-        s[11][0] = m::sqrt(s[10][0]);
-        s[12][0] = 1.0 / s[11][0];
-        s[13][0] = 1.0 - s[12][0];
-        s[14][0] = s[6][0] * s[13][0];
-        s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] - s[0][0];
-        s[17][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0];
-        s[18][0] = k.k10 * s[5][0];
-        s[19][0] = k.k11 * s[4][0];
-        s[20][0] = s[7][0] + s[9][0] - 1.0;
+        s[11][0] = 1.0 / m::sqrt(s[10][0]);
+        s[12][0] = 1.0 - s[11][0];
+        s[13][0] = s[6][0] * s[12][0];
+        s[14][0] = s[8][0] * s[12][0];
+        s[15][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0];
+        s[16][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[13][0]
+            + k.k9 * s[14][0];
+        s[17][0] = k.k10 * s[5][0];
+        s[18][0] = k.k11 * s[4][0];
+        s[19][0] = -1.0 + s[7][0] + s[9][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
-        s[2][1] = s[16][0];
-        s[3][1] = s[17][0];
-        s[4][1] = s[18][0];
-        s[5][1] = s[19][0];
+        s[2][1] = s[15][0];
+        s[3][1] = s[16][0];
+        s[4][1] = s[17][0];
+        s[5][1] = s[18][0];
     }
     /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
     /// coefficient `N + 1` of every state. The order is a constant, so every
@@ -3551,40 +3550,55 @@ pub mod contact_taylor {
         ts::set(&mut s[9], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
         ts::set(&mut s[10], N, v);
-        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
         ts::set(&mut s[11], N, v);
-        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        let v = -ts::at(&s[11], N);
         ts::set(&mut s[12], N, v);
-        let v = -ts::at(&s[12], N);
+        let v = ts::product::<N>(&s[6], &s[12]);
         ts::set(&mut s[13], N, v);
-        let v = ts::product::<N>(&s[6], &s[13]);
+        let v = ts::product::<N>(&s[8], &s[12]);
         ts::set(&mut s[14], N, v);
-        let v = ts::product::<N>(&s[8], &s[13]);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N);
         ts::set(&mut s[15], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
         ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
-        ts::set(&mut s[17], N, v);
         let v = k.k10 * ts::at(&s[5], N);
-        ts::set(&mut s[18], N, v);
+        ts::set(&mut s[17], N, v);
         let v = k.k11 * ts::at(&s[4], N);
-        ts::set(&mut s[19], N, v);
+        ts::set(&mut s[18], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
-        ts::set(&mut s[20], N, v);
+        ts::set(&mut s[19], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
         ts::set(&mut s[1], N + 1, v);
-        let v = ts::at(&s[16], N) * ts::inverse::<N>();
+        let v = ts::at(&s[15], N) * ts::inverse::<N>();
         ts::set(&mut s[2], N + 1, v);
-        let v = ts::at(&s[17], N) * ts::inverse::<N>();
+        let v = ts::at(&s[16], N) * ts::inverse::<N>();
         ts::set(&mut s[3], N + 1, v);
-        let v = ts::at(&s[18], N) * ts::inverse::<N>();
+        let v = ts::at(&s[17], N) * ts::inverse::<N>();
         ts::set(&mut s[4], N + 1, v);
-        let v = ts::at(&s[19], N) * ts::inverse::<N>();
+        let v = ts::at(&s[18], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[19], N, v);
     }
 }
 /// Slipping contact in direction σ: the frictionless contact field minus μσN t.
@@ -3600,13 +3614,13 @@ pub mod slipping_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 33;
+    pub const SERIES: usize = 32;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 29;
+    pub const BOUNDARY: usize = 28;
     /// The series of the slip velocity w = q'·t + ρ_R η.
-    pub const SLIP_VELOCITY: usize = 32;
+    pub const SLIP_VELOCITY: usize = 31;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -3703,36 +3717,35 @@ pub mod slipping_taylor {
         s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
-        s[11][0] = m::sqrt(s[10][0]);
-        s[12][0] = 1.0 / s[11][0];
-        s[13][0] = 1.0 - s[12][0];
-        s[14][0] = s[6][0] * s[13][0];
-        s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = s[8][0] * s[12][0];
-        s[17][0] = s[6][0] * s[12][0];
-        s[18][0] = k.k8 * s[14][0] + k.k9 * s[15][0];
-        s[19][0] = s[17][0] * s[18][0];
-        s[20][0] = k.k10 * s[14][0] + k.k11 * s[15][0];
-        s[21][0] = s[16][0] * s[20][0];
-        s[22][0] = s[19][0] + s[21][0];
-        s[23][0] = s[16][0] * s[22][0];
-        s[24][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] + k.k7 * s[23][0] - s[0][0];
-        s[25][0] = s[17][0] * s[22][0];
-        s[26][0] = k.k12 + k.k1 * s[5][0] + k.k13 * s[14][0] + k.k14 * s[15][0]
-            + k.k6 * s[3][0] + k.k15 * s[25][0] - s[1][0];
-        s[27][0] = k.k16 * s[5][0];
-        s[28][0] = k.k17 * s[4][0];
-        s[29][0] = s[7][0] + s[9][0] - 1.0;
-        s[30][0] = s[2][0] * s[16][0];
-        s[31][0] = s[3][0] * s[17][0];
-        s[32][0] = k.k18 + s[31][0] - s[30][0];
+        s[11][0] = 1.0 / m::sqrt(s[10][0]);
+        s[12][0] = 1.0 - s[11][0];
+        s[13][0] = s[6][0] * s[12][0];
+        s[14][0] = s[8][0] * s[12][0];
+        s[15][0] = s[8][0] * s[11][0];
+        s[16][0] = s[6][0] * s[11][0];
+        s[17][0] = k.k8 * s[13][0] + k.k9 * s[14][0];
+        s[18][0] = s[16][0] * s[17][0];
+        s[19][0] = k.k10 * s[13][0] + k.k11 * s[14][0];
+        s[20][0] = s[15][0] * s[19][0];
+        s[21][0] = s[18][0] + s[20][0];
+        s[22][0] = s[15][0] * s[21][0];
+        s[23][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0] + k.k7 * s[22][0];
+        s[24][0] = s[16][0] * s[21][0];
+        s[25][0] = k.k12 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k13 * s[13][0]
+            + k.k14 * s[14][0] + k.k15 * s[24][0];
+        s[26][0] = k.k16 * s[5][0];
+        s[27][0] = k.k17 * s[4][0];
+        s[28][0] = -1.0 + s[7][0] + s[9][0];
+        s[29][0] = s[2][0] * s[15][0];
+        s[30][0] = s[3][0] * s[16][0];
+        s[31][0] = k.k18 - s[29][0] + s[30][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
-        s[2][1] = s[24][0];
-        s[3][1] = s[26][0];
-        s[4][1] = s[27][0];
-        s[5][1] = s[28][0];
+        s[2][1] = s[23][0];
+        s[3][1] = s[25][0];
+        s[4][1] = s[26][0];
+        s[5][1] = s[27][0];
     }
     /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
     /// coefficient `N + 1` of every state. The order is a constant, so every
@@ -3751,66 +3764,95 @@ pub mod slipping_taylor {
         ts::set(&mut s[9], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
         ts::set(&mut s[10], N, v);
-        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
         ts::set(&mut s[11], N, v);
-        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        let v = -ts::at(&s[11], N);
         ts::set(&mut s[12], N, v);
-        let v = -ts::at(&s[12], N);
-        ts::set(&mut s[13], N, v);
-        let v = ts::product::<N>(&s[6], &s[13]);
-        ts::set(&mut s[14], N, v);
-        let v = ts::product::<N>(&s[8], &s[13]);
-        ts::set(&mut s[15], N, v);
-        let v = ts::product::<N>(&s[8], &s[12]);
-        ts::set(&mut s[16], N, v);
         let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[16], N, v);
+        let v = k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
         ts::set(&mut s[17], N, v);
-        let v = k.k8 * ts::at(&s[14], N) + k.k9 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[16], &s[17]);
         ts::set(&mut s[18], N, v);
-        let v = ts::product::<N>(&s[17], &s[18]);
+        let v = k.k10 * ts::at(&s[13], N) + k.k11 * ts::at(&s[14], N);
         ts::set(&mut s[19], N, v);
-        let v = k.k10 * ts::at(&s[14], N) + k.k11 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[15], &s[19]);
         ts::set(&mut s[20], N, v);
-        let v = ts::product::<N>(&s[16], &s[20]);
+        let v = ts::at(&s[18], N) + ts::at(&s[20], N);
         ts::set(&mut s[21], N, v);
-        let v = ts::at(&s[19], N) + ts::at(&s[21], N);
+        let v = ts::product::<N>(&s[15], &s[21]);
         ts::set(&mut s[22], N, v);
-        let v = ts::product::<N>(&s[16], &s[22]);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N)
+            + k.k7 * ts::at(&s[22], N);
         ts::set(&mut s[23], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N)
-            + k.k7 * ts::at(&s[23], N) - ts::at(&s[0], N);
+        let v = ts::product::<N>(&s[16], &s[21]);
         ts::set(&mut s[24], N, v);
-        let v = ts::product::<N>(&s[17], &s[22]);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k13 * ts::at(&s[13], N) + k.k14 * ts::at(&s[14], N)
+            + k.k15 * ts::at(&s[24], N);
         ts::set(&mut s[25], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k13 * ts::at(&s[14], N)
-            + k.k14 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N)
-            + k.k15 * ts::at(&s[25], N) - ts::at(&s[1], N);
-        ts::set(&mut s[26], N, v);
         let v = k.k16 * ts::at(&s[5], N);
-        ts::set(&mut s[27], N, v);
+        ts::set(&mut s[26], N, v);
         let v = k.k17 * ts::at(&s[4], N);
-        ts::set(&mut s[28], N, v);
+        ts::set(&mut s[27], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[2], &s[15]);
         ts::set(&mut s[29], N, v);
-        let v = ts::product::<N>(&s[2], &s[16]);
+        let v = ts::product::<N>(&s[3], &s[16]);
         ts::set(&mut s[30], N, v);
-        let v = ts::product::<N>(&s[3], &s[17]);
+        let v = -ts::at(&s[29], N) + ts::at(&s[30], N);
         ts::set(&mut s[31], N, v);
-        let v = ts::at(&s[31], N) - ts::at(&s[30], N);
-        ts::set(&mut s[32], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
         ts::set(&mut s[1], N + 1, v);
-        let v = ts::at(&s[24], N) * ts::inverse::<N>();
+        let v = ts::at(&s[23], N) * ts::inverse::<N>();
         ts::set(&mut s[2], N + 1, v);
-        let v = ts::at(&s[26], N) * ts::inverse::<N>();
+        let v = ts::at(&s[25], N) * ts::inverse::<N>();
         ts::set(&mut s[3], N + 1, v);
-        let v = ts::at(&s[27], N) * ts::inverse::<N>();
+        let v = ts::at(&s[26], N) * ts::inverse::<N>();
         ts::set(&mut s[4], N + 1, v);
-        let v = ts::at(&s[28], N) * ts::inverse::<N>();
+        let v = ts::at(&s[27], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
+        ts::set(&mut s[11], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[16], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[2], &s[15]);
+        ts::set(&mut s[29], N, v);
+        let v = ts::product::<N>(&s[3], &s[16]);
+        ts::set(&mut s[30], N, v);
+        let v = -ts::at(&s[29], N) + ts::at(&s[30], N);
+        ts::set(&mut s[31], N, v);
     }
 }
 /// Rolling contact: the frictionless contact field minus λ t, λ the tangential force that keeps w = 0.
@@ -3826,15 +3868,15 @@ pub mod rolling_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 45;
+    pub const SERIES: usize = 44;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 37;
+    pub const BOUNDARY: usize = 36;
     /// The series of μN − λ (rolling needs it ≥ 0).
-    pub const CONE_UPPER: usize = 43;
+    pub const CONE_UPPER: usize = 42;
     /// The series of μN + λ (rolling needs it ≥ 0).
-    pub const CONE_LOWER: usize = 44;
+    pub const CONE_LOWER: usize = 43;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -3922,50 +3964,49 @@ pub mod rolling_taylor {
         s[8][0] = k.k4 + s[1][0];
         s[9][0] = s[8][0] * s[8][0];
         s[10][0] = s[7][0] + s[9][0];
-        s[11][0] = m::sqrt(s[10][0]);
-        s[12][0] = 1.0 / s[11][0];
-        s[13][0] = 1.0 - s[12][0];
-        s[14][0] = s[6][0] * s[13][0];
-        s[15][0] = s[8][0] * s[13][0];
-        s[16][0] = s[8][0] * s[12][0];
-        s[17][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] - s[0][0];
-        s[18][0] = s[16][0] * s[17][0];
-        s[19][0] = s[6][0] * s[12][0];
-        s[20][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0];
-        s[21][0] = s[19][0] * s[20][0];
-        s[22][0] = s[2][0] * s[16][0];
-        s[23][0] = s[3][0] * s[19][0];
-        s[24][0] = s[23][0] - s[22][0];
-        s[25][0] = s[12][0] * s[24][0];
-        s[26][0] = s[2][0] * s[19][0];
-        s[27][0] = s[3][0] * s[16][0];
-        s[28][0] = s[26][0] + s[27][0];
-        s[29][0] = s[25][0] * s[28][0];
-        s[30][0] = s[21][0] - s[18][0] - s[29][0];
-        s[31][0] = s[16][0] * s[30][0];
-        s[32][0] = k.k0 + k.k1 * s[4][0] + k.k2 * s[14][0] + k.k5 * s[15][0]
-            + k.k6 * s[2][0] + s[31][0] - s[0][0];
-        s[33][0] = s[19][0] * s[30][0];
-        s[34][0] = k.k7 + k.k1 * s[5][0] + k.k8 * s[14][0] + k.k9 * s[15][0]
-            + k.k6 * s[3][0] - s[1][0] - s[33][0];
-        s[35][0] = k.k10 * s[5][0];
-        s[36][0] = k.k11 * s[4][0];
-        s[37][0] = s[7][0] + s[9][0] - 1.0;
-        s[38][0] = k.k13 * s[14][0] + k.k14 * s[15][0];
-        s[39][0] = s[19][0] * s[38][0];
-        s[40][0] = k.k15 * s[14][0] + k.k16 * s[15][0];
-        s[41][0] = s[16][0] * s[40][0];
-        s[42][0] = s[39][0] + s[41][0];
-        s[43][0] = s[18][0] + s[29][0] + k.k12 * s[42][0] - s[21][0];
-        s[44][0] = s[21][0] + k.k12 * s[42][0] - s[18][0] - s[29][0];
+        s[11][0] = 1.0 / m::sqrt(s[10][0]);
+        s[12][0] = 1.0 - s[11][0];
+        s[13][0] = s[6][0] * s[12][0];
+        s[14][0] = s[8][0] * s[12][0];
+        s[15][0] = s[8][0] * s[11][0];
+        s[16][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0];
+        s[17][0] = s[15][0] * s[16][0];
+        s[18][0] = s[6][0] * s[11][0];
+        s[19][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[13][0]
+            + k.k9 * s[14][0];
+        s[20][0] = s[18][0] * s[19][0];
+        s[21][0] = s[2][0] * s[15][0];
+        s[22][0] = s[3][0] * s[18][0];
+        s[23][0] = -s[21][0] + s[22][0];
+        s[24][0] = s[11][0] * s[23][0];
+        s[25][0] = s[2][0] * s[18][0];
+        s[26][0] = s[3][0] * s[15][0];
+        s[27][0] = s[25][0] + s[26][0];
+        s[28][0] = s[24][0] * s[27][0];
+        s[29][0] = -s[17][0] + s[20][0] - s[28][0];
+        s[30][0] = s[15][0] * s[29][0];
+        s[31][0] = k.k0 - s[0][0] + k.k6 * s[2][0] + k.k1 * s[4][0] + k.k2 * s[13][0]
+            + k.k5 * s[14][0] + s[30][0];
+        s[32][0] = s[18][0] * s[29][0];
+        s[33][0] = k.k7 - s[1][0] + k.k6 * s[3][0] + k.k1 * s[5][0] + k.k8 * s[13][0]
+            + k.k9 * s[14][0] - s[32][0];
+        s[34][0] = k.k10 * s[5][0];
+        s[35][0] = k.k11 * s[4][0];
+        s[36][0] = -1.0 + s[7][0] + s[9][0];
+        s[37][0] = k.k13 * s[13][0] + k.k14 * s[14][0];
+        s[38][0] = s[18][0] * s[37][0];
+        s[39][0] = k.k15 * s[13][0] + k.k16 * s[14][0];
+        s[40][0] = s[15][0] * s[39][0];
+        s[41][0] = s[38][0] + s[40][0];
+        s[42][0] = s[17][0] - s[20][0] + s[28][0] + k.k12 * s[41][0];
+        s[43][0] = -s[17][0] + s[20][0] - s[28][0] + k.k12 * s[41][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
-        s[2][1] = s[32][0];
-        s[3][1] = s[34][0];
-        s[4][1] = s[35][0];
-        s[5][1] = s[36][0];
+        s[2][1] = s[31][0];
+        s[3][1] = s[33][0];
+        s[4][1] = s[34][0];
+        s[5][1] = s[35][0];
     }
     /// Coefficient `N` ≥ 1 of every operation (coefficients below `N` computed), then
     /// coefficient `N + 1` of every state. The order is a constant, so every
@@ -3984,94 +4025,163 @@ pub mod rolling_taylor {
         ts::set(&mut s[9], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
         ts::set(&mut s[10], N, v);
-        let v = ts::sqrt::<N>(&s[10], &s[11]);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
         ts::set(&mut s[11], N, v);
-        let v = ts::reciprocal::<N>(&s[11], &s[12]);
+        let v = -ts::at(&s[11], N);
         ts::set(&mut s[12], N, v);
-        let v = -ts::at(&s[12], N);
-        ts::set(&mut s[13], N, v);
-        let v = ts::product::<N>(&s[6], &s[13]);
-        ts::set(&mut s[14], N, v);
-        let v = ts::product::<N>(&s[8], &s[13]);
-        ts::set(&mut s[15], N, v);
-        let v = ts::product::<N>(&s[8], &s[12]);
-        ts::set(&mut s[16], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) - ts::at(&s[0], N);
-        ts::set(&mut s[17], N, v);
-        let v = ts::product::<N>(&s[16], &s[17]);
-        ts::set(&mut s[18], N, v);
         let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[15], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[18], N, v);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
         ts::set(&mut s[19], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N);
+        let v = ts::product::<N>(&s[18], &s[19]);
         ts::set(&mut s[20], N, v);
-        let v = ts::product::<N>(&s[19], &s[20]);
+        let v = ts::product::<N>(&s[2], &s[15]);
         ts::set(&mut s[21], N, v);
-        let v = ts::product::<N>(&s[2], &s[16]);
+        let v = ts::product::<N>(&s[3], &s[18]);
         ts::set(&mut s[22], N, v);
-        let v = ts::product::<N>(&s[3], &s[19]);
+        let v = -ts::at(&s[21], N) + ts::at(&s[22], N);
         ts::set(&mut s[23], N, v);
-        let v = ts::at(&s[23], N) - ts::at(&s[22], N);
+        let v = ts::product::<N>(&s[11], &s[23]);
         ts::set(&mut s[24], N, v);
-        let v = ts::product::<N>(&s[12], &s[24]);
+        let v = ts::product::<N>(&s[2], &s[18]);
         ts::set(&mut s[25], N, v);
-        let v = ts::product::<N>(&s[2], &s[19]);
+        let v = ts::product::<N>(&s[3], &s[15]);
         ts::set(&mut s[26], N, v);
-        let v = ts::product::<N>(&s[3], &s[16]);
+        let v = ts::at(&s[25], N) + ts::at(&s[26], N);
         ts::set(&mut s[27], N, v);
-        let v = ts::at(&s[26], N) + ts::at(&s[27], N);
+        let v = ts::product::<N>(&s[24], &s[27]);
         ts::set(&mut s[28], N, v);
-        let v = ts::product::<N>(&s[25], &s[28]);
+        let v = -ts::at(&s[17], N) + ts::at(&s[20], N) - ts::at(&s[28], N);
         ts::set(&mut s[29], N, v);
-        let v = ts::at(&s[21], N) - ts::at(&s[18], N) - ts::at(&s[29], N);
+        let v = ts::product::<N>(&s[15], &s[29]);
         ts::set(&mut s[30], N, v);
-        let v = ts::product::<N>(&s[16], &s[30]);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N) + ts::at(&s[30], N);
         ts::set(&mut s[31], N, v);
-        let v = k.k1 * ts::at(&s[4], N) + k.k2 * ts::at(&s[14], N)
-            + k.k5 * ts::at(&s[15], N) + k.k6 * ts::at(&s[2], N) + ts::at(&s[31], N)
-            - ts::at(&s[0], N);
+        let v = ts::product::<N>(&s[18], &s[29]);
         ts::set(&mut s[32], N, v);
-        let v = ts::product::<N>(&s[19], &s[30]);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N) - ts::at(&s[32], N);
         ts::set(&mut s[33], N, v);
-        let v = k.k1 * ts::at(&s[5], N) + k.k8 * ts::at(&s[14], N)
-            + k.k9 * ts::at(&s[15], N) + k.k6 * ts::at(&s[3], N) - ts::at(&s[1], N)
-            - ts::at(&s[33], N);
-        ts::set(&mut s[34], N, v);
         let v = k.k10 * ts::at(&s[5], N);
-        ts::set(&mut s[35], N, v);
+        ts::set(&mut s[34], N, v);
         let v = k.k11 * ts::at(&s[4], N);
-        ts::set(&mut s[36], N, v);
+        ts::set(&mut s[35], N, v);
         let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[36], N, v);
+        let v = k.k13 * ts::at(&s[13], N) + k.k14 * ts::at(&s[14], N);
         ts::set(&mut s[37], N, v);
-        let v = k.k13 * ts::at(&s[14], N) + k.k14 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[18], &s[37]);
         ts::set(&mut s[38], N, v);
-        let v = ts::product::<N>(&s[19], &s[38]);
+        let v = k.k15 * ts::at(&s[13], N) + k.k16 * ts::at(&s[14], N);
         ts::set(&mut s[39], N, v);
-        let v = k.k15 * ts::at(&s[14], N) + k.k16 * ts::at(&s[15], N);
+        let v = ts::product::<N>(&s[15], &s[39]);
         ts::set(&mut s[40], N, v);
-        let v = ts::product::<N>(&s[16], &s[40]);
+        let v = ts::at(&s[38], N) + ts::at(&s[40], N);
         ts::set(&mut s[41], N, v);
-        let v = ts::at(&s[39], N) + ts::at(&s[41], N);
+        let v = ts::at(&s[17], N) - ts::at(&s[20], N) + ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
         ts::set(&mut s[42], N, v);
-        let v = ts::at(&s[18], N) + ts::at(&s[29], N) + k.k12 * ts::at(&s[42], N)
-            - ts::at(&s[21], N);
+        let v = -ts::at(&s[17], N) + ts::at(&s[20], N) - ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
         ts::set(&mut s[43], N, v);
-        let v = ts::at(&s[21], N) + k.k12 * ts::at(&s[42], N) - ts::at(&s[18], N)
-            - ts::at(&s[29], N);
-        ts::set(&mut s[44], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
         ts::set(&mut s[1], N + 1, v);
-        let v = ts::at(&s[32], N) * ts::inverse::<N>();
+        let v = ts::at(&s[31], N) * ts::inverse::<N>();
         ts::set(&mut s[2], N + 1, v);
-        let v = ts::at(&s[34], N) * ts::inverse::<N>();
+        let v = ts::at(&s[33], N) * ts::inverse::<N>();
         ts::set(&mut s[3], N + 1, v);
-        let v = ts::at(&s[35], N) * ts::inverse::<N>();
+        let v = ts::at(&s[34], N) * ts::inverse::<N>();
         ts::set(&mut s[4], N + 1, v);
-        let v = ts::at(&s[36], N) * ts::inverse::<N>();
+        let v = ts::at(&s[35], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[6], N, v);
+        let v = ts::square::<N>(&s[6]);
+        ts::set(&mut s[7], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[8], N, v);
+        let v = ts::square::<N>(&s[8]);
+        ts::set(&mut s[9], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::half_power::<N>(&s[10], &s[11], -1);
+        ts::set(&mut s[11], N, v);
+        let v = -ts::at(&s[11], N);
+        ts::set(&mut s[12], N, v);
+        let v = ts::product::<N>(&s[6], &s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::product::<N>(&s[8], &s[12]);
+        ts::set(&mut s[14], N, v);
+        let v = ts::product::<N>(&s[8], &s[11]);
+        ts::set(&mut s[15], N, v);
+        let v = -ts::at(&s[0], N) + k.k6 * ts::at(&s[2], N) + k.k1 * ts::at(&s[4], N)
+            + k.k2 * ts::at(&s[13], N) + k.k5 * ts::at(&s[14], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[15], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[6], &s[11]);
+        ts::set(&mut s[18], N, v);
+        let v = -ts::at(&s[1], N) + k.k6 * ts::at(&s[3], N) + k.k1 * ts::at(&s[5], N)
+            + k.k8 * ts::at(&s[13], N) + k.k9 * ts::at(&s[14], N);
+        ts::set(&mut s[19], N, v);
+        let v = ts::product::<N>(&s[18], &s[19]);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[2], &s[15]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[3], &s[18]);
+        ts::set(&mut s[22], N, v);
+        let v = -ts::at(&s[21], N) + ts::at(&s[22], N);
+        ts::set(&mut s[23], N, v);
+        let v = ts::product::<N>(&s[11], &s[23]);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[2], &s[18]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[3], &s[15]);
+        ts::set(&mut s[26], N, v);
+        let v = ts::at(&s[25], N) + ts::at(&s[26], N);
+        ts::set(&mut s[27], N, v);
+        let v = ts::product::<N>(&s[24], &s[27]);
+        ts::set(&mut s[28], N, v);
+        let v = ts::at(&s[7], N) + ts::at(&s[9], N);
+        ts::set(&mut s[36], N, v);
+        let v = k.k13 * ts::at(&s[13], N) + k.k14 * ts::at(&s[14], N);
+        ts::set(&mut s[37], N, v);
+        let v = ts::product::<N>(&s[18], &s[37]);
+        ts::set(&mut s[38], N, v);
+        let v = k.k15 * ts::at(&s[13], N) + k.k16 * ts::at(&s[14], N);
+        ts::set(&mut s[39], N, v);
+        let v = ts::product::<N>(&s[15], &s[39]);
+        ts::set(&mut s[40], N, v);
+        let v = ts::at(&s[38], N) + ts::at(&s[40], N);
+        ts::set(&mut s[41], N, v);
+        let v = ts::at(&s[17], N) - ts::at(&s[20], N) + ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
+        ts::set(&mut s[42], N, v);
+        let v = -ts::at(&s[17], N) + ts::at(&s[20], N) - ts::at(&s[28], N)
+            + k.k12 * ts::at(&s[41], N);
+        ts::set(&mut s[43], N, v);
     }
 }
 /// A rub station in frictionless contact: the restoring force K_c g(d) at d = P − ε̂ (f_c = −K_c g(d)). The law's inputs (P, P' and while rolling a) are states of rate 0 that the caller sets from the matrix model's series before each order; the forcing phasor is carried with its rates.
@@ -4087,7 +4197,7 @@ pub mod station_contact_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 23;
+    pub const SERIES: usize = 22;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of P_x, the station's relative position (input).
@@ -4103,11 +4213,11 @@ pub mod station_contact_taylor {
     /// The series of sin θ.
     pub const PHASOR_ST: usize = 5;
     /// The series of −f_c, x component: the contact force the rotor's point feels, with a minus.
-    pub const RESTORING_X: usize = 20;
+    pub const RESTORING_X: usize = 19;
     /// The series of −f_c, y component.
-    pub const RESTORING_Y: usize = 21;
+    pub const RESTORING_Y: usize = 20;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 22;
+    pub const BOUNDARY: usize = 21;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -4167,14 +4277,13 @@ pub mod station_contact_taylor {
         s[12][0] = k.k4 + s[1][0];
         s[13][0] = s[12][0] * s[12][0];
         s[14][0] = s[11][0] + s[13][0];
-        s[15][0] = m::sqrt(s[14][0]);
-        s[16][0] = 1.0 / s[15][0];
-        s[17][0] = 1.0 - s[16][0];
-        s[18][0] = s[10][0] * s[17][0];
-        s[19][0] = s[12][0] * s[17][0];
-        s[20][0] = k.k2 * s[18][0] + k.k5 * s[19][0];
-        s[21][0] = k.k6 * s[18][0] + k.k7 * s[19][0];
-        s[22][0] = s[11][0] + s[13][0] - 1.0;
+        s[15][0] = 1.0 / m::sqrt(s[14][0]);
+        s[16][0] = 1.0 - s[15][0];
+        s[17][0] = s[10][0] * s[16][0];
+        s[18][0] = s[12][0] * s[16][0];
+        s[19][0] = k.k2 * s[17][0] + k.k5 * s[18][0];
+        s[20][0] = k.k6 * s[17][0] + k.k7 * s[18][0];
+        s[21][0] = -1.0 + s[11][0] + s[13][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
         s[2][1] = s[6][0];
@@ -4207,22 +4316,20 @@ pub mod station_contact_taylor {
         ts::set(&mut s[13], N, v);
         let v = ts::at(&s[11], N) + ts::at(&s[13], N);
         ts::set(&mut s[14], N, v);
-        let v = ts::sqrt::<N>(&s[14], &s[15]);
+        let v = ts::half_power::<N>(&s[14], &s[15], -1);
         ts::set(&mut s[15], N, v);
-        let v = ts::reciprocal::<N>(&s[15], &s[16]);
+        let v = -ts::at(&s[15], N);
         ts::set(&mut s[16], N, v);
-        let v = -ts::at(&s[16], N);
+        let v = ts::product::<N>(&s[10], &s[16]);
         ts::set(&mut s[17], N, v);
-        let v = ts::product::<N>(&s[10], &s[17]);
+        let v = ts::product::<N>(&s[12], &s[16]);
         ts::set(&mut s[18], N, v);
-        let v = ts::product::<N>(&s[12], &s[17]);
+        let v = k.k2 * ts::at(&s[17], N) + k.k5 * ts::at(&s[18], N);
         ts::set(&mut s[19], N, v);
-        let v = k.k2 * ts::at(&s[18], N) + k.k5 * ts::at(&s[19], N);
+        let v = k.k6 * ts::at(&s[17], N) + k.k7 * ts::at(&s[18], N);
         ts::set(&mut s[20], N, v);
-        let v = k.k6 * ts::at(&s[18], N) + k.k7 * ts::at(&s[19], N);
-        ts::set(&mut s[21], N, v);
         let v = ts::at(&s[11], N) + ts::at(&s[13], N);
-        ts::set(&mut s[22], N, v);
+        ts::set(&mut s[21], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
@@ -4235,6 +4342,37 @@ pub mod station_contact_taylor {
         ts::set(&mut s[4], N + 1, v);
         let v = ts::at(&s[9], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::square::<N>(&s[10]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[12], N, v);
+        let v = ts::square::<N>(&s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[14], N, v);
+        let v = ts::half_power::<N>(&s[14], &s[15], -1);
+        ts::set(&mut s[15], N, v);
+        let v = -ts::at(&s[15], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[10], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[12], &s[16]);
+        ts::set(&mut s[18], N, v);
+        let v = k.k2 * ts::at(&s[17], N) + k.k5 * ts::at(&s[18], N);
+        ts::set(&mut s[19], N, v);
+        let v = k.k6 * ts::at(&s[17], N) + k.k7 * ts::at(&s[18], N);
+        ts::set(&mut s[20], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[21], N, v);
     }
 }
 /// A rub station slipping in direction σ: the restoring force K_c g(d) + μσN t (= −f_c). The law's inputs (P, P' and while rolling a) are states of rate 0 that the caller sets from the matrix model's series before each order; the forcing phasor is carried with its rates.
@@ -4250,7 +4388,7 @@ pub mod station_slipping_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 35;
+    pub const SERIES: usize = 34;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 6;
     /// The series of P_x, the station's relative position (input).
@@ -4266,13 +4404,13 @@ pub mod station_slipping_taylor {
     /// The series of sin θ.
     pub const PHASOR_ST: usize = 5;
     /// The series of −f_c, x component: the contact force the rotor's point feels, with a minus.
-    pub const RESTORING_X: usize = 28;
+    pub const RESTORING_X: usize = 27;
     /// The series of −f_c, y component.
-    pub const RESTORING_Y: usize = 30;
+    pub const RESTORING_Y: usize = 29;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 31;
+    pub const BOUNDARY: usize = 30;
     /// The series of the slip velocity w = d'·t + ρ_R η.
-    pub const SLIP_VELOCITY: usize = 34;
+    pub const SLIP_VELOCITY: usize = 33;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -4345,26 +4483,25 @@ pub mod station_slipping_taylor {
         s[12][0] = k.k4 + s[1][0];
         s[13][0] = s[12][0] * s[12][0];
         s[14][0] = s[11][0] + s[13][0];
-        s[15][0] = m::sqrt(s[14][0]);
-        s[16][0] = 1.0 / s[15][0];
-        s[17][0] = 1.0 - s[16][0];
-        s[18][0] = s[10][0] * s[17][0];
-        s[19][0] = s[12][0] * s[17][0];
-        s[20][0] = s[12][0] * s[16][0];
-        s[21][0] = s[10][0] * s[16][0];
-        s[22][0] = k.k2 * s[18][0] + k.k5 * s[19][0];
-        s[23][0] = s[21][0] * s[22][0];
-        s[24][0] = k.k7 * s[18][0] + k.k8 * s[19][0];
-        s[25][0] = s[20][0] * s[24][0];
-        s[26][0] = s[23][0] + s[25][0];
-        s[27][0] = s[20][0] * s[26][0];
-        s[28][0] = k.k2 * s[18][0] + k.k5 * s[19][0] + k.k6 * s[27][0];
-        s[29][0] = s[21][0] * s[26][0];
-        s[30][0] = k.k7 * s[18][0] + k.k8 * s[19][0] + k.k9 * s[29][0];
-        s[31][0] = s[11][0] + s[13][0] - 1.0;
-        s[32][0] = s[2][0] * s[20][0];
-        s[33][0] = s[3][0] * s[21][0];
-        s[34][0] = k.k10 + s[33][0] - s[32][0];
+        s[15][0] = 1.0 / m::sqrt(s[14][0]);
+        s[16][0] = 1.0 - s[15][0];
+        s[17][0] = s[10][0] * s[16][0];
+        s[18][0] = s[12][0] * s[16][0];
+        s[19][0] = s[12][0] * s[15][0];
+        s[20][0] = s[10][0] * s[15][0];
+        s[21][0] = k.k2 * s[17][0] + k.k5 * s[18][0];
+        s[22][0] = s[20][0] * s[21][0];
+        s[23][0] = k.k7 * s[17][0] + k.k8 * s[18][0];
+        s[24][0] = s[19][0] * s[23][0];
+        s[25][0] = s[22][0] + s[24][0];
+        s[26][0] = s[19][0] * s[25][0];
+        s[27][0] = k.k2 * s[17][0] + k.k5 * s[18][0] + k.k6 * s[26][0];
+        s[28][0] = s[20][0] * s[25][0];
+        s[29][0] = k.k7 * s[17][0] + k.k8 * s[18][0] + k.k9 * s[28][0];
+        s[30][0] = -1.0 + s[11][0] + s[13][0];
+        s[31][0] = s[2][0] * s[19][0];
+        s[32][0] = s[3][0] * s[20][0];
+        s[33][0] = k.k10 - s[31][0] + s[32][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
         s[2][1] = s[6][0];
@@ -4397,48 +4534,46 @@ pub mod station_slipping_taylor {
         ts::set(&mut s[13], N, v);
         let v = ts::at(&s[11], N) + ts::at(&s[13], N);
         ts::set(&mut s[14], N, v);
-        let v = ts::sqrt::<N>(&s[14], &s[15]);
+        let v = ts::half_power::<N>(&s[14], &s[15], -1);
         ts::set(&mut s[15], N, v);
-        let v = ts::reciprocal::<N>(&s[15], &s[16]);
+        let v = -ts::at(&s[15], N);
         ts::set(&mut s[16], N, v);
-        let v = -ts::at(&s[16], N);
-        ts::set(&mut s[17], N, v);
-        let v = ts::product::<N>(&s[10], &s[17]);
-        ts::set(&mut s[18], N, v);
-        let v = ts::product::<N>(&s[12], &s[17]);
-        ts::set(&mut s[19], N, v);
-        let v = ts::product::<N>(&s[12], &s[16]);
-        ts::set(&mut s[20], N, v);
         let v = ts::product::<N>(&s[10], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[12], &s[16]);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[12], &s[15]);
+        ts::set(&mut s[19], N, v);
+        let v = ts::product::<N>(&s[10], &s[15]);
+        ts::set(&mut s[20], N, v);
+        let v = k.k2 * ts::at(&s[17], N) + k.k5 * ts::at(&s[18], N);
         ts::set(&mut s[21], N, v);
-        let v = k.k2 * ts::at(&s[18], N) + k.k5 * ts::at(&s[19], N);
+        let v = ts::product::<N>(&s[20], &s[21]);
         ts::set(&mut s[22], N, v);
-        let v = ts::product::<N>(&s[21], &s[22]);
+        let v = k.k7 * ts::at(&s[17], N) + k.k8 * ts::at(&s[18], N);
         ts::set(&mut s[23], N, v);
-        let v = k.k7 * ts::at(&s[18], N) + k.k8 * ts::at(&s[19], N);
+        let v = ts::product::<N>(&s[19], &s[23]);
         ts::set(&mut s[24], N, v);
-        let v = ts::product::<N>(&s[20], &s[24]);
+        let v = ts::at(&s[22], N) + ts::at(&s[24], N);
         ts::set(&mut s[25], N, v);
-        let v = ts::at(&s[23], N) + ts::at(&s[25], N);
+        let v = ts::product::<N>(&s[19], &s[25]);
         ts::set(&mut s[26], N, v);
-        let v = ts::product::<N>(&s[20], &s[26]);
+        let v = k.k2 * ts::at(&s[17], N) + k.k5 * ts::at(&s[18], N)
+            + k.k6 * ts::at(&s[26], N);
         ts::set(&mut s[27], N, v);
-        let v = k.k2 * ts::at(&s[18], N) + k.k5 * ts::at(&s[19], N)
-            + k.k6 * ts::at(&s[27], N);
+        let v = ts::product::<N>(&s[20], &s[25]);
         ts::set(&mut s[28], N, v);
-        let v = ts::product::<N>(&s[21], &s[26]);
+        let v = k.k7 * ts::at(&s[17], N) + k.k8 * ts::at(&s[18], N)
+            + k.k9 * ts::at(&s[28], N);
         ts::set(&mut s[29], N, v);
-        let v = k.k7 * ts::at(&s[18], N) + k.k8 * ts::at(&s[19], N)
-            + k.k9 * ts::at(&s[29], N);
-        ts::set(&mut s[30], N, v);
         let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[30], N, v);
+        let v = ts::product::<N>(&s[2], &s[19]);
         ts::set(&mut s[31], N, v);
-        let v = ts::product::<N>(&s[2], &s[20]);
+        let v = ts::product::<N>(&s[3], &s[20]);
         ts::set(&mut s[32], N, v);
-        let v = ts::product::<N>(&s[3], &s[21]);
+        let v = -ts::at(&s[31], N) + ts::at(&s[32], N);
         ts::set(&mut s[33], N, v);
-        let v = ts::at(&s[33], N) - ts::at(&s[32], N);
-        ts::set(&mut s[34], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
@@ -4451,6 +4586,63 @@ pub mod station_slipping_taylor {
         ts::set(&mut s[4], N + 1, v);
         let v = ts::at(&s[9], N) * ts::inverse::<N>();
         ts::set(&mut s[5], N + 1, v);
+    }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[10], N, v);
+        let v = ts::square::<N>(&s[10]);
+        ts::set(&mut s[11], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[12], N, v);
+        let v = ts::square::<N>(&s[12]);
+        ts::set(&mut s[13], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[14], N, v);
+        let v = ts::half_power::<N>(&s[14], &s[15], -1);
+        ts::set(&mut s[15], N, v);
+        let v = -ts::at(&s[15], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::product::<N>(&s[10], &s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::product::<N>(&s[12], &s[16]);
+        ts::set(&mut s[18], N, v);
+        let v = ts::product::<N>(&s[12], &s[15]);
+        ts::set(&mut s[19], N, v);
+        let v = ts::product::<N>(&s[10], &s[15]);
+        ts::set(&mut s[20], N, v);
+        let v = k.k2 * ts::at(&s[17], N) + k.k5 * ts::at(&s[18], N);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[20], &s[21]);
+        ts::set(&mut s[22], N, v);
+        let v = k.k7 * ts::at(&s[17], N) + k.k8 * ts::at(&s[18], N);
+        ts::set(&mut s[23], N, v);
+        let v = ts::product::<N>(&s[19], &s[23]);
+        ts::set(&mut s[24], N, v);
+        let v = ts::at(&s[22], N) + ts::at(&s[24], N);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[19], &s[25]);
+        ts::set(&mut s[26], N, v);
+        let v = k.k2 * ts::at(&s[17], N) + k.k5 * ts::at(&s[18], N)
+            + k.k6 * ts::at(&s[26], N);
+        ts::set(&mut s[27], N, v);
+        let v = ts::product::<N>(&s[20], &s[25]);
+        ts::set(&mut s[28], N, v);
+        let v = k.k7 * ts::at(&s[17], N) + k.k8 * ts::at(&s[18], N)
+            + k.k9 * ts::at(&s[28], N);
+        ts::set(&mut s[29], N, v);
+        let v = ts::at(&s[11], N) + ts::at(&s[13], N);
+        ts::set(&mut s[30], N, v);
+        let v = ts::product::<N>(&s[2], &s[19]);
+        ts::set(&mut s[31], N, v);
+        let v = ts::product::<N>(&s[3], &s[20]);
+        ts::set(&mut s[32], N, v);
+        let v = -ts::at(&s[31], N) + ts::at(&s[32], N);
+        ts::set(&mut s[33], N, v);
     }
 }
 /// A rub station rolling without slip: the restoring force K_c g(d) + λ t (= −f_c), λ the tangential force that keeps w = 0. The law's inputs (P, P' and while rolling a) are states of rate 0 that the caller sets from the matrix model's series before each order; the forcing phasor is carried with its rates.
@@ -4466,7 +4658,7 @@ pub mod station_rolling_taylor {
     use crate::math as m;
     use crate::taylor::kernels as ts;
     /// Series the recurrences use (states first).
-    pub const SERIES: usize = 62;
+    pub const SERIES: usize = 61;
     /// States, stored first: x, y, x', y', cos θ, sin θ.
     pub const STATES: usize = 8;
     /// The series of P_x, the station's relative position (input).
@@ -4486,15 +4678,15 @@ pub mod station_rolling_taylor {
     /// The series of a_y (input).
     pub const DRIVE_Y: usize = 7;
     /// The series of −f_c, x component: the contact force the rotor's point feels, with a minus.
-    pub const RESTORING_X: usize = 51;
+    pub const RESTORING_X: usize = 50;
     /// The series of −f_c, y component.
-    pub const RESTORING_Y: usize = 54;
+    pub const RESTORING_Y: usize = 53;
     /// The series of h = z² − 1 (positive in contact).
-    pub const BOUNDARY: usize = 55;
+    pub const BOUNDARY: usize = 54;
     /// The series of μN − λ (rolling needs it ≥ 0).
-    pub const CONE_UPPER: usize = 60;
+    pub const CONE_UPPER: usize = 59;
     /// The series of μN + λ (rolling needs it ≥ 0).
-    pub const CONE_LOWER: usize = 61;
+    pub const CONE_LOWER: usize = 60;
     /// Outputs of [`constants`].
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct Constants {
@@ -4586,49 +4778,48 @@ pub mod station_rolling_taylor {
         s[16][0] = k.k4 + s[1][0];
         s[17][0] = s[16][0] * s[16][0];
         s[18][0] = s[15][0] + s[17][0];
-        s[19][0] = m::sqrt(s[18][0]);
-        s[20][0] = 1.0 / s[19][0];
-        s[21][0] = 1.0 - s[20][0];
-        s[22][0] = s[14][0] * s[21][0];
-        s[23][0] = s[16][0] * s[21][0];
-        s[24][0] = s[16][0] * s[20][0];
-        s[25][0] = s[2][0] * s[24][0];
-        s[26][0] = s[14][0] * s[20][0];
-        s[27][0] = s[3][0] * s[26][0];
-        s[28][0] = s[27][0] - s[25][0];
-        s[29][0] = s[20][0] * s[28][0];
-        s[30][0] = s[2][0] * s[26][0];
-        s[31][0] = s[3][0] * s[24][0];
-        s[32][0] = s[30][0] + s[31][0];
-        s[33][0] = s[29][0] * s[32][0];
-        s[34][0] = s[6][0] * s[24][0];
-        s[35][0] = s[7][0] * s[26][0];
-        s[36][0] = k.k2 * s[22][0] + k.k5 * s[23][0];
-        s[37][0] = k.k8 * s[22][0] + k.k9 * s[23][0];
-        s[38][0] = k.k6 * s[36][0] + k.k7 * s[37][0];
-        s[39][0] = s[24][0] * s[38][0];
-        s[40][0] = k.k10 * s[36][0] + k.k11 * s[37][0];
-        s[41][0] = s[26][0] * s[40][0];
-        s[42][0] = s[35][0] + s[39][0] - s[33][0] - s[34][0] - s[41][0];
-        s[43][0] = s[24][0] * s[42][0];
-        s[44][0] = k.k12 * s[24][0] + k.k7 * s[26][0];
-        s[45][0] = s[24][0] * s[44][0];
-        s[46][0] = k.k13 * s[24][0] + k.k11 * s[26][0];
-        s[47][0] = s[26][0] * s[46][0];
-        s[48][0] = s[47][0] - s[45][0];
-        s[49][0] = 1.0 / s[48][0];
-        s[50][0] = s[43][0] * s[49][0];
-        s[51][0] = k.k2 * s[22][0] + k.k5 * s[23][0] - s[50][0];
-        s[52][0] = s[26][0] * s[42][0];
-        s[53][0] = s[49][0] * s[52][0];
-        s[54][0] = k.k8 * s[22][0] + k.k9 * s[23][0] + s[53][0];
-        s[55][0] = s[15][0] + s[17][0] - 1.0;
-        s[56][0] = s[26][0] * s[36][0];
-        s[57][0] = s[24][0] * s[37][0];
-        s[58][0] = s[56][0] + s[57][0];
-        s[59][0] = s[42][0] * s[49][0];
-        s[60][0] = k.k14 * s[58][0] - s[59][0];
-        s[61][0] = s[59][0] + k.k14 * s[58][0];
+        s[19][0] = 1.0 / m::sqrt(s[18][0]);
+        s[20][0] = 1.0 - s[19][0];
+        s[21][0] = s[14][0] * s[20][0];
+        s[22][0] = s[16][0] * s[20][0];
+        s[23][0] = s[16][0] * s[19][0];
+        s[24][0] = s[2][0] * s[23][0];
+        s[25][0] = s[14][0] * s[19][0];
+        s[26][0] = s[3][0] * s[25][0];
+        s[27][0] = -s[24][0] + s[26][0];
+        s[28][0] = s[19][0] * s[27][0];
+        s[29][0] = s[2][0] * s[25][0];
+        s[30][0] = s[3][0] * s[23][0];
+        s[31][0] = s[29][0] + s[30][0];
+        s[32][0] = s[28][0] * s[31][0];
+        s[33][0] = s[6][0] * s[23][0];
+        s[34][0] = s[7][0] * s[25][0];
+        s[35][0] = k.k2 * s[21][0] + k.k5 * s[22][0];
+        s[36][0] = k.k8 * s[21][0] + k.k9 * s[22][0];
+        s[37][0] = k.k6 * s[35][0] + k.k7 * s[36][0];
+        s[38][0] = s[23][0] * s[37][0];
+        s[39][0] = k.k10 * s[35][0] + k.k11 * s[36][0];
+        s[40][0] = s[25][0] * s[39][0];
+        s[41][0] = -s[32][0] - s[33][0] + s[34][0] + s[38][0] - s[40][0];
+        s[42][0] = s[23][0] * s[41][0];
+        s[43][0] = k.k12 * s[23][0] + k.k7 * s[25][0];
+        s[44][0] = s[23][0] * s[43][0];
+        s[45][0] = k.k13 * s[23][0] + k.k11 * s[25][0];
+        s[46][0] = s[25][0] * s[45][0];
+        s[47][0] = -s[44][0] + s[46][0];
+        s[48][0] = 1.0 / s[47][0];
+        s[49][0] = s[42][0] * s[48][0];
+        s[50][0] = k.k2 * s[21][0] + k.k5 * s[22][0] - s[49][0];
+        s[51][0] = s[25][0] * s[41][0];
+        s[52][0] = s[48][0] * s[51][0];
+        s[53][0] = k.k8 * s[21][0] + k.k9 * s[22][0] + s[52][0];
+        s[54][0] = -1.0 + s[15][0] + s[17][0];
+        s[55][0] = s[25][0] * s[35][0];
+        s[56][0] = s[23][0] * s[36][0];
+        s[57][0] = s[55][0] + s[56][0];
+        s[58][0] = s[41][0] * s[48][0];
+        s[59][0] = k.k14 * s[57][0] - s[58][0];
+        s[60][0] = k.k14 * s[57][0] + s[58][0];
         s[0][1] = s[2][0];
         s[1][1] = s[3][0];
         s[2][1] = s[8][0];
@@ -4667,93 +4858,91 @@ pub mod station_rolling_taylor {
         ts::set(&mut s[17], N, v);
         let v = ts::at(&s[15], N) + ts::at(&s[17], N);
         ts::set(&mut s[18], N, v);
-        let v = ts::sqrt::<N>(&s[18], &s[19]);
+        let v = ts::half_power::<N>(&s[18], &s[19], -1);
         ts::set(&mut s[19], N, v);
-        let v = ts::reciprocal::<N>(&s[19], &s[20]);
+        let v = -ts::at(&s[19], N);
         ts::set(&mut s[20], N, v);
-        let v = -ts::at(&s[20], N);
-        ts::set(&mut s[21], N, v);
-        let v = ts::product::<N>(&s[14], &s[21]);
-        ts::set(&mut s[22], N, v);
-        let v = ts::product::<N>(&s[16], &s[21]);
-        ts::set(&mut s[23], N, v);
-        let v = ts::product::<N>(&s[16], &s[20]);
-        ts::set(&mut s[24], N, v);
-        let v = ts::product::<N>(&s[2], &s[24]);
-        ts::set(&mut s[25], N, v);
         let v = ts::product::<N>(&s[14], &s[20]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[16], &s[20]);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[16], &s[19]);
+        ts::set(&mut s[23], N, v);
+        let v = ts::product::<N>(&s[2], &s[23]);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[14], &s[19]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[3], &s[25]);
         ts::set(&mut s[26], N, v);
-        let v = ts::product::<N>(&s[3], &s[26]);
+        let v = -ts::at(&s[24], N) + ts::at(&s[26], N);
         ts::set(&mut s[27], N, v);
-        let v = ts::at(&s[27], N) - ts::at(&s[25], N);
+        let v = ts::product::<N>(&s[19], &s[27]);
         ts::set(&mut s[28], N, v);
-        let v = ts::product::<N>(&s[20], &s[28]);
+        let v = ts::product::<N>(&s[2], &s[25]);
         ts::set(&mut s[29], N, v);
-        let v = ts::product::<N>(&s[2], &s[26]);
+        let v = ts::product::<N>(&s[3], &s[23]);
         ts::set(&mut s[30], N, v);
-        let v = ts::product::<N>(&s[3], &s[24]);
+        let v = ts::at(&s[29], N) + ts::at(&s[30], N);
         ts::set(&mut s[31], N, v);
-        let v = ts::at(&s[30], N) + ts::at(&s[31], N);
+        let v = ts::product::<N>(&s[28], &s[31]);
         ts::set(&mut s[32], N, v);
-        let v = ts::product::<N>(&s[29], &s[32]);
+        let v = ts::product::<N>(&s[6], &s[23]);
         ts::set(&mut s[33], N, v);
-        let v = ts::product::<N>(&s[6], &s[24]);
+        let v = ts::product::<N>(&s[7], &s[25]);
         ts::set(&mut s[34], N, v);
-        let v = ts::product::<N>(&s[7], &s[26]);
+        let v = k.k2 * ts::at(&s[21], N) + k.k5 * ts::at(&s[22], N);
         ts::set(&mut s[35], N, v);
-        let v = k.k2 * ts::at(&s[22], N) + k.k5 * ts::at(&s[23], N);
+        let v = k.k8 * ts::at(&s[21], N) + k.k9 * ts::at(&s[22], N);
         ts::set(&mut s[36], N, v);
-        let v = k.k8 * ts::at(&s[22], N) + k.k9 * ts::at(&s[23], N);
+        let v = k.k6 * ts::at(&s[35], N) + k.k7 * ts::at(&s[36], N);
         ts::set(&mut s[37], N, v);
-        let v = k.k6 * ts::at(&s[36], N) + k.k7 * ts::at(&s[37], N);
+        let v = ts::product::<N>(&s[23], &s[37]);
         ts::set(&mut s[38], N, v);
-        let v = ts::product::<N>(&s[24], &s[38]);
+        let v = k.k10 * ts::at(&s[35], N) + k.k11 * ts::at(&s[36], N);
         ts::set(&mut s[39], N, v);
-        let v = k.k10 * ts::at(&s[36], N) + k.k11 * ts::at(&s[37], N);
+        let v = ts::product::<N>(&s[25], &s[39]);
         ts::set(&mut s[40], N, v);
-        let v = ts::product::<N>(&s[26], &s[40]);
+        let v = -ts::at(&s[32], N) - ts::at(&s[33], N) + ts::at(&s[34], N)
+            + ts::at(&s[38], N) - ts::at(&s[40], N);
         ts::set(&mut s[41], N, v);
-        let v = ts::at(&s[35], N) + ts::at(&s[39], N) - ts::at(&s[33], N)
-            - ts::at(&s[34], N) - ts::at(&s[41], N);
+        let v = ts::product::<N>(&s[23], &s[41]);
         ts::set(&mut s[42], N, v);
-        let v = ts::product::<N>(&s[24], &s[42]);
+        let v = k.k12 * ts::at(&s[23], N) + k.k7 * ts::at(&s[25], N);
         ts::set(&mut s[43], N, v);
-        let v = k.k12 * ts::at(&s[24], N) + k.k7 * ts::at(&s[26], N);
+        let v = ts::product::<N>(&s[23], &s[43]);
         ts::set(&mut s[44], N, v);
-        let v = ts::product::<N>(&s[24], &s[44]);
+        let v = k.k13 * ts::at(&s[23], N) + k.k11 * ts::at(&s[25], N);
         ts::set(&mut s[45], N, v);
-        let v = k.k13 * ts::at(&s[24], N) + k.k11 * ts::at(&s[26], N);
+        let v = ts::product::<N>(&s[25], &s[45]);
         ts::set(&mut s[46], N, v);
-        let v = ts::product::<N>(&s[26], &s[46]);
+        let v = -ts::at(&s[44], N) + ts::at(&s[46], N);
         ts::set(&mut s[47], N, v);
-        let v = ts::at(&s[47], N) - ts::at(&s[45], N);
+        let v = ts::reciprocal::<N>(&s[47], &s[48]);
         ts::set(&mut s[48], N, v);
-        let v = ts::reciprocal::<N>(&s[48], &s[49]);
+        let v = ts::product::<N>(&s[42], &s[48]);
         ts::set(&mut s[49], N, v);
-        let v = ts::product::<N>(&s[43], &s[49]);
+        let v = k.k2 * ts::at(&s[21], N) + k.k5 * ts::at(&s[22], N) - ts::at(&s[49], N);
         ts::set(&mut s[50], N, v);
-        let v = k.k2 * ts::at(&s[22], N) + k.k5 * ts::at(&s[23], N) - ts::at(&s[50], N);
+        let v = ts::product::<N>(&s[25], &s[41]);
         ts::set(&mut s[51], N, v);
-        let v = ts::product::<N>(&s[26], &s[42]);
+        let v = ts::product::<N>(&s[48], &s[51]);
         ts::set(&mut s[52], N, v);
-        let v = ts::product::<N>(&s[49], &s[52]);
+        let v = k.k8 * ts::at(&s[21], N) + k.k9 * ts::at(&s[22], N) + ts::at(&s[52], N);
         ts::set(&mut s[53], N, v);
-        let v = k.k8 * ts::at(&s[22], N) + k.k9 * ts::at(&s[23], N) + ts::at(&s[53], N);
-        ts::set(&mut s[54], N, v);
         let v = ts::at(&s[15], N) + ts::at(&s[17], N);
+        ts::set(&mut s[54], N, v);
+        let v = ts::product::<N>(&s[25], &s[35]);
         ts::set(&mut s[55], N, v);
-        let v = ts::product::<N>(&s[26], &s[36]);
+        let v = ts::product::<N>(&s[23], &s[36]);
         ts::set(&mut s[56], N, v);
-        let v = ts::product::<N>(&s[24], &s[37]);
+        let v = ts::at(&s[55], N) + ts::at(&s[56], N);
         ts::set(&mut s[57], N, v);
-        let v = ts::at(&s[56], N) + ts::at(&s[57], N);
+        let v = ts::product::<N>(&s[41], &s[48]);
         ts::set(&mut s[58], N, v);
-        let v = ts::product::<N>(&s[42], &s[49]);
+        let v = k.k14 * ts::at(&s[57], N) - ts::at(&s[58], N);
         ts::set(&mut s[59], N, v);
-        let v = k.k14 * ts::at(&s[58], N) - ts::at(&s[59], N);
+        let v = k.k14 * ts::at(&s[57], N) + ts::at(&s[58], N);
         ts::set(&mut s[60], N, v);
-        let v = ts::at(&s[59], N) + k.k14 * ts::at(&s[58], N);
-        ts::set(&mut s[61], N, v);
         let v = ts::at(&s[2], N) * ts::inverse::<N>();
         ts::set(&mut s[0], N + 1, v);
         let v = ts::at(&s[3], N) * ts::inverse::<N>();
@@ -4771,6 +4960,108 @@ pub mod station_rolling_taylor {
         let v = ts::at(&s[13], N) * ts::inverse::<N>();
         ts::set(&mut s[7], N + 1, v);
     }
+    /// The last order `N` of an expansion: coefficient `N` of the observed series and
+    /// of what they are computed from only (the states' polynomials, of degree `N`, are
+    /// complete after order `N − 1`).
+    #[inline]
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+        let _ = k;
+        let v = ts::at(&s[0], N);
+        ts::set(&mut s[14], N, v);
+        let v = ts::square::<N>(&s[14]);
+        ts::set(&mut s[15], N, v);
+        let v = ts::at(&s[1], N);
+        ts::set(&mut s[16], N, v);
+        let v = ts::square::<N>(&s[16]);
+        ts::set(&mut s[17], N, v);
+        let v = ts::at(&s[15], N) + ts::at(&s[17], N);
+        ts::set(&mut s[18], N, v);
+        let v = ts::half_power::<N>(&s[18], &s[19], -1);
+        ts::set(&mut s[19], N, v);
+        let v = -ts::at(&s[19], N);
+        ts::set(&mut s[20], N, v);
+        let v = ts::product::<N>(&s[14], &s[20]);
+        ts::set(&mut s[21], N, v);
+        let v = ts::product::<N>(&s[16], &s[20]);
+        ts::set(&mut s[22], N, v);
+        let v = ts::product::<N>(&s[16], &s[19]);
+        ts::set(&mut s[23], N, v);
+        let v = ts::product::<N>(&s[2], &s[23]);
+        ts::set(&mut s[24], N, v);
+        let v = ts::product::<N>(&s[14], &s[19]);
+        ts::set(&mut s[25], N, v);
+        let v = ts::product::<N>(&s[3], &s[25]);
+        ts::set(&mut s[26], N, v);
+        let v = -ts::at(&s[24], N) + ts::at(&s[26], N);
+        ts::set(&mut s[27], N, v);
+        let v = ts::product::<N>(&s[19], &s[27]);
+        ts::set(&mut s[28], N, v);
+        let v = ts::product::<N>(&s[2], &s[25]);
+        ts::set(&mut s[29], N, v);
+        let v = ts::product::<N>(&s[3], &s[23]);
+        ts::set(&mut s[30], N, v);
+        let v = ts::at(&s[29], N) + ts::at(&s[30], N);
+        ts::set(&mut s[31], N, v);
+        let v = ts::product::<N>(&s[28], &s[31]);
+        ts::set(&mut s[32], N, v);
+        let v = ts::product::<N>(&s[6], &s[23]);
+        ts::set(&mut s[33], N, v);
+        let v = ts::product::<N>(&s[7], &s[25]);
+        ts::set(&mut s[34], N, v);
+        let v = k.k2 * ts::at(&s[21], N) + k.k5 * ts::at(&s[22], N);
+        ts::set(&mut s[35], N, v);
+        let v = k.k8 * ts::at(&s[21], N) + k.k9 * ts::at(&s[22], N);
+        ts::set(&mut s[36], N, v);
+        let v = k.k6 * ts::at(&s[35], N) + k.k7 * ts::at(&s[36], N);
+        ts::set(&mut s[37], N, v);
+        let v = ts::product::<N>(&s[23], &s[37]);
+        ts::set(&mut s[38], N, v);
+        let v = k.k10 * ts::at(&s[35], N) + k.k11 * ts::at(&s[36], N);
+        ts::set(&mut s[39], N, v);
+        let v = ts::product::<N>(&s[25], &s[39]);
+        ts::set(&mut s[40], N, v);
+        let v = -ts::at(&s[32], N) - ts::at(&s[33], N) + ts::at(&s[34], N)
+            + ts::at(&s[38], N) - ts::at(&s[40], N);
+        ts::set(&mut s[41], N, v);
+        let v = ts::product::<N>(&s[23], &s[41]);
+        ts::set(&mut s[42], N, v);
+        let v = k.k12 * ts::at(&s[23], N) + k.k7 * ts::at(&s[25], N);
+        ts::set(&mut s[43], N, v);
+        let v = ts::product::<N>(&s[23], &s[43]);
+        ts::set(&mut s[44], N, v);
+        let v = k.k13 * ts::at(&s[23], N) + k.k11 * ts::at(&s[25], N);
+        ts::set(&mut s[45], N, v);
+        let v = ts::product::<N>(&s[25], &s[45]);
+        ts::set(&mut s[46], N, v);
+        let v = -ts::at(&s[44], N) + ts::at(&s[46], N);
+        ts::set(&mut s[47], N, v);
+        let v = ts::reciprocal::<N>(&s[47], &s[48]);
+        ts::set(&mut s[48], N, v);
+        let v = ts::product::<N>(&s[42], &s[48]);
+        ts::set(&mut s[49], N, v);
+        let v = k.k2 * ts::at(&s[21], N) + k.k5 * ts::at(&s[22], N) - ts::at(&s[49], N);
+        ts::set(&mut s[50], N, v);
+        let v = ts::product::<N>(&s[25], &s[41]);
+        ts::set(&mut s[51], N, v);
+        let v = ts::product::<N>(&s[48], &s[51]);
+        ts::set(&mut s[52], N, v);
+        let v = k.k8 * ts::at(&s[21], N) + k.k9 * ts::at(&s[22], N) + ts::at(&s[52], N);
+        ts::set(&mut s[53], N, v);
+        let v = ts::at(&s[15], N) + ts::at(&s[17], N);
+        ts::set(&mut s[54], N, v);
+        let v = ts::product::<N>(&s[25], &s[35]);
+        ts::set(&mut s[55], N, v);
+        let v = ts::product::<N>(&s[23], &s[36]);
+        ts::set(&mut s[56], N, v);
+        let v = ts::at(&s[55], N) + ts::at(&s[56], N);
+        ts::set(&mut s[57], N, v);
+        let v = ts::product::<N>(&s[41], &s[48]);
+        ts::set(&mut s[58], N, v);
+        let v = k.k14 * ts::at(&s[57], N) - ts::at(&s[58], N);
+        ts::set(&mut s[59], N, v);
+        let v = k.k14 * ts::at(&s[57], N) + ts::at(&s[58], N);
+        ts::set(&mut s[60], N, v);
+    }
 }
 /// The most series any Taylor system uses (the runtime's storage size).
-pub const TAYLOR_SERIES_MAX: usize = 62;
+pub const TAYLOR_SERIES_MAX: usize = 61;

@@ -194,6 +194,17 @@ impl fmt::Display for ParamError {
 impl core::error::Error for ParamError {}
 
 impl Parameter {
+    /// The stator ring's own entries: its contact spring, damping and start state, which exist
+    /// only with a ring mass (`stator_mass_ratio` > 0; [`ParamError::RingWithoutMass`]).
+    pub const RING: [Parameter; 6] = [
+        Parameter::ContactStiffness,
+        Parameter::StatorDamping,
+        Parameter::Xs0,
+        Parameter::Ys0,
+        Parameter::Vxs0,
+        Parameter::Vys0,
+    ];
+
     /// The parameter's public name, e.g. `speed_ratio`.
     pub const fn name(self) -> &'static str {
         self.info().name
@@ -265,14 +276,8 @@ impl Params {
 /// its free flight grows secularly (`docs/MODEL.md §11`).
 fn cross_checks(p: &Params) -> Result<(), ParamError> {
     if p.stator_mass_ratio == 0.0 {
-        for (parameter, value) in [
-            (Parameter::ContactStiffness, p.contact_stiffness),
-            (Parameter::StatorDamping, p.stator_damping),
-            (Parameter::Xs0, p.xs0),
-            (Parameter::Ys0, p.ys0),
-            (Parameter::Vxs0, p.vxs0),
-            (Parameter::Vys0, p.vys0),
-        ] {
+        let values = Parameter::ALL.into_iter().zip(p.values());
+        for (parameter, value) in values.filter(|(q, _)| Parameter::RING.contains(q)) {
             if value != parameter.info().default {
                 return Err(ParamError::RingWithoutMass { parameter, value });
             }

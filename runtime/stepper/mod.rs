@@ -15,12 +15,16 @@
 //!   the step is free. This is rigorous: no contact deeper than the rounding of h (z − 1 above
 //!   ~1e-15) is missed, grazing ones included. The residual risk is rounding in M itself
 //!   (relative 1e-15 of M·dt²/8, far below TOUCH for dt ≤ 1). Otherwise the step falls back to
-//!   the exact machinery: `FreeSegment` and the switch search of [`locate`] — the analytic
-//!   method's kernel (`analytic::switch`) with the stepper's hard caps.
+//!   the exact machinery: the free piece and the switch search of [`locate`] — the analytic
+//!   method's kernel (`analytic::switch`) with the stepper's hard caps — on the piece's Taylor
+//!   polynomial ([`polynomial`]: the free closed form to below rounding, a Horner sum per
+//!   evaluation); a piece from the step start ends at the free map's state.
 //! * **Contact**: `contact_substeps` sub-steps of exprb43 (or exprb2) per `dt`, each
 //!   re-linearized at its start; a contact exit is proved absent by the same two-parabola test
 //!   on the sub-step's closed form (`LinearSegment::bounds`, tightened by [`curvature`]), else
-//!   located on the sub-step's continuous extension with [`locate`]. A step that enters
+//!   located with [`locate`] on the sub-step's continuous extension taken as its Taylor
+//!   polynomial ([`polynomial::SubstepPolynomial`], six to eight terms at dt = 1e-3; the closed
+//!   form when ρ·h > [`polynomial::MAX_RATE_STEP`]). A step that enters
 //!   contact mid-way fills the rest
 //!   with equal sub-steps of at most dt / `contact_substeps`; one that leaves contact continues
 //!   in exact free flight.
@@ -39,7 +43,9 @@
 //! [`MAX_SEARCH_EVALUATIONS`] = 32 evaluations of a point and a bound, one point per search
 //! chunk (a free piece of length ≤ dt has ≤ 2·max(η, 1 + ν)·dt + 1 chunks) and at most
 //! [`MAX_REFINE_ITERATIONS`] = 40 Newton/bisection steps for each of at most two brackets
-//! (a located switch typically costs 1–2 evaluations and 3–6 refinements). Measured on the paper preset: a contact step
+//! (a located switch typically costs 1–2 evaluations and 3–6 refinements; the exit and entry
+//! searches evaluate the piece's Taylor polynomial of at most [`polynomial::TERMS`] terms, built
+//! once per searched piece). Measured on the paper preset: a contact step
 //! 0.6–0.8 µs, a step holding a switch 1–3.5 µs (the slowest of 10⁶ steps re-timed,
 //! `cargo bench --bench stepper`). Caps are reported, never silent:
 //! * [`StepReport::capped`] (sub-step cap): the last contact sub-step covers the rest of the
@@ -71,6 +77,7 @@ mod config;
 mod exact;
 pub mod friction;
 mod inputs;
+pub mod polynomial;
 mod report;
 pub mod search;
 mod solvers;

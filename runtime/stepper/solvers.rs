@@ -19,16 +19,18 @@
 use core::cell::Cell;
 
 use super::friction::{Slip, SwitchIn, rolling_substep, slip_in};
+use super::polynomial::SubstepPolynomial;
 use super::report::StepReport;
-use super::search::locate_with;
+use super::search::{TOUCH, curvature, locate_with, no_crossing};
 use super::{FreeTransition, StepperConfig};
 use crate::analytic::free::FreeSegment;
 use crate::analytic::linear::ContactConstants;
 use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
 use crate::analytic::segment::{Point, Segment};
-use crate::analytic::switch::{Direction, Search};
+use crate::analytic::switch::{Budget, Direction, Search};
 use crate::driver::{ByRegime, Located, SegmentSolver, within_bounds};
 use crate::geometry;
+use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
 use crate::registration::ContactScheme;
@@ -45,6 +47,8 @@ pub(super) struct Frame<'a> {
     transition: &'a FreeTransition,
     t0: f64,
     dt: f64,
+    /// The forcing phasor (cos θ, sin θ) at `t0` (the stepper's).
+    phasor: (f64, f64),
     nominal: f64,
     /// The local time where the current segment starts (set by the solver that reports the
     /// switch ending the previous one).
@@ -67,6 +71,7 @@ impl<'a> Frame<'a> {
         transition: &'a FreeTransition,
         t0: f64,
         dt: f64,
+        phasor: (f64, f64),
     ) -> Self {
         Frame {
             params,
@@ -74,6 +79,7 @@ impl<'a> Frame<'a> {
             transition,
             t0,
             dt,
+            phasor,
             nominal: dt / f64::from(config.contact_substeps),
             cursor: Cell::new(0.0),
             budget: Cell::new(config.max_substeps),
@@ -185,25 +191,61 @@ impl SegmentSolver for FreePieces<'_, '_> {
         let (s, state) = self.start;
         let (t, rem) = (f.t0 + s, f.dt - s);
         let tr = f.transition;
-        let seg = FreeSegment::with_offset_distance(
-            f.params,
-            tr.constants(),
-            tr.offset_distance(),
-            t,
-            state,
-        );
-        let start = geometry::point(tr.constants().model(), state);
-        let end = seg.point(rem);
+        let model = tr.constants().model();
+        let start = geometry::point(model, state);
         // h holds frequencies up to 2·max(η, 1): chunks as in `FreeFlight`.
         let chunk = 0.5 / f.params.speed_ratio.max(1.0 + f.params.damping_ratio);
-        let found = locate_with(
-            &seg,
-            (0.0, start),
-            (rem, end),
-            Direction::Up,
-            chunk,
-            f.config.budget(),
-        );
+        // The forcing phasor at the piece's start: the stepper's at the step start, else
+        // computed from the time.
+        let phasor = if s == 0.0 {
+            f.phasor
+        } else {
+            // Turned by η·s (a small angle: no argument reduction), as `field::phasor` to
+            // rounding.
+            let (sd, cd) = math::sin_cos(f.params.speed_ratio * s);
+            let (c0, s0) = f.phasor;
+            (c0 * cd - s0 * sd, s0 * cd + c0 * sd)
+        };
+        // The piece as its Taylor polynomial (`polynomial.rs`: the free closed form to far
+        // below rounding, cheaper to evaluate); a piece from the step start ends where the
+        // free map takes it.
+        let (found, end) = match SubstepPolynomial::free(model, &start, phasor, rem) {
+            Some(poly) => {
+                let end = if s == 0.0 && rem == tr.dt() {
+                    geometry::point(model, tr.apply(&state, phasor))
+                } else {
+                    poly.point(rem)
+                };
+                let found = locate_with(
+                    &poly,
+                    (0.0, start),
+                    (rem, end),
+                    Direction::Up,
+                    chunk,
+                    f.config.budget(),
+                );
+                (found, end)
+            }
+            None => {
+                let seg = FreeSegment::with_offset_distance(
+                    f.params,
+                    tr.constants(),
+                    tr.offset_distance(),
+                    t,
+                    state,
+                );
+                let end = seg.point(rem);
+                let found = locate_with(
+                    &seg,
+                    (0.0, start),
+                    (rem, end),
+                    Direction::Up,
+                    chunk,
+                    f.config.budget(),
+                );
+                (found, end)
+            }
+        };
         match f.resolve(found) {
             Some((se, p)) => f.switch_at(s, se, p.state, EventKind::Enter),
             None => Located::Reached(end.state),
@@ -318,18 +360,47 @@ impl SubstepKind for Contact<'_> {
             geometry::point(model, sub.end),
         );
         let exit = f
-            .resolve(locate_with(
-                &sub.segment,
-                (0.0, start),
-                (sub.length, end),
-                Direction::Down,
-                sub.length,
-                f.config.budget(),
-            ))
+            .resolve(exit_search(sub, start, end, f.config.budget()))
             .map(|(sx, p)| (sx, p.state, EventKind::Exit));
         let limit = exit.map_or(sub.length, |(sx, _, _)| sx);
         let slipped = slip_in(sub, t, state, slip, limit, f.config.budget());
         Ok((sub.end, slipped.or(exit)))
+    }
+}
+
+/// The exit (z = 1 downward) in the contact sub-step `sub` from `state`, with the points at its
+/// ends: the sub-step proved exit-free by one bound test on its closed form (the common contact
+/// step, as [`locate_with`]'s first test decides it), else located on the sub-step's Taylor
+/// polynomial ([`SubstepPolynomial`]: the same function to far below rounding, a Horner sum per
+/// evaluation instead of the closed form's transcendental functions), or on the closed form
+/// when the sub-step is too long for the polynomial.
+fn exit_search(sub: &SubStep, start: Point, end: Point, budget: &Budget) -> Search<Point> {
+    let len = sub.length;
+    // g = −h on the way out; the start counts as inside (g ≤ 0) whatever its rounding.
+    let (ga, dga, gb, dgb) = (-start.h, -start.dh, -end.h, -end.dh);
+    if gb <= TOUCH && len > budget.min_interval * (1.0 + len) {
+        let m2 = curvature(&sub.segment, 0.0, &start, len);
+        if no_crossing(ga.min(0.0), dga, gb, dgb, m2, len, TOUCH) {
+            return Search::None;
+        }
+    }
+    match SubstepPolynomial::contact(&sub.segment, &start, len) {
+        Some(poly) => locate_with(
+            &poly,
+            (0.0, start),
+            (len, end),
+            Direction::Down,
+            len,
+            budget,
+        ),
+        None => locate_with(
+            &sub.segment,
+            (0.0, start),
+            (len, end),
+            Direction::Down,
+            len,
+            budget,
+        ),
     }
 }
 

@@ -4,6 +4,7 @@
 //! anywhere in the step (dense output) and the switch functions as polynomials.
 
 use super::kernels::{self, CAPACITY, MAX_ORDER, Series};
+use super::step::StepRule;
 use crate::coefficients::{
     ModelParams, Slip, TAYLOR_SERIES_MAX, contact_taylor, rolling_taylor, slipping_taylor,
 };
@@ -13,16 +14,20 @@ use crate::params::State;
 use crate::propagate::Regime;
 use crate::refine::{Knot, Refinement, refine};
 
-/// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
+/// `$each` for the orders N = 1 .. `$p` and `$last` for N = `$p` (at most [`MAX_ORDER`] = 22),
+/// N a constant in each.
 macro_rules! orders {
-    ($p:expr, |$n:ident| $call:expr) => {{
-        orders!(@each $p, $n, $call; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
+    ($p:expr, |$n:ident| $each:expr, $last:expr) => {{
+        orders!(@each $p, $n, $each, $last; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
     }};
-    (@each $p:expr, $n:ident, $call:expr; $($k:literal)+) => {
+    (@each $p:expr, $n:ident, $each:expr, $last:expr; $($k:literal)+) => {
         $(
-            if $k <= $p {
+            if $k < $p {
                 const $n: usize = $k;
-                $call;
+                $each;
+            } else if $k == $p {
+                const $n: usize = $k;
+                $last;
             }
         )+
     };
@@ -65,6 +70,7 @@ pub struct Expansion {
     /// σ while slipping (1 otherwise): the slip-velocity switch is σw.
     slip: f64,
     order: usize,
+    rule: StepRule,
     series: Series,
 }
 
@@ -76,6 +82,7 @@ impl Expansion {
             field: Field::Contact(contact_taylor::constants(model)),
             slip: 1.0,
             order,
+            rule: StepRule::new(order),
             series: [[0.0; CAPACITY]; TAYLOR_SERIES_MAX],
         }
     }
@@ -116,15 +123,27 @@ impl Expansion {
         match &self.field {
             Field::Contact(k) => {
                 contact_taylor::order0(k, s);
-                orders!(p, |N| contact_taylor::order::<N>(k, s));
+                orders!(
+                    p,
+                    |N| contact_taylor::order::<N>(k, s),
+                    contact_taylor::last::<N>(k, s)
+                );
             }
             Field::Slipping(k) => {
                 slipping_taylor::order0(k, s);
-                orders!(p, |N| slipping_taylor::order::<N>(k, s));
+                orders!(
+                    p,
+                    |N| slipping_taylor::order::<N>(k, s),
+                    slipping_taylor::last::<N>(k, s)
+                );
             }
             Field::Rolling(k) => {
                 rolling_taylor::order0(k, s);
-                orders!(p, |N| rolling_taylor::order::<N>(k, s));
+                orders!(
+                    p,
+                    |N| rolling_taylor::order::<N>(k, s),
+                    rolling_taylor::last::<N>(k, s)
+                );
             }
         }
     }
@@ -133,26 +152,7 @@ impl Expansion {
     /// ρ = min over the last two orders n of (max(1, ‖x₀‖∞)/‖xₙ‖∞)^{1/n} over the six states,
     /// h = ρ/e² · e^{−0.7/(p−1)}.
     pub fn step_size(&self) -> f64 {
-        let p = self.order;
-        let norm = |n: usize| {
-            self.series
-                .iter()
-                .take(6)
-                .map(|c| math::abs(kernels::at(c, n)))
-                .fold(0.0, f64::max)
-        };
-        let log_reference = math::ln(norm(0).max(1.0));
-        // ln ρₙ = (ln ref − ln ‖xₙ‖)/n (+∞ for a vanishing order).
-        let log_radius = |n: usize| {
-            let v = norm(n);
-            if v > 0.0 {
-                (log_reference - math::ln(v)) / n as f64
-            } else {
-                f64::INFINITY
-            }
-        };
-        let log_rho = log_radius(p - 1).min(log_radius(p));
-        math::exp(log_rho - 2.0 - 0.7 / (p as f64 - 1.0))
+        self.rule.step(&self.series)
     }
 
     /// The forcing phasor (cos θ, sin θ) at local time `s`, from its series (exact to the
@@ -167,8 +167,26 @@ impl Expansion {
         State::new(v(0), v(1), v(2), v(3))
     }
 
+    /// The rotor state and the forcing phasor at local time `s`: the six state polynomials in
+    /// one pass (where the next step starts). The same values as [`Expansion::state_at`] and
+    /// [`Expansion::phasor_at`], bit for bit.
+    pub fn point_at(&self, s: f64) -> (State, (f64, f64)) {
+        const NONE: &[f64; CAPACITY] = &[0.0; CAPACITY];
+        let series = [0, 1, 2, 3, 4, 5].map(|i| self.series.get(i).unwrap_or(NONE));
+        let [x, y, vx, vy, ct, st] = kernels::evaluate_many(series, self.order, s);
+        (State::new(x, y, vx, vy), (ct, st))
+    }
+
     /// The switch function's polynomial coefficients (positive inside the regime).
     pub fn switch_polynomial(&self, switch: Switch) -> [f64; CAPACITY] {
+        let (series, sign) = self.switch_series(switch);
+        series.map(|c| c * sign)
+    }
+
+    /// The series of a switch function and the sign that makes it positive inside the regime
+    /// (σ for the slip velocity, 1 otherwise): [`Expansion::switch_polynomial`] without a copy.
+    pub fn switch_series(&self, switch: Switch) -> (&[f64; CAPACITY], f64) {
+        const NONE: &[f64; CAPACITY] = &[0.0; CAPACITY];
         let (index, sign) = match (switch, &self.field) {
             (Switch::Boundary, Field::Contact(_)) => (contact_taylor::BOUNDARY, 1.0),
             (Switch::Boundary, Field::Slipping(_)) => (slipping_taylor::BOUNDARY, 1.0),
@@ -177,11 +195,7 @@ impl Expansion {
             (Switch::ConeUpper, _) => (rolling_taylor::CONE_UPPER, 1.0),
             (Switch::ConeLower, _) => (rolling_taylor::CONE_LOWER, 1.0),
         };
-        let mut c = self.series.get(index).copied().unwrap_or([0.0; CAPACITY]);
-        for ck in &mut c {
-            *ck *= sign;
-        }
-        c
+        (self.series.get(index).unwrap_or(NONE), sign)
     }
 
     /// The size of the terms a switch function's value at the expansion point is computed from

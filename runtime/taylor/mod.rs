@@ -18,6 +18,7 @@ pub mod expansion;
 pub mod kernels;
 pub mod roots;
 mod solver;
+mod step;
 
 pub use solver::TaylorContact;
 
@@ -71,7 +72,10 @@ impl TaylorPropagator {
         let t0 = problem.start_time;
         Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
             let mut contact = TaylorContact::new(&params, tol, t0, s0);
-            if regime == Regime::Contact {
+            // The one solver serves contact and rolling: a run (or a resumed run) that starts
+            // rolling starts it on the rolling field, not on the frictionless one it is built
+            // with (issue 32 item 3: a start with w = 0 where the λ rule says roll).
+            if regime != Regime::Free {
                 contact.start(regime, slip, t0, s0)?;
             }
             Ok(TaylorSolvers {

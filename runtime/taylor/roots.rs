@@ -48,25 +48,27 @@ impl Poly {
     /// Sign variations of (1 + x)^d P(a + (b − a)/(1 + x)): Descartes' bound on the number of
     /// roots in (a, b) (exact when 0 or 1).
     fn variations(&self, a: f64, b: f64) -> usize {
-        let d = self.degree;
+        let d = self.degree.min(CAPACITY - 1);
         // P(a + w t): Taylor shift by a, then scale by w.
         let mut q = self.c;
         shift(&mut q, d, a);
         let w = b - a;
         let mut scale = 1.0;
-        for ck in q.iter_mut().take(d + 1) {
+        for ck in q.get_mut(..=d).unwrap_or(&mut []) {
             *ck *= scale;
             scale *= w;
         }
         // Reverse, then shift by 1.
         let mut r = [0.0; CAPACITY];
-        for (k, rk) in r.iter_mut().take(d + 1).enumerate() {
-            *rk = q.get(d - k).copied().unwrap_or(0.0);
+        if let (Some(to), Some(from)) = (r.get_mut(..=d), q.get(..=d)) {
+            for (rk, &qk) in to.iter_mut().zip(from.iter().rev()) {
+                *rk = qk;
+            }
         }
         shift(&mut r, d, 1.0);
         let mut count = 0;
         let mut last = 0.0;
-        for &rk in r.iter().take(d + 1) {
+        for &rk in r.get(..=d).unwrap_or(&[]) {
             if rk != 0.0 {
                 if last != 0.0 && (rk < 0.0) != (last < 0.0) {
                     count += 1;
@@ -78,91 +80,120 @@ impl Poly {
     }
 }
 
-/// Taylor shift in place: the coefficients of p(t + a) (degree `d`).
+/// Taylor shift in place: the coefficients of p(t + a) (degree `d`), by d passes of synthetic
+/// division (each pass carries the coefficient above, already updated, down the array).
 fn shift(c: &mut [f64; CAPACITY], d: usize, a: f64) {
     if a == 0.0 {
         return;
     }
+    let d = d.min(CAPACITY - 1);
+    let top = c.get(d).copied().unwrap_or(0.0);
     for i in 0..d {
-        for k in (i..d).rev() {
-            let hi = c.get(k + 1).copied().unwrap_or(0.0);
-            if let Some(ck) = c.get_mut(k) {
-                *ck += a * hi;
-            }
+        let mut above = top;
+        for ck in c.get_mut(i..d).unwrap_or(&mut []).iter_mut().rev() {
+            *ck += a * above;
+            above = *ck;
         }
     }
 }
 
-/// The first local time s ∈ [0, h] where the polynomial Σ c_k s^k (degree `degree`) leaves the
-/// regime, or `None` when it stays above −band over the step.
+/// A crossing of a switch polynomial: where the function reaches 0 and where it has fallen
+/// through the rounding band below it (local times, `at` ≤ `past`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// The root: the last point before `past` where the function is ≥ 0.
+    pub at: f64,
+    /// Where the function falls through −band: the side the motion takes is resolved there.
+    pub past: f64,
+}
+
+/// The first local time s ∈ [0, h] where the polynomial `sign`·Σ c_k s^k (degree `degree`)
+/// leaves the regime, or `None` when it stays above −band over the step.
 ///
 /// `scale` is the size of the terms the function's value is computed from (1 for z² − 1); the
 /// band is 64 ulps of it (or of the polynomial's variation over the step, if larger). At a
 /// segment's start (`segment_start`) a start value below the band counts as inside (the
 /// segment starts on its switch surface, as the other methods' offsets make it); later it is a
 /// crossing missed to rounding at the end of the previous step, reported at once.
+///
+/// Most steps end at the exclusion test, one pass over the coefficients without a copy; only a
+/// step it cannot clear builds the polynomial in t = s/h and isolates its first crossing. The
+/// root is polished to the last bits when `precise`; else it is a point where the function is
+/// still ≥ 0 within a few rounding bands of it (for a caller that refines it on other
+/// polynomials anyway: the exit through z = 1 on the step's state).
 pub fn first_exit(
     c: &[f64; CAPACITY],
+    sign: f64,
     degree: usize,
     h: f64,
     scale: f64,
     segment_start: bool,
-) -> Option<f64> {
-    let mut p = Poly {
-        c: [0.0; CAPACITY],
-        degree: degree.min(CAPACITY - 1),
-    };
-    let mut power = 1.0;
-    for (pk, &ck) in p.c.iter_mut().zip(c.iter()).take(p.degree + 1) {
-        *pk = ck * power;
+    precise: bool,
+) -> Option<Crossing> {
+    let degree = degree.min(CAPACITY - 1);
+    // The coefficients in t: their size and the sum of the negative ones above order 0 (only
+    // those can pull the polynomial down for t ∈ [0, 1]).
+    let coefficients = c.get(..=degree).unwrap_or(c);
+    let start = coefficients.first().map_or(0.0, |&c0| c0 * sign);
+    // Σ|v| and Σv over the coefficients above order 0: the negative ones sum to half their
+    // difference (no branch and no comparison per coefficient).
+    let (mut magnitude, mut signed) = (0.0, 0.0);
+    let mut power = sign;
+    for &ck in coefficients.get(1..).unwrap_or(&[]) {
         power *= h;
+        let v = ck * power;
+        magnitude += math::abs(v);
+        signed += v;
     }
-    let size: f64 = p.c.iter().take(p.degree + 1).map(|&x| math::abs(x)).sum();
+    let size = math::abs(start) + magnitude;
+    let falls = 0.5 * (magnitude - signed);
+    let mut start = start;
     if size == 0.0 || !size.is_finite() {
         return None;
     }
     let band = START_BAND * size.max(scale);
-    let p0 = p.c.first().copied().unwrap_or(0.0);
-    if p0 < -band {
+    if start < -band {
         if !segment_start {
-            return Some(0.0);
+            return Some(Crossing { at: 0.0, past: 0.0 });
         }
         // The segment's start is inside by definition: measure from it.
-        if let Some(c0) = p.c.first_mut() {
-            *c0 = 0.0;
-        }
+        start = 0.0;
+    }
+    // Exclusion: p + band stays positive on [0, 1] when its value at 0 exceeds what the
+    // negative coefficients can take away.
+    if start + band > falls {
+        return None;
+    }
+    let mut p = Poly {
+        c: [0.0; CAPACITY],
+        degree,
+    };
+    let mut power = sign;
+    for (pk, &ck) in p.c.iter_mut().zip(c.iter()).take(degree + 1) {
+        *pk = ck * power;
+        power *= h;
+    }
+    if let Some(c0) = p.c.first_mut() {
+        *c0 = start;
     }
     // Where the function falls through −band: the first root of p + band.
     let mut lowered = p;
     if let Some(c0) = lowered.c.first_mut() {
         *c0 += band;
     }
-    if excluded(&lowered) {
-        return None;
-    }
     let (a, b) = isolate(&lowered)?;
-    let below = polish(&lowered, a, b);
-    Some(h * crossing_before(&p, below, band))
-}
-
-/// Whether the polynomial is positive on [0, 1] for sure: its value at 0 exceeds the sum of its
-/// negative coefficients (only those can pull it down for t ∈ [0, 1]).
-fn excluded(p: &Poly) -> bool {
-    let start = p.c.first().copied().unwrap_or(0.0);
-    let falls: f64 =
-        p.c.iter()
-            .take(p.degree + 1)
-            .skip(1)
-            .filter(|&&x| x < 0.0)
-            .map(|x| -x)
-            .sum();
-    start > falls
+    // Past the fall to within half a band: all that is asked of it is p < 0 there.
+    let below = polish(&lowered, a, b, 0.5 * band);
+    Some(Crossing {
+        at: h * crossing_before(&p, below, band, precise),
+        past: h * below,
+    })
 }
 
 /// The root of `p` just before `below`, where p = −band: the last point where p ≥ 0, searched
 /// back from `below` in widening brackets (the function falls through the band there, so its
 /// root lies about band/|p'| earlier), then polished; 0 when p is negative back to the start.
-fn crossing_before(p: &Poly, below: f64, band: f64) -> f64 {
+fn crossing_before(p: &Poly, below: f64, band: f64, precise: bool) -> f64 {
     let (_, slope) = p.eval_with_derivative(below);
     let mut width = if slope < 0.0 {
         2.0 * band / -slope
@@ -172,14 +203,14 @@ fn crossing_before(p: &Poly, below: f64, band: f64) -> f64 {
     loop {
         let a = below - width;
         if a <= 0.0 {
-            return if p.eval(0.0) >= 0.0 {
-                polish(p, 0.0, below)
+            return if p.eval(0.0) >= 0.0 && precise {
+                polish(p, 0.0, below, 0.0)
             } else {
                 0.0
             };
         }
         if p.eval(a) >= 0.0 {
-            return polish(p, a, below);
+            return if precise { polish(p, a, below, 0.0) } else { a };
         }
         width *= 4.0;
     }
@@ -235,10 +266,10 @@ fn isolate(p: &Poly) -> Option<(f64, f64)> {
     None
 }
 
-/// The root in [a, b] (p(a) > 0 ≥ p(b)) to full precision: the one refinement
-/// ([`crate::refine`]) on −p with Newton steps on the polynomial; the first point at or past the
-/// crossing.
-fn polish(p: &Poly, a: f64, b: f64) -> f64 {
+/// The root in [a, b] (p(a) > 0 ≥ p(b)): the one refinement ([`crate::refine`]) on −p with
+/// Newton steps on the polynomial. With `residual` 0, to full precision: the first point at or
+/// past the crossing; else the first point seen where |p| ≤ `residual`.
+fn polish(p: &Poly, a: f64, b: f64, residual: f64) -> f64 {
     if a == b {
         return a;
     }
@@ -258,12 +289,17 @@ fn polish(p: &Poly, a: f64, b: f64) -> f64 {
     }
     let settings = Refinement {
         max_steps: 100,
-        residual: 0.0,
+        residual,
         scale: 0.0,
-        first_guess: Some(0.5 * (a + b)),
-        close: true,
+        first_guess: (residual == 0.0).then_some(0.5 * (a + b)),
+        close: residual == 0.0,
     };
-    refine(knot, below, above, &settings).at_or_past().s
+    let found = refine(knot, below, above, &settings);
+    if residual == 0.0 {
+        found.at_or_past().s
+    } else {
+        found.best.s
+    }
 }
 
 #[cfg(test)]
@@ -287,16 +323,16 @@ mod tests {
         // (t − 0.3)(t − 0.3 − 1e-5)(t − 0.8), negative leading sign so that p(0) > 0: the first
         // root to the conditioning of a root pair 1e-5 apart (rounding / |p'| ≈ 1e-11).
         let c = poly(&[0.3, 0.3 + 1e-5, 0.8], -1.0);
-        let t = first_exit(&c, 3, 1.0, 1.0, false);
+        let t = first_exit(&c, 1.0, 3, 1.0, 1.0, false, true).map(|c| c.at);
         assert!(t.is_some_and(|t| (t - 0.3).abs() < 1e-10), "{t:?}");
         // 1e-7 apart: the dip between them (−1e-15) is below the band (64 ulps): a touch at
         // rounding level, not a switch; the next crossing is 0.8.
         let c = poly(&[0.3, 0.3 + 1e-7, 0.8], -1.0);
-        let t = first_exit(&c, 3, 1.0, 1.0, false);
+        let t = first_exit(&c, 1.0, 3, 1.0, 1.0, false, true).map(|c| c.at);
         assert!(t.is_some_and(|t| (t - 0.8).abs() < 1e-12), "{t:?}");
         // 1e-6 apart: a dip of −1.3e-13, a real excursion, found at its first root.
         let c = poly(&[0.3, 0.3 + 1e-6, 0.8], -1.0);
-        let t = first_exit(&c, 3, 1.0, 1.0, false);
+        let t = first_exit(&c, 1.0, 3, 1.0, 1.0, false, true).map(|c| c.at);
         assert!(t.is_some_and(|t| (t - 0.3).abs() < 1e-9), "{t:?}");
     }
 
@@ -304,27 +340,27 @@ mod tests {
     fn a_start_on_the_surface_finds_the_next_crossing() {
         // t (t − 1e-10)·(−1): zero at the start, positive until 1e-10, then negative.
         let c = poly(&[0.0, 1e-10], -1.0);
-        let t = first_exit(&c, 2, 1.0, 1.0, false).unwrap();
+        let t = first_exit(&c, 1.0, 2, 1.0, 1.0, false, true).unwrap().at;
         assert!((t - 1e-10).abs() < 1e-24, "{t}");
         // Leaving at once: −t (t + 1), found within rounding of the start.
         let c = poly(&[0.0, -1.0], -1.0);
-        let t = first_exit(&c, 2, 1.0, 1.0, false);
+        let t = first_exit(&c, 1.0, 2, 1.0, 1.0, false, true).map(|c| c.at);
         assert!(t.is_some_and(|t| t < 1e-13), "{t:?}");
         // A double zero at the start that only dips by rounding: t² − 1e-18 t (after `slip`).
         let mut c = [0.0; CAPACITY];
         c[1] = -1e-18;
         c[2] = 1.0;
-        assert_eq!(first_exit(&c, 2, 1.0, 1.0, true), None);
+        assert_eq!(first_exit(&c, 1.0, 2, 1.0, 1.0, true, true), None);
     }
 
     #[test]
     fn a_touch_is_not_a_crossing() {
         // (t − 0.5)² ≥ 0.
         let c = poly(&[0.5, 0.5], 1.0);
-        assert_eq!(first_exit(&c, 2, 1.0, 1.0, false), None);
+        assert_eq!(first_exit(&c, 1.0, 2, 1.0, 1.0, false, true), None);
         // Positive throughout: −(t − 1.5)(t + 0.5).
         let c = poly(&[1.5, -0.5], -1.0);
-        assert_eq!(first_exit(&c, 2, 1.0, 1.0, false), None);
+        assert_eq!(first_exit(&c, 1.0, 2, 1.0, 1.0, false, true), None);
     }
 
     #[test]
@@ -333,7 +369,7 @@ mod tests {
         let mut c = [0.0; CAPACITY];
         c[0] = 1.0;
         c[1] = -4.0;
-        let s = first_exit(&c, 1, 0.5, 1.0, false).unwrap();
+        let s = first_exit(&c, 1.0, 1, 0.5, 1.0, false, true).unwrap().at;
         assert!((s - 0.25).abs() < 1e-16);
     }
 }

@@ -3,12 +3,15 @@
 //! polynomials ([`super::roots`]), targets served from the same polynomials.
 
 use super::expansion::{Expansion, Switch, order_for};
-use super::roots::first_exit;
+use super::roots::{Crossing, first_exit};
 use crate::coefficients::ModelParams;
 use crate::driver::{Located, SegmentSolver};
 use crate::field::{self, SlipZero};
+use crate::math;
 use crate::params::{Params, State};
-use crate::propagate::{Event, EventKind, PropagationError, Regime, within_bounds};
+use crate::propagate::{
+    DIVERGENCE_RADIUS, Event, EventKind, PropagationError, Regime, within_bounds,
+};
 
 /// A contact regime's solver: Taylor steps on the regime's field.
 pub struct TaylorContact {
@@ -23,8 +26,9 @@ pub struct TaylorContact {
     local: f64,
     length: f64,
     start: State,
-    /// The state at the step's end (the next step's start).
+    /// The state and the forcing phasor at the step's end (the next step's start).
     end: State,
+    end_phasor: (f64, f64),
     stepped: bool,
     /// Whether the current step is the segment's first (its start counts as inside).
     first_step: bool,
@@ -47,6 +51,7 @@ impl TaylorContact {
             length: 0.0,
             start: s0,
             end: s0,
+            end_phasor: (1.0, 0.0),
             stepped: false,
             first_step: true,
             exit: None,
@@ -60,22 +65,48 @@ impl TaylorContact {
         (p.ct, p.st)
     }
 
-    /// The earliest switch in the current expansion over `[0, h]`: local time and which.
-    fn earliest(&self, h: f64, skip: Option<Switch>) -> Option<(f64, Switch)> {
-        let mut first: Option<(f64, Switch)> = None;
+    /// The earliest switch in the current expansion over `[0, h]`: where and which.
+    fn earliest(&self, h: f64, skip: Option<Switch>) -> Option<(Crossing, Switch)> {
+        let mut first: Option<(Crossing, Switch)> = None;
         for &sw in self.expansion.switches() {
             if Some(sw) == skip {
                 continue;
             }
-            let c = self.expansion.switch_polynomial(sw);
+            let (c, sign) = self.expansion.switch_series(sw);
             let scale = self.expansion.rounding_scale(sw, &self.model);
-            if let Some(s) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
-                && first.is_none_or(|(f, _)| s < f)
+            // An exit is refined on the step's state polynomial afterwards (`polish_boundary`).
+            let precise = sw != Switch::Boundary;
+            let (order, start) = (self.expansion.order(), self.first_step);
+            if let Some(x) = first_exit(c, sign, order, h, scale, start, precise)
+                && first.is_none_or(|(f, _)| x.at < f.at)
             {
-                first = Some((s, sw));
+                first = Some((x, sw));
             }
         }
         first
+    }
+
+    /// What a zero of the slip velocity at local time `crossing.at` is ([`field::at_slip_zero`]
+    /// there). A touch there only to rounding of the friction cone — σw falls through its
+    /// rounding band just after, so the motion does leave σw ≥ 0 — is decided where the fall is
+    /// resolved (`crossing.past`): at a start on w = 0 with |λ| = μN to rounding the margin's
+    /// rate says roll or reverse, and a touch there would restart the search on the same zero at
+    /// no distance, step after step (issue 32 item 3's sibling: a start on the cone's edge).
+    fn slip_zero(&self, crossing: Crossing, state: &State) -> Option<EventKind> {
+        let decide = |s: f64, state: &State| {
+            let time = self.origin + (self.local + s);
+            let phasor = field::phasor(&self.model, time);
+            match field::at_slip_zero(&self.model, &phasor, state, self.slip) {
+                SlipZero::Roll => Some(EventKind::Roll),
+                SlipZero::Reverse => Some(EventKind::Reverse),
+                SlipZero::Touch => None,
+            }
+        };
+        decide(crossing.at, state).or_else(|| {
+            (crossing.past > crossing.at)
+                .then(|| decide(crossing.past, &self.expansion.state_at(crossing.past)))
+                .flatten()
+        })
     }
 }
 
@@ -116,7 +147,7 @@ impl SegmentSolver for TaylorContact {
         // The forcing phasor from the time at a segment's start, then carried by its series.
         let phasor = if self.stepped {
             self.start = self.end;
-            let phasor = self.expansion.phasor_at(self.length);
+            let phasor = self.end_phasor;
             self.local += self.length;
             phasor
         } else {
@@ -136,26 +167,19 @@ impl SegmentSolver for TaylorContact {
         // A touch of w = 0 ends the step there (the next one starts on it); one found at the
         // step start itself is rounding and looked past.
         for _ in 0..2 {
-            let Some((s, sw)) = self.earliest(h, skip) else {
+            let Some((crossing, sw)) = self.earliest(h, skip) else {
                 break;
             };
             let s = match sw {
-                Switch::Boundary => self.expansion.polish_boundary(&self.model, s, h),
-                _ => s,
+                Switch::Boundary => self.expansion.polish_boundary(&self.model, crossing.at, h),
+                _ => crossing.at,
             };
             let time = self.origin + (self.local + s);
             let state = self.expansion.state_at(s);
             let kind = match sw {
                 Switch::Boundary => Some(EventKind::Exit),
                 Switch::ConeUpper | Switch::ConeLower => Some(EventKind::Slip),
-                Switch::SlipVelocity => {
-                    let phasor = field::phasor(&self.model, time);
-                    match field::at_slip_zero(&self.model, &phasor, &state, self.slip) {
-                        SlipZero::Roll => Some(EventKind::Roll),
-                        SlipZero::Reverse => Some(EventKind::Reverse),
-                        SlipZero::Touch => None,
-                    }
-                }
+                Switch::SlipVelocity => self.slip_zero(crossing, &state),
             };
             match kind {
                 Some(kind) => {
@@ -170,9 +194,12 @@ impl SegmentSolver for TaylorContact {
                 None => skip = Some(sw),
             }
         }
-        let end = self.expansion.state_at(self.length);
+        let (end, end_phasor) = self.expansion.point_at(self.length);
         self.end = end;
-        if !within_bounds(&end) {
+        self.end_phasor = end_phasor;
+        // |x| + |y| ≥ |q|: within it the state is within bounds without a `hypot` per step.
+        let near = end.is_finite() && math::abs(end.x) + math::abs(end.y) <= DIVERGENCE_RADIUS;
+        if !near && !within_bounds(&end) {
             return Err(PropagationError::Diverged {
                 time: self.origin + (self.local + self.length),
                 state: end,

@@ -52,12 +52,11 @@ fn scaled(c: Coef, operand: TokenStream, counts: &mut OpCounts) -> (TokenStream,
     }
 }
 
-/// A signed sum of terms.
+/// A signed sum of terms, added in the order given (the caller puts the terms whose values are
+/// known first at the front: the last additions are the ones on the chain).
 fn sum(terms: Vec<(TokenStream, bool)>, counts: &mut OpCounts) -> TokenStream {
     let mut out = TokenStream::new();
-    let mut ordered = terms;
-    ordered.sort_by_key(|t| t.1);
-    for (k, (t, neg)) in ordered.into_iter().enumerate() {
+    for (k, (t, neg)) in terms.into_iter().enumerate() {
         if k == 0 {
             out.extend(if neg { quote!(-#t) } else { t });
         } else {
@@ -69,6 +68,130 @@ fn sum(terms: Vec<(TokenStream, bool)>, counts: &mut OpCounts) -> TokenStream {
         out = quote!(0.0);
     }
     out
+}
+
+/// A linear combination's terms in the order their coefficients become known within an order:
+/// by series index (the states, set at the end of the previous order, first; every other series
+/// after the ones it reads), so that the last addition waits only for the newest term.
+fn by_availability(terms: &[(Coef, usize)]) -> Vec<(Coef, usize)> {
+    let mut sorted = terms.to_vec();
+    sorted.sort_by_key(|&(_, j)| j);
+    sorted
+}
+
+/// Which operations the observed series depend on (themselves included): all an order needs to
+/// compute when it only extends the switch functions (the last order of an expansion: the
+/// states' polynomials end one order earlier).
+fn observed_closure(program: &Program) -> Vec<bool> {
+    let mut needed = vec![false; program.ops.len()];
+    let mut stack: Vec<usize> = program.observed.clone();
+    while let Some(i) = stack.pop() {
+        if needed.get(i).copied().unwrap_or(true) {
+            continue;
+        }
+        needed[i] = true;
+        match &program.ops[i] {
+            Op::State => {}
+            Op::Linear { terms, .. } => stack.extend(terms.iter().map(|t| t.1)),
+            Op::Product(a, b) => stack.extend([*a, *b]),
+            Op::Square(a) | Op::Power(a, _) | Op::Sqrt(a) | Op::HalfPower(a, _) => stack.push(*a),
+        }
+    }
+    needed
+}
+
+/// The body of an order-n function: coefficient n of every operation `include`s (in program
+/// order), then, with `states`, each state's coefficient n + 1; with the operation counts as
+/// (fixed part, part per unit of n).
+fn order_body(
+    program: &Program,
+    include: &[bool],
+    states: bool,
+) -> (TokenStream, OpCounts, OpCounts) {
+    let mut fixed = OpCounts::default();
+    let mut per_n = OpCounts::default();
+    let mut body = TokenStream::new();
+    for (i, op) in program.ops.iter().enumerate().skip(program.states) {
+        if !include.get(i).copied().unwrap_or(false) {
+            continue;
+        }
+        let sr = |j: usize| {
+            let j = index(j);
+            quote!(&s[#j])
+        };
+        let value = match op {
+            Op::State => unreachable!("states come first"),
+            Op::Linear { terms, .. } => {
+                let parts = by_availability(terms)
+                    .iter()
+                    .map(|&(c, j)| {
+                        let j = index(j);
+                        scaled(c, quote!(ts::at(&s[#j], N)), &mut fixed)
+                    })
+                    .collect();
+                sum(parts, &mut fixed)
+            }
+            Op::Product(a, b) => {
+                per_n.mul += 1;
+                per_n.add += 1;
+                fixed.mul += 1;
+                // The operand computed later in the order second (its coefficient n is the
+                // kernel's last term).
+                let (a, b) = (sr(*a.min(b)), sr(*a.max(b)));
+                quote!(ts::product::<N>(#a, #b))
+            }
+            Op::Square(a) => {
+                // n/2 products, doubled, plus the middle term.
+                per_n.mul += 1;
+                fixed.mul += 2;
+                let a = sr(*a);
+                quote!(ts::square::<N>(#a))
+            }
+            Op::Power(a, -1) => {
+                per_n.mul += 1;
+                per_n.add += 1;
+                fixed.mul += 1;
+                let (a, r) = (sr(*a), sr(i));
+                quote!(ts::reciprocal::<N>(#a, #r))
+            }
+            Op::Power(a, p) => {
+                per_n.mul += 3;
+                per_n.add += 1;
+                fixed.div += 1;
+                let (a, r) = (sr(*a), sr(i));
+                let p = Literal::i32_unsuffixed(*p);
+                quote!(ts::power::<N>(#a, #r, #p))
+            }
+            Op::Sqrt(a) => {
+                per_n.mul += 1;
+                fixed.div += 1;
+                fixed.add += 1;
+                let (a, r) = (sr(*a), sr(i));
+                quote!(ts::sqrt::<N>(#a, #r))
+            }
+            Op::HalfPower(a, p) => {
+                per_n.mul += 2;
+                per_n.add += 1;
+                fixed.div += 1;
+                let (a, r) = (sr(*a), sr(i));
+                let p = Literal::i32_unsuffixed(*p);
+                quote!(ts::half_power::<N>(#a, #r, #p))
+            }
+        };
+        let i = index(i);
+        body.extend(quote!(let v = #value; ts::set(&mut s[#i], N, v);));
+    }
+    if states {
+        for (state, &rate) in program.rates.iter().enumerate() {
+            fixed.mul += 1;
+            let (st, r) = (index(state), index(rate));
+            body.extend(quote!(
+                let v = ts::at(&s[#r], N) * ts::inverse::<N>();
+                ts::set(&mut s[#st], N + 1, v);
+            ));
+        }
+    }
+    (body, fixed, per_n)
 }
 
 /// Emit `system` (decomposed as `program`) as a module; `groups` resolves the constants'
@@ -126,7 +249,7 @@ pub fn emit_system(
                         }
                     });
                 }
-                for &(c, j) in terms {
+                for &(c, j) in &by_availability(terms) {
                     parts.push(scaled(c, at(j), &mut c0));
                 }
                 sum(parts, &mut c0)
@@ -157,6 +280,19 @@ pub fn emit_system(
                 let a = at(*a);
                 quote!(m::sqrt(#a))
             }
+            Op::HalfPower(a, -1) => {
+                c0.sqrt += 1;
+                c0.div += 1;
+                let a = at(*a);
+                quote!(1.0 / m::sqrt(#a))
+            }
+            Op::HalfPower(a, p) => {
+                c0.sqrt += 1;
+                c0.transcendental += 1;
+                let a = at(*a);
+                let p = Literal::i32_unsuffixed(*p);
+                quote!(ts::powi(m::sqrt(#a), #p))
+            }
         };
         let i = index(i);
         body0.extend(quote!(s[#i][0] = #value;));
@@ -166,75 +302,11 @@ pub fn emit_system(
         body0.extend(quote!(s[#st][1] = s[#r][0];));
     }
 
-    // order n ≥ 1.
-    let mut fixed = OpCounts::default();
-    let mut per_n = OpCounts::default();
-    let mut body = TokenStream::new();
-    for (i, op) in program.ops.iter().enumerate().skip(program.states) {
-        let sr = |j: usize| {
-            let j = index(j);
-            quote!(&s[#j])
-        };
-        let value = match op {
-            Op::State => unreachable!("states come first"),
-            Op::Linear { terms, .. } => {
-                let parts = terms
-                    .iter()
-                    .map(|&(c, j)| {
-                        let j = index(j);
-                        scaled(c, quote!(ts::at(&s[#j], N)), &mut fixed)
-                    })
-                    .collect();
-                sum(parts, &mut fixed)
-            }
-            Op::Product(a, b) => {
-                per_n.mul += 1;
-                per_n.add += 1;
-                fixed.mul += 1;
-                let (a, b) = (sr(*a), sr(*b));
-                quote!(ts::product::<N>(#a, #b))
-            }
-            Op::Square(a) => {
-                // n/2 products, doubled, plus the middle term.
-                per_n.mul += 1;
-                fixed.mul += 2;
-                let a = sr(*a);
-                quote!(ts::square::<N>(#a))
-            }
-            Op::Power(a, -1) => {
-                per_n.mul += 1;
-                per_n.add += 1;
-                fixed.mul += 1;
-                let (a, r) = (sr(*a), sr(i));
-                quote!(ts::reciprocal::<N>(#a, #r))
-            }
-            Op::Power(a, p) => {
-                per_n.mul += 3;
-                per_n.add += 1;
-                fixed.div += 1;
-                let (a, r) = (sr(*a), sr(i));
-                let p = Literal::i32_unsuffixed(*p);
-                quote!(ts::power::<N>(#a, #r, #p))
-            }
-            Op::Sqrt(a) => {
-                per_n.mul += 1;
-                fixed.div += 1;
-                fixed.add += 1;
-                let (a, r) = (sr(*a), sr(i));
-                quote!(ts::sqrt::<N>(#a, #r))
-            }
-        };
-        let i = index(i);
-        body.extend(quote!(let v = #value; ts::set(&mut s[#i], N, v);));
-    }
-    for (state, &rate) in program.rates.iter().enumerate() {
-        fixed.mul += 1;
-        let (st, r) = (index(state), index(rate));
-        body.extend(quote!(
-            let v = ts::at(&s[#r], N) * ts::inverse::<N>();
-            ts::set(&mut s[#st], N + 1, v);
-        ));
-    }
+    // order n ≥ 1: every operation, then the states' next coefficient; and the last order,
+    // only what the observed series need.
+    let every: Vec<bool> = vec![true; program.ops.len()];
+    let (body, fixed, per_n) = order_body(program, &every, true);
+    let (last, _, _) = order_body(program, &observed_closure(program), false);
 
     let name = ident(&system.name);
     let summary = format!(" {}", system.summary);
@@ -287,6 +359,15 @@ pub fn emit_system(
             pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
                 let _ = k;
                 #body
+            }
+
+            /// The last order `N` of an expansion: coefficient `N` of the observed series and
+            /// of what they are computed from only (the states' polynomials, of degree `N`, are
+            /// complete after order `N − 1`).
+            #[inline]
+            pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+                let _ = k;
+                #last
             }
         }
     };

@@ -8,8 +8,8 @@
 //!
 //! * `Linear`: a sum of series with time-constant coefficients (plus a constant at order 0);
 //! * `Product`, `Square`: Cauchy products;
-//! * `Power` (integer exponent p, p = −1 the reciprocal) and `Sqrt`: the recurrences from
-//!   a·r' = p a'·r and r² = a.
+//! * `Power` (integer exponent p, p = −1 the reciprocal), `HalfPower` (a^(k/2), an integer
+//!   power of a square root) and `Sqrt`: the recurrences from a·r' = p a'·r and r² = a.
 //!
 //! Every sub-expression that does not change in time (parameters, 2ν, μσ, …) becomes one entry of
 //! a constants formula, emitted through the ordinary formula emitter (CSE, typed input structs);
@@ -55,6 +55,10 @@ pub enum Op {
     Power(usize, i32),
     /// The square root of a series whose order-0 coefficient is positive.
     Sqrt(usize),
+    /// A half-integer power a^(k/2) (k odd) of a series whose order-0 coefficient is positive:
+    /// an integer power of a square root, in one recurrence (`1/√a` is one convolution, where
+    /// the square root and then its reciprocal are two, one after the other).
+    HalfPower(usize, i32),
 }
 
 /// A system decomposed into elementary operations.
@@ -181,10 +185,17 @@ impl Decomposer<'_> {
                 let b = self.series(b);
                 self.product_of_pair(b)
             }
-            Node::Pow(b, n) => {
-                let b = self.series(b);
-                self.push(Op::Power(b, n))
-            }
+            Node::Pow(b, n) => match self.g.node(b).clone() {
+                // (√a)^n: one recurrence on a, not the root's series and then its power.
+                Node::Call(Func::Sqrt, a) if n % 2 != 0 => {
+                    let a = self.series(a);
+                    self.push(Op::HalfPower(a, n))
+                }
+                _ => {
+                    let b = self.series(b);
+                    self.push(Op::Power(b, n))
+                }
+            },
             Node::Call(Func::Sqrt, a) => {
                 let a = self.series(a);
                 self.push(Op::Sqrt(a))
@@ -284,8 +295,9 @@ mod tests {
         let p = decompose(&mut g, &s);
         let count = |f: &dyn Fn(&Op) -> bool| p.ops.iter().filter(|o| f(o)).count();
         assert_eq!(count(&|o| matches!(o, Op::Product(..))), 2, "{:?}", p.ops);
-        assert_eq!(count(&|o| matches!(o, Op::Sqrt(_))), 1);
-        assert_eq!(count(&|o| matches!(o, Op::Power(_, -1))), 1);
+        // 1/√x: one half power, no square root and no reciprocal.
+        assert_eq!(count(&|o| matches!(o, Op::HalfPower(_, -1))), 1);
+        assert_eq!(count(&|o| matches!(o, Op::Sqrt(_) | Op::Power(..))), 0);
         assert_eq!(p.constants.len(), 1, "k");
         assert_eq!(p.states, 2);
         // Every operation refers to earlier series only.
@@ -294,7 +306,7 @@ mod tests {
                 Op::State => vec![],
                 Op::Linear { terms, .. } => terms.iter().map(|t| t.1).collect(),
                 Op::Product(a, b) => vec![*a, *b],
-                Op::Square(a) | Op::Power(a, _) | Op::Sqrt(a) => vec![*a],
+                Op::Square(a) | Op::Power(a, _) | Op::Sqrt(a) | Op::HalfPower(a, _) => vec![*a],
             };
             assert!(
                 refs.iter().all(|&r| r < i || matches!(op, Op::State)),

@@ -13,21 +13,6 @@ pub(super) const INPUTS: [(Parameter, u32); 3] = [
     (Parameter::SpeedRatio, 12),
 ];
 
-/// The stator ring's entries (`docs/MODEL.md` §17): the ring with mass is a matrix model.
-pub fn is_ring_entry(p: Parameter) -> bool {
-    use Parameter as P;
-    matches!(
-        p,
-        P::StatorMassRatio
-            | P::ContactStiffness
-            | P::StatorDamping
-            | P::Xs0
-            | P::Ys0
-            | P::Vxs0
-            | P::Vys0
-    )
-}
-
 /// What a table entry measures.
 pub fn dimension(p: Parameter) -> Dimension {
     use Parameter as P;
@@ -119,7 +104,8 @@ fn name_and_doc(p: Parameter, units: Units) -> (&'static str, &'static str) {
 /// ring's entries: the FMU runs the stepper, which runs the planar model with the massless ring
 /// only, so the ring's mass, contact spring, damping and start state are not offered).
 pub fn of_parameter(p: Parameter, units: Units) -> Option<Variable> {
-    if p == Parameter::StartTime || is_ring_entry(p) {
+    if p == Parameter::StartTime || p == Parameter::StatorMassRatio || Parameter::RING.contains(&p)
+    {
         return None;
     }
     let info = p.info();

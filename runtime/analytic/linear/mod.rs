@@ -210,6 +210,11 @@ impl Linearization {
         Ok(())
     }
 
+    /// The forcing phasor (cos θ0, sin θ0) at the segment start.
+    pub fn phase0(&self) -> (f64, f64) {
+        self.phase0
+    }
+
     /// The slip direction σ this linearization was made for (0: frictionless).
     pub fn slip(&self) -> f64 {
         self.slip

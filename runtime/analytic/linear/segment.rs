@@ -242,6 +242,11 @@ impl LinearSegment {
         l.gains.0 * b.accel + l.gains.1 * b.speed + math::hypot(rate.fx, rate.fy) + extra
     }
 
+    /// The extra cubic forcing `[a0x, a0y, a1x, a1y, a2x, a2y, a3x, a3y]`.
+    pub fn forcing(&self) -> &[f64; 8] {
+        &self.part.forcing
+    }
+
     /// The linearization this segment belongs to.
     pub fn linearization(&self) -> &Linearization {
         &self.lin
