@@ -22,9 +22,9 @@ use core::ops::Deref;
 use super::error::MatrixError;
 use super::free::ExactFree;
 use super::model::MatrixModel;
-use super::numerical::NumericalSolver;
 #[cfg(doc)]
 use super::numerical::NumericalFree;
+use super::numerical::NumericalSolver;
 use super::state::MatrixState;
 use super::taylor::TaylorContact;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
