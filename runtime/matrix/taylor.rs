@@ -76,7 +76,11 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> TaylorContact<M, CAP
             }
             let c = self.expansion.switch_polynomial(sw);
             let scale = self.expansion.rounding_scale(sw, &self.model);
-            if let Some(s) = first_exit(&c, self.expansion.order(), h, scale, self.first_step)
+            // Main's first_exit (taylor-speed) takes the sign and a precision flag and returns
+            // a Crossing: sign +1 and a polished root, as before.
+            let order = self.expansion.order();
+            if let Some(s) =
+                first_exit(&c, 1.0, order, h, scale, self.first_step, true).map(|x| x.at)
                 && first.is_none_or(|(f, _)| s < f)
             {
                 first = Some((s, sw));
