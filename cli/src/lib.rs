@@ -8,7 +8,9 @@
 //! metadata, `shard`), `poincare`, `spectrum`, `friction_fig`, `runup` (the speed program from a
 //! preset, options or a profile CSV; per-period and event files; jumps and hysteresis), `orbit`
 //! and `continue` (`orbit/`: periodic orbits, branches by pseudo-arclength continuation,
-//! bifurcations located), `params`, `presets`. Shared: `problem` (presets, TOML configs,
+//! bifurcations located), `params`, `presets`; `model_file` (rotors from matrices:
+//! `check-model`, `simulate --model`, and the stator ring with mass that `simulate` runs when
+//! `stator_mass_ratio` > 0). Shared: `problem` (presets, TOML configs,
 //! `--set`), `options`, `trajectory`
 //! (passes over a run), `analysis` (response classes, Lyapunov exponents, spectra, switch
 //! counts), `plot`. Files and streams: `stdio` is the one writer to stdout and stderr (a closed
@@ -26,6 +28,7 @@ pub mod fig2;
 pub mod friction_fig;
 pub mod limits;
 pub mod merge;
+pub mod model_file;
 pub mod options;
 pub mod orbit;
 pub mod output;

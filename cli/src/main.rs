@@ -8,8 +8,8 @@ use clap::{Parser, Subcommand};
 
 use rotor_rub_cli::error::{CliError, EXIT_INPUT};
 use rotor_rub_cli::{
-    compare, fig2, friction_fig, merge, orbit, output, params, poincare, presets, runup, simulate,
-    spectrum, stdio, sweep,
+    compare, fig2, friction_fig, merge, model_file, orbit, output, params, poincare, presets,
+    runup, simulate, spectrum, stdio, sweep,
 };
 
 const ABOUT: &str = "Jeffcott rotor rubbing on an anisotropically supported stator: \
@@ -88,6 +88,9 @@ enum Command {
     /// --method, default hybrid, at --tol, default 1e-12 here)
     #[command(after_help = UNITS)]
     Continue(orbit::continue_command::Args),
+    /// Read and check a model file (TOML or .npz, SI units: docs/MODEL_FILES.md); print its
+    /// degrees of freedom, station, clearance and modes
+    CheckModel(model_file::CheckArgs),
     /// List the presets with every value
     #[command(after_help = UNITS)]
     Presets,
@@ -129,6 +132,7 @@ fn dispatch(cli: Cli) -> Result<(), CliError> {
         Some(Command::Runup(args)) => runup::run(&args),
         Some(Command::Orbit(args)) => orbit::command::run(&args),
         Some(Command::Continue(args)) => orbit::continue_command::run(&args),
+        Some(Command::CheckModel(args)) => model_file::check(&args),
         Some(Command::Presets) => presets::run(),
         Some(Command::Params) => params::run(),
     }

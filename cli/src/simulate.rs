@@ -25,6 +25,11 @@ pub struct Args {
     #[command(flatten)]
     pub problem: ProblemArgs,
 
+    /// A rotor from matrices (TOML or .npz, SI units: docs/MODEL_FILES.md) instead of the
+    /// paper's model: --t-end in seconds, --periods of 2π/Ω, CSV columns named after its DOFs
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["preset", "config", "set"])]
+    pub model: Option<PathBuf>,
+
     #[command(flatten)]
     pub time: TimeArgs,
 
@@ -51,6 +56,20 @@ pub struct Args {
 
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
+    if let Some(path) = &args.model {
+        return crate::model_file::simulate(&crate::model_file::SimulateModel {
+            path,
+            options: args.method.options()?,
+            t_end: args.time.t_end,
+            periods: args.time.periods,
+            events: args.events.as_deref(),
+            samples: args.samples.as_deref(),
+            sample_count: args
+                .samples
+                .as_ref()
+                .map_or(0, |_| args.sample_count.unwrap_or(1001) as usize),
+        });
+    }
     let problem = args.problem.build()?;
     let options = args.method.options()?;
     let end = args.time.end_time(&problem.params);
@@ -69,6 +88,17 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let budget = args.limits.budget();
     budget.plan("--sample-count", count)?;
+    if problem.params.stator_mass_ratio > 0.0 {
+        // A stator ring with mass: the n = 4 matrix model (issue 28).
+        return crate::model_file::simulate_ring_command(
+            &problem,
+            &options,
+            end,
+            usize::try_from(count).map_err(|_| CliError::input("--sample-count is too large"))?,
+            args.events.as_deref(),
+            args.samples.as_deref(),
+        );
+    }
     let propagator = trajectory::start(&problem, &options)?;
     let mut events_out = args
         .events

@@ -40,6 +40,7 @@ import numpy as np
 from . import _core, _progress
 from ._core import PropagationError, StepperState
 from ._io import load
+from ._model import MatrixRun, Model, Rub
 from .results import (
     EVENT_KINDS,
     REGIMES,
@@ -74,11 +75,14 @@ __all__ = [
     "Branch",
     "Continuation",
     "Jump",
+    "MatrixRun",
+    "Model",
     "Orbit",
     "Parameter",
     "Problem",
     "PropagationError",
     "Real",
+    "Rub",
     "Run",
     "Runup",
     "RunupEvents",
@@ -147,9 +151,17 @@ def simulate(
     samples: Count = 1001,
     max_work: Optional[Real] = None,
     progress: Any = None,
+    model: Optional[Model] = None,
+    initial: Optional[Any] = None,
     **params: Real,
 ) -> Run:
     """Simulate one parameter set from τ = 0: every switch and uniform samples.
+
+    With ``model=`` (a :class:`Model`: a rotor from matrices, SI units) the run is that model's
+    from t = 0 s: ``t_end`` in s or ``periods`` of 2π/Ω, ``initial`` its start (n positions
+    then n velocities, m and m/s; default rest), and the result a :class:`MatrixRun` whose state
+    columns are the model's DOFs, their velocities and the rub station's relative displacement
+    (``run.columns``); ``preset``, ``config`` and parameter keywords do not apply.
 
     Parameters
     ----------
@@ -197,6 +209,17 @@ def simulate(
     KeyboardInterrupt
         Ctrl-C, within about 50 ms.
     """
+    if model is not None or initial is not None:
+        given = [k for k, v in (("preset", preset), ("config", config), ("max_work", max_work),
+                                ("progress", progress)) if v is not None] + sorted(params)
+        if model is None or given:
+            raise ValueError("initial= needs model=" if model is None else
+                             f"model= runs a rotor from matrices: {', '.join(given)} do(es) "
+                             "not apply to it")
+        from ._model import simulate_model
+        return simulate_model(model, t_end=t_end, periods=periods, method=method, tol=tol,
+                              contact_scheme=contact_scheme, step=step, samples=samples,
+                              initial=initial)
     r = _progress.run(lambda report: _core.simulate(
         preset=preset, config=_path(config), t_end=t_end, periods=periods, method=method,
         tol=tol, contact_scheme=contact_scheme, step=step, samples=samples,

@@ -16,6 +16,10 @@ __all__ = [
     "StepperState",
     "VERSION",
     "WHIRL_DIRECTIONS",
+    "matrix_check",
+    "matrix_load",
+    "matrix_modes",
+    "matrix_result_of",
     "continuation",
     "orbit",
     "parameters",
@@ -24,6 +28,7 @@ __all__ = [
     "runup",
     "rust_simulate_seconds",
     "simulate",
+    "simulate_matrix",
     "spectrum",
     "sweep_points",
 ]
@@ -251,3 +256,25 @@ class Stepper:
     def regime(self) -> str: ...
     @property
     def dt(self) -> float: ...
+
+# Rotors from matrices (python/src/matrix.rs): the model as rotor_rub.Model._core_dict() gives it.
+def matrix_check(model: Mapping[str, Any]) -> None: ...
+def matrix_modes(model: Mapping[str, Any]) -> npt.NDArray[np.complex128]: ...
+def matrix_load(path: str) -> Dict[str, Any]: ...
+def matrix_result_of(
+    model: Mapping[str, Any],
+    events: List[Tuple[float, int, List[float]]],
+    samples: List[Tuple[float, int, List[float]]],
+) -> Dict[str, Any]: ...
+def simulate_matrix(
+    model: Mapping[str, Any],
+    *,
+    t_end: Optional[_Real] = None,
+    periods: Optional[_Real] = None,
+    method: Optional[str] = None,
+    tol: Optional[_Real] = None,
+    contact_scheme: Optional[str] = None,
+    step: Optional[_Real] = None,
+    samples: Optional[_Count] = None,
+    initial: Optional[List[float]] = None,
+) -> Dict[str, Any]: ...

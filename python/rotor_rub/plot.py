@@ -7,13 +7,16 @@ DejaVu fonts, never the system's.
 
 - :func:`orbit`: the orbit (x, y) of a :class:`rotor_rub.Run`, the clearance circle around the
   stator centre, contact starts and ends marked (reversals, rolling starts and ends with
-  friction).
+  friction); with a stator ring with mass, the ring's centre orbit beside the rotor's.
 - :func:`bifurcation`: the Poincaré x of a :class:`rotor_rub.Sweep` against the swept value.
 - :func:`poincare`: the points of a :class:`rotor_rub.Section` in the (x, y) plane.
 - :func:`spectrum`: a :class:`rotor_rub.Spectrum`; a whirl spectrum shades backward (negative
   orders) and forward whirl in two colours.
 - :func:`runup`: a :class:`rotor_rub.Runup`, the largest and smallest radius per forcing period
   against the speed for the run-up and the coast-down, rubbing periods marked, jumps marked.
+- :func:`rub_orbit`: a :class:`rotor_rub.MatrixRun` (a rotor from matrices, SI): the rub
+  station's relative orbit with the clearance circle, switches marked; with a moving stator
+  point (a ring with mass) the rotor point's and the stator point's orbits beside it.
 - :func:`branches`: a :class:`rotor_rub.Continuation`, its orbits' section x (or largest
   radius) against the parameter, stable solid, unstable dashed, bifurcations marked, optionally
   over a sweep's points.
@@ -31,9 +34,9 @@ import numpy as np
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from . import Continuation, Run, Runup, Section, Spectrum, Sweep
+    from . import Continuation, MatrixRun, Run, Runup, Section, Spectrum, Sweep
 
-__all__ = ["orbit", "bifurcation", "poincare", "spectrum", "runup", "branches"]
+__all__ = ["orbit", "bifurcation", "poincare", "spectrum", "runup", "branches", "rub_orbit"]
 
 #: Marker and colour per event kind (as the CLI's figures: starts red, ends green).
 EVENT_STYLE = {
@@ -78,6 +81,11 @@ def orbit(
     angle = np.linspace(0.0, 2.0 * np.pi, 361)
     ax.plot(offset[0] + np.cos(angle), offset[1] + np.sin(angle), color="0.5", lw=0.8,
             ls="--", label="clearance")
+    if state.shape[1] == 8:
+        # A stator ring with mass (stator_mass_ratio > 0): its centre (xs, ys) beside the
+        # rotor's orbit, around the stator centre it rests at.
+        ax.plot(offset[0] + state[:, 4], offset[1] + state[:, 5], lw=0.8, color="tab:orange",
+                label="ring centre")
     if events and len(run.events):
         ev_keep = (np.ones(len(run.events), dtype=bool) if from_time is None
                    else run.events.time >= from_time)
@@ -200,6 +208,79 @@ def runup(result: "Runup", ax: Optional["Axes"] = None, *, jumps: bool = True) -
     ax.set_ylabel("orbit radius |q| (clearances)")
     ax.set_title(f"Run-up and coast-down: {result.program}\n{result.method}", fontsize="medium")
     ax.legend(fontsize="small")
+    return ax
+
+
+def rub_orbit(
+    run: "MatrixRun",
+    ax: Optional["Axes"] = None,
+    *,
+    bodies_ax: Optional["Axes"] = None,
+    from_time: Optional[float] = None,
+    events: bool = True,
+    unit: float = 1e-3,
+    **line: Any,
+) -> "Axes":
+    """The rub station's relative orbit P = q_rotor − q_stator of a run of a rotor from matrices
+    (columns ``rub_x``, ``rub_y``), the clearance circle around the stator centre (the model's
+    ``offset``), switches marked by kind; lengths in ``unit`` metres (default mm).
+
+    With a moving stator point (``model.station.stator``), the rotor point's and the stator
+    point's own orbits are drawn beside it, on ``bodies_ax`` (a second axes of a new figure when
+    ``ax`` is None too). Returns the relative orbit's axes."""
+    model = run.model
+    if model is None:
+        raise ValueError("rub_orbit draws a rotor_rub.MatrixRun (rr.simulate(model=...))")
+    station = model.station
+    moving = station.stator is not None
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        if moving and bodies_ax is None:
+            _, (ax, bodies_ax) = plt.subplots(1, 2, figsize=(11.0, 5.5))
+        else:
+            _, ax = plt.subplots(figsize=(6.0, 6.0))
+    t = run.samples.time
+    keep = np.ones_like(t, dtype=bool) if from_time is None else t >= from_time
+    cols = list(run.columns)
+    px, py = cols.index("rub_x"), cols.index("rub_y")
+    state = run.samples.state[keep]
+    line.setdefault("lw", 0.8)
+    line.setdefault("color", "tab:blue")
+    ax.plot(state[:, px] / unit, state[:, py] / unit, label="rotor − stator", **line)
+    angle = np.linspace(0.0, 2.0 * np.pi, 361)
+    r = station.clearance / unit
+    ox, oy = station.offset[0] / unit, station.offset[1] / unit
+    ax.plot(ox + r * np.cos(angle), oy + r * np.sin(angle), color="0.5", lw=0.8, ls="--",
+            label=f"clearance {station.clearance:g} m")
+    if events and len(run.events):
+        ev_keep = (np.ones(len(run.events), dtype=bool) if from_time is None
+                   else run.events.time >= from_time)
+        for kind, (marker, color, label) in EVENT_STYLE.items():
+            at = ev_keep & (run.events.kind == kind)
+            if at.any():
+                s = run.events.state[at]
+                ax.scatter(s[:, px] / unit, s[:, py] / unit, marker=marker, color=color, s=18,
+                           zorder=3, label=label)
+    names = model.dofs
+    unit_name = {1.0: "m", 1e-3: "mm", 1e-6: "µm"}.get(unit, f"× {unit:g} m")
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"rub x ({unit_name})")
+    ax.set_ylabel(f"rub y ({unit_name})")
+    rx, ry = int(station.dof_x), int(station.dof_y)  # indices once the model has stated them
+    ax.set_title(f"Rub station ({names[rx]}, {names[ry]}), {run.method}")
+    ax.legend(loc="upper right", fontsize="small")
+    if moving and bodies_ax is not None:
+        sx, sy = (int(d) for d in station.stator)  # type: ignore[union-attr]
+        for (i, j), label, color in (((rx, ry), "rotor point", "tab:blue"),
+                                     ((sx, sy), "stator point (ring centre)", "tab:orange")):
+            bodies_ax.plot(state[:, i] / unit, state[:, j] / unit, lw=0.8, color=color,
+                           label=f"{label} ({names[i]}, {names[j]})")
+        bodies_ax.set_aspect("equal")
+        bodies_ax.set_xlabel(f"x ({unit_name})")
+        bodies_ax.set_ylabel(f"y ({unit_name})")
+        bodies_ax.set_title("Rotor and stator orbits")
+        bodies_ax.legend(loc="upper right", fontsize="small")
     return ax
 
 

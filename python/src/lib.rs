@@ -8,7 +8,8 @@
 //! response classes, Lyapunov exponents and continuation, on a thread pool per call), `runup` +
 //! `runup_speed`, `orbit` (rr.orbit, rr.continuation), `stepper` + `stepper_state` (the stepper
 //! and its checked saved state), `meta`
-//! (the problem a result carries), `errors` (CLI errors → ValueError / PropagationError, flags
+//! (the problem a result carries), `matrix` (rotors from matrices: `rotor_rub.Model`'s
+//! checks, modes and runs through the CLI library's model files; the ring with mass), `errors` (CLI errors → ValueError / PropagationError, flags
 //! named as keywords). The typed layer is `python/rotor_rub/` (results as dataclasses of numpy
 //! arrays, plots, pandas/xarray/Parquet/NetCDF, progress bars, Dask sweeps).
 
@@ -21,6 +22,7 @@ use rotor_rub_cli::problem::settable;
 mod args;
 mod errors;
 mod inputs;
+mod matrix;
 mod meta;
 mod orbit;
 mod runs;
@@ -84,6 +86,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runup::runup, m)?)?;
     m.add_function(wrap_pyfunction!(orbit::orbit, m)?)?;
     m.add_function(wrap_pyfunction!(orbit::continuation, m)?)?;
+    matrix::register(m)?;
     m.add_function(wrap_pyfunction!(timing::rust_simulate_seconds, m)?)?;
     m.add_class::<stepper::PyStepper>()?;
     m.add_class::<stepper_state::PyStepperState>()?;

@@ -135,6 +135,10 @@ pub fn simulate<'py>(
         fits_memory("samples", count, std::mem::size_of::<rotor_rub::Sample>()).map_err(cli)?;
     let budget = inputs::budget(max_work)?;
     budget.plan("samples", count as u64).map_err(cli)?;
+    if problem.params.stator_mass_ratio > 0.0 {
+        // A stator ring with mass: the n = 4 matrix model (issue 28).
+        return crate::matrix::simulate_ring(py, &problem, &options, end, count);
+    }
     let propagator = trajectory::start(&problem, &options).map_err(cli)?;
     let start = problem.start_time;
     let period = problem.params.forcing_period();
