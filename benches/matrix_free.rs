@@ -17,6 +17,7 @@ mod common;
 #[path = "../tests/matrix_free/common.rs"]
 mod cases;
 
+use rotor_rub::driver::SegmentStart;
 use std::hint::black_box;
 
 use cases::{Case, Free, Model, run_to};
@@ -25,8 +26,13 @@ use rotor_rub::matrix::ExactFree;
 use rotor_rub::propagate::Regime;
 
 fn restart(free: &mut Free<'_>, case: &Case) {
-    free.start(Regime::Free, 0.0, case.t0, case.start())
-        .unwrap();
+    free.start(SegmentStart {
+        regime: Regime::Free,
+        slip: 0.0,
+        time: case.t0,
+        state: case.start(),
+    })
+    .unwrap();
 }
 
 fn flight(c: &mut criterion::Criterion, label: &str, file: &str) {

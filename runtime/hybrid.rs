@@ -8,6 +8,7 @@
 
 use crate::analytic::free_flight::FreeFlightSolver;
 use crate::coefficients::{ModelParams, Phasor};
+use crate::driver::SegmentStart;
 use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::field::{self, Field};
@@ -165,13 +166,10 @@ impl Dop853Contact {
 }
 
 impl SegmentSolver for Dop853Contact {
-    fn start(
-        &mut self,
-        _regime: Regime,
-        slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let SegmentStart {
+            slip, time, state, ..
+        } = at;
         self.begin(slip, time, state);
         Ok(())
     }

@@ -224,6 +224,45 @@ fn closed<P: Copy>(
     }
 }
 
+/// A root of `knot`'s g near `s`, polished: the other end of a bracket is sought past the
+/// Newton step from `s` (twice it, then four times wider, up to 8 tries) inside [0, `h`], and
+/// the bracket refined by [`refine`] (40 steps, to the resolution of `f64`); `s` itself when g
+/// is not finite there, is zero there, or no bracket is found. For a root already located on an
+/// approximation (a Taylor polynomial's) that the exact state puts back on h = 0.
+pub fn polish_about(knot: impl Fn(f64) -> Knot<()>, s: f64, h: f64) -> f64 {
+    let at = knot(s);
+    if !(at.g.is_finite() && at.dg.is_finite()) || at.g == 0.0 {
+        return s;
+    }
+    let toward = if at.g > 0.0 { -1.0 } else { 1.0 };
+    let mut width = 2.0 * math::abs(at.g / at.dg);
+    let mut other = None;
+    for _ in 0..8 {
+        let t = (s + toward * width).clamp(0.0, h);
+        let k = knot(t);
+        if (k.g > 0.0) != (at.g > 0.0) {
+            other = Some(k);
+            break;
+        }
+        if t == 0.0 || t == h {
+            break;
+        }
+        width *= 4.0;
+    }
+    let Some(other) = other else {
+        return s;
+    };
+    let (below, above) = if at.g > 0.0 { (other, at) } else { (at, other) };
+    let settings = Refinement {
+        max_steps: 40,
+        residual: 0.0,
+        scale: 1.0,
+        first_guess: None,
+        close: false,
+    };
+    refine(knot, below, above, &settings).best.s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

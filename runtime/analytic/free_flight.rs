@@ -11,10 +11,11 @@
 use super::free::{FreeConstants, FreeSegment};
 use super::segment::{Point, Segment};
 use super::switch::{Direction, first_crossing_to};
+use crate::driver::SegmentStart;
 use crate::driver::{Located, SegmentSolver};
 use crate::geometry;
 use crate::params::{Params, State};
-use crate::propagate::{Event, EventKind, PropagationError, Regime};
+use crate::propagate::{Event, EventKind, PropagationError};
 
 /// Search chunks between two checks of whether the flight has settled.
 const SETTLE_CHECK_CHUNKS: u64 = 8;
@@ -131,13 +132,8 @@ impl FreeFlightSolver {
 }
 
 impl SegmentSolver for FreeFlightSolver {
-    fn start(
-        &mut self,
-        _regime: Regime,
-        _slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let SegmentStart { time, state, .. } = at;
         self.flight = FreeFlight::new(&self.params, &self.constants, time, state);
         self.located = time;
         Ok(())

@@ -7,6 +7,7 @@ use super::linear::{ContactConstants, max_contact_stiffness};
 use super::schemes::{SubStep, exprb2_with, exprb43_with};
 use super::segment::Segment;
 use super::switch::{Budget, Direction, SlipVelocity, first_crossing_to, first_slip_switch};
+use crate::driver::SegmentStart;
 use crate::driver::within_bounds;
 use crate::driver::{ByRegime, Located, Piecewise, SegmentSolver};
 use crate::geometry;
@@ -173,13 +174,10 @@ impl ExprbContact {
 }
 
 impl SegmentSolver for ExprbContact {
-    fn start(
-        &mut self,
-        _regime: Regime,
-        slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let SegmentStart {
+            slip, time, state, ..
+        } = at;
         self.time_carry = 0.0;
         self.slip = slip;
         if slip != 0.0 {
@@ -276,7 +274,12 @@ impl AnalyticPropagator {
                 },
             };
             if regime == Regime::Contact {
-                solvers.contact.start(regime, slip, t0, s0)?;
+                solvers.contact.start(SegmentStart {
+                    regime,
+                    slip,
+                    time: t0,
+                    state: s0,
+                })?;
             }
             Ok(solvers)
         })

@@ -79,18 +79,27 @@ pub enum Located<S = State> {
     NeedStep,
 }
 
+/// Where a segment starts: its regime, the slip direction σ (±1 in slipping contact under
+/// friction, 0 when no slip is tracked), its time and state. What the driver hands a solver
+/// ([`SegmentSolver::start`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SegmentStart<S = State> {
+    /// The segment's regime.
+    pub regime: Regime,
+    /// The slip direction σ.
+    pub slip: f64,
+    /// The segment's start time.
+    pub time: f64,
+    /// The state there.
+    pub state: S,
+}
+
 /// A solver of one regime's segments of a model with state `S`.
 pub trait SegmentSolver<S = State> {
     /// Start a segment in `regime` at `(time, state)`; `slip` is the slip direction σ = ±1 of
     /// slipping contact under friction, 0 when no slip is tracked (free flight, rolling, μ = 0).
     /// A solver may compute its first step here.
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: S,
-    ) -> Result<(), PropagationError>;
+    fn start(&mut self, at: SegmentStart<S>) -> Result<(), PropagationError>;
     /// Serve `target` (not before the segment start nor before the last target served) from what
     /// has been computed. A closed-form solver may serve every target without steps. Serving a
     /// target never changes the steps taken (sampling does not perturb a run).

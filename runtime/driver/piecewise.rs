@@ -1,6 +1,7 @@
 //! The state machine itself: one [`Piecewise`] behind [`Propagate`] for every method.
 
 use super::{Located, Solvers, StepBudget, System};
+use crate::driver::SegmentStart;
 use crate::params::{Params, Problem};
 use crate::propagate::{Event, Propagate, PropagationError, Regime, check_target};
 
@@ -133,9 +134,12 @@ impl<Y: System, S: Solvers<Y::State>> Piecewise<S, Y> {
             }
             Regime::Free | Regime::Rolling => 0.0,
         };
-        self.solvers
-            .solver(regime)
-            .start(regime, slip, event.time, event.state)?;
+        self.solvers.solver(regime).start(SegmentStart {
+            regime,
+            slip,
+            time: event.time,
+            state: event.state,
+        })?;
         self.time = event.time;
         self.state = event.state;
         self.regime = regime;

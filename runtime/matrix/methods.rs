@@ -17,6 +17,7 @@
 //! [`SegmentSolver`] of free segments ending in `enter` switches); [`FreeFlight`] is the one
 //! [`MatrixPropagator`] builds.
 
+use crate::driver::SegmentStart;
 use core::ops::Deref;
 
 use super::error::MatrixError;
@@ -96,7 +97,12 @@ where
         Some(REFERENCE_BUDGET),
         |regime, slip, s0| {
             let mut solver = NumericalSolver::new(solver_model, tol);
-            solver.start(regime, slip, time, s0)?;
+            solver.start(SegmentStart {
+                regime,
+                slip,
+                time,
+                state: s0,
+            })?;
             Ok(solver)
         },
     )
@@ -161,8 +167,18 @@ where
         Some(REFERENCE_BUDGET),
         |regime, slip, s0| {
             match regime {
-                Regime::Free => free.start(regime, slip, time, s0)?,
-                Regime::Contact | Regime::Rolling => contact.start(regime, slip, time, s0)?,
+                Regime::Free => free.start(SegmentStart {
+                    regime,
+                    slip,
+                    time,
+                    state: s0,
+                })?,
+                Regime::Contact | Regime::Rolling => contact.start(SegmentStart {
+                    regime,
+                    slip,
+                    time,
+                    state: s0,
+                })?,
             }
             Ok(Split { free, contact })
         },

@@ -13,6 +13,7 @@
 //! Tolerance semantics: rtol = atol = tol per step in Hairer's mixed norm over the 2n entries
 //! of y ([`OdeSystem::dimension`]), as for the planar model.
 
+use crate::driver::SegmentStart;
 use core::ops::Deref;
 
 use super::model::MatrixModel;
@@ -23,8 +24,8 @@ use crate::field::{self, Field};
 use crate::math;
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
 use crate::reference::{
-    AcceptedStep, Dop853, Integrator, Interpolant, OdeSystem, SUBDIVISIONS, Scheme, Tolerance,
-    first_crossing_subdivided, polish_switch,
+    AcceptedStep, After, Dop853, Integrator, Interpolant, OdeSystem, SUBDIVISIONS, Scheme,
+    Tolerance, first_crossing_subdivided, polish_switch,
 };
 
 /// Touches (w = 0 without a change) looked past in one step before the rest of the step is
@@ -144,13 +145,13 @@ where
     M: Deref<Target = MatrixModel<CAP>>,
 {
     /// Take the regime's field and restart the integration at the switch.
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: MatrixState<CAP>,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
+        let SegmentStart {
+            regime,
+            slip,
+            time,
+            state,
+        } = at;
         self.regime = regime;
         self.slip = slip;
         let y = *state.array();
@@ -248,14 +249,8 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> NumericalFree<M, CAP
 impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> SegmentSolver<MatrixState<CAP>>
     for NumericalFree<M, CAP>
 {
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: MatrixState<CAP>,
-    ) -> Result<(), PropagationError> {
-        self.0.start(regime, slip, time, state)
+    fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
+        self.0.start(at)
     }
 
     #[inline]
@@ -269,24 +264,6 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> SegmentSolver<Matrix
 
     fn computed_to(&self) -> f64 {
         self.0.computed_to()
-    }
-}
-
-/// The dense output of a step from a later start (the search after a touch).
-struct After<'a, D> {
-    dense: &'a D,
-    start: f64,
-}
-
-impl<const N: usize, D: Interpolant<N>> Interpolant<N> for After<'_, D> {
-    fn start(&self) -> f64 {
-        self.start
-    }
-    fn end(&self) -> f64 {
-        self.dense.end()
-    }
-    fn eval(&self, t: f64) -> [f64; N] {
-        self.dense.eval(t)
     }
 }
 

@@ -21,7 +21,7 @@ use crate::coefficients::{
 };
 use crate::math;
 use crate::propagate::Regime;
-use crate::refine::{Knot, Refinement, refine};
+use crate::refine::Knot;
 use crate::taylor::kernels::{self, CAPACITY, MAX_ORDER, Series};
 
 /// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
@@ -396,36 +396,6 @@ impl<const CAP: usize> MatrixExpansion<CAP> {
                 point: (),
             }
         };
-        let at = knot(s);
-        if !(at.g.is_finite() && at.dg.is_finite()) || at.g == 0.0 {
-            return s;
-        }
-        let toward = if at.g > 0.0 { -1.0 } else { 1.0 };
-        let mut width = 2.0 * math::abs(at.g / at.dg);
-        let mut other = None;
-        for _ in 0..8 {
-            let t = (s + toward * width).clamp(0.0, h);
-            let k = knot(t);
-            if (k.g > 0.0) != (at.g > 0.0) {
-                other = Some(k);
-                break;
-            }
-            if t == 0.0 || t == h {
-                break;
-            }
-            width *= 4.0;
-        }
-        let Some(other) = other else {
-            return s;
-        };
-        let (below, above) = if at.g > 0.0 { (other, at) } else { (at, other) };
-        let settings = Refinement {
-            max_steps: 40,
-            residual: 0.0,
-            scale: 1.0,
-            first_guess: None,
-            close: false,
-        };
-        refine(knot, below, above, &settings).best.s
+        crate::refine::polish_about(knot, s, h)
     }
 }

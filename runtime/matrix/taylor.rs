@@ -8,6 +8,7 @@
 //! Tolerance semantics: `tol` bounds each step's truncation error relative to
 //! max(1, |state|) (order p = ⌈−ln(tol)/2 + 1⌉, `crate::taylor::expansion::order_for`).
 
+use crate::driver::SegmentStart;
 use core::ops::Deref;
 
 use super::model::MatrixModel;
@@ -16,7 +17,7 @@ use super::series::{MatrixExpansion, Switch};
 use super::state::MatrixState;
 use crate::driver::{Located, SegmentSolver, System};
 use crate::field::{self, SlipZero};
-use crate::propagate::{Event, EventKind, PropagationError, Regime};
+use crate::propagate::{Event, EventKind, PropagationError};
 use crate::taylor::expansion::order_for;
 use crate::taylor::roots::first_exit;
 
@@ -92,13 +93,13 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> TaylorContact<M, CAP
 impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> SegmentSolver<MatrixState<CAP>>
     for TaylorContact<M, CAP>
 {
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: MatrixState<CAP>,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
+        let SegmentStart {
+            regime,
+            slip,
+            time,
+            state,
+        } = at;
         self.slip = slip;
         self.expansion.set_regime(&self.model, regime, slip);
         self.origin = time;

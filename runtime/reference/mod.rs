@@ -52,6 +52,7 @@ pub use propagator::{
     ReferenceSolver, Rk45Propagator, STEPS_PER_TIME_UNIT,
 };
 pub use rk45::{Rk45, Rk45Dense};
+pub(crate) use scheme::After;
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, Tolerance};
 pub use switch::{Found, Function, Switches, switch_in_deferred_step, switch_in_step};
 pub use system::{PhasorRotorSystem, PreparedRotorSystem, RotorSystem, inside_measure};

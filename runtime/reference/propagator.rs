@@ -36,6 +36,7 @@ use super::rk45::Rk45;
 use super::scheme::{Interpolant, Scheme, Tolerance};
 use super::switch::{Switches, switch_in_step};
 use super::system::PreparedRotorSystem;
+use crate::driver::SegmentStart;
 use crate::driver::within_bounds;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, StepBudget};
 use crate::params::ValidRange;
@@ -162,13 +163,13 @@ impl<S: Scheme<4>, F: FieldFamily> Solvers for ReferenceSolver<S, F> {
 
 impl<S: Scheme<4>, F: FieldFamily> SegmentSolver for ReferenceSolver<S, F> {
     /// Switch the field and restart the integration at the switch.
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let SegmentStart {
+            regime,
+            slip,
+            time,
+            state,
+        } = at;
         self.begin(regime, slip, time, state);
         Ok(())
     }

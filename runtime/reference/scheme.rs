@@ -104,6 +104,24 @@ impl<const N: usize, const R: usize, F: DenseForm<N, R>> Interpolant<N> for Dens
     }
 }
 
+/// The dense output of a step from a later start (the search after a touch).
+pub(crate) struct After<'a, D> {
+    pub(crate) dense: &'a D,
+    pub(crate) start: f64,
+}
+
+impl<const N: usize, D: Interpolant<N>> Interpolant<N> for After<'_, D> {
+    fn start(&self) -> f64 {
+        self.start
+    }
+    fn end(&self) -> f64 {
+        self.dense.end()
+    }
+    fn eval(&self, t: f64) -> [f64; N] {
+        self.dense.eval(t)
+    }
+}
+
 /// One trial step: the new state, the scaled error norm (accept when ≤ 1; may be `inf` or NaN
 /// when the stages overflowed) and the stage derivatives the dense output needs.
 #[derive(Clone, Copy, Debug)]

@@ -16,7 +16,7 @@ use super::dop853::{Dop853, Dop853Dense, Dop853Step};
 use super::events::{first_crossing_beyond, polish_switch};
 use super::integrator::{AcceptedStep, Integrator};
 use super::ode::OdeSystem;
-use super::scheme::{Interpolant, Scheme};
+use super::scheme::{After, Interpolant, Scheme};
 use super::system::inside_measure;
 use crate::coefficients::{ModelParams, Phasor};
 use crate::field::{self, SlipZero};
@@ -213,24 +213,6 @@ fn phasor<const N: usize>(model: &ModelParams, t: f64, y: &[f64; N]) -> Phasor {
 
 /// A switch found in a step: its time, the state there and what it is.
 pub type Found<const N: usize> = (f64, [f64; N], EventKind);
-
-/// The dense output of a step from a later start (the search after a touch).
-struct After<'a, D> {
-    dense: &'a D,
-    start: f64,
-}
-
-impl<const N: usize, D: Interpolant<N>> Interpolant<N> for After<'_, D> {
-    fn start(&self) -> f64 {
-        self.start
-    }
-    fn end(&self) -> f64 {
-        self.dense.end()
-    }
-    fn eval(&self, t: f64) -> [f64; N] {
-        self.dense.eval(t)
-    }
-}
 
 /// The first switch of `switches` in the step `(t0, y0) → (t1, y1)` with dense output `dense`,
 /// examined in `subdivisions` sub-intervals: the earliest crossing of any switch function,

@@ -16,6 +16,7 @@
 //! segment's start), so that every piece and sub-step has the lengths and times the step's grid
 //! gives it, whatever the absolute time's rounding.
 
+use crate::driver::SegmentStart;
 use core::cell::Cell;
 
 use super::friction::{Slip, SwitchIn, rolling_substep, slip_in};
@@ -181,7 +182,8 @@ pub(super) struct FreePieces<'f, 'a> {
 }
 
 impl SegmentSolver for FreePieces<'_, '_> {
-    fn start(&mut self, _: Regime, _: f64, _: f64, state: State) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let state = at.state;
         self.start = (self.frame.cursor.get(), state);
         Ok(())
     }
@@ -425,13 +427,13 @@ pub(super) struct Substeps<'f, 'a, K> {
 }
 
 impl<K: SubstepKind> SegmentSolver for Substeps<'_, '_, K> {
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let SegmentStart {
+            regime,
+            slip,
+            time,
+            state,
+        } = at;
         let f = self.frame;
         self.slip = Slip::of(f.params, regime, time, &state, slip);
         self.progress = Progress::at(f.cursor.get(), state);

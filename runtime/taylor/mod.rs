@@ -23,6 +23,7 @@ mod step;
 pub use solver::TaylorContact;
 
 use crate::analytic::free_flight::FreeFlightSolver;
+use crate::driver::SegmentStart;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
 use crate::params::Problem;
 use crate::params::ValidRange;
@@ -76,7 +77,12 @@ impl TaylorPropagator {
             // rolling starts it on the rolling field, not on the frictionless one it is built
             // with (issue 32 item 3: a start with w = 0 where the λ rule says roll).
             if regime != Regime::Free {
-                contact.start(regime, slip, t0, s0)?;
+                contact.start(SegmentStart {
+                    regime,
+                    slip,
+                    time: t0,
+                    state: s0,
+                })?;
             }
             Ok(TaylorSolvers {
                 free: FreeFlightSolver::new(&params, t0, s0),

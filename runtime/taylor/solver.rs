@@ -5,6 +5,7 @@
 use super::expansion::{Expansion, Switch, order_for};
 use super::roots::{Crossing, first_exit};
 use crate::coefficients::ModelParams;
+use crate::driver::SegmentStart;
 use crate::driver::{Located, SegmentSolver};
 use crate::field::{self, SlipZero};
 use crate::math;
@@ -111,13 +112,13 @@ impl TaylorContact {
 }
 
 impl SegmentSolver for TaylorContact {
-    fn start(
-        &mut self,
-        regime: Regime,
-        slip: f64,
-        time: f64,
-        state: State,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
+        let SegmentStart {
+            regime,
+            slip,
+            time,
+            state,
+        } = at;
         self.regime = regime;
         self.slip = slip;
         self.expansion.set_regime(&self.model, regime, slip);

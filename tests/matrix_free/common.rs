@@ -2,6 +2,7 @@
 //! (`tests/data/matrix_free/*.txt`), the models they state, and running [`ExactFree`] to a
 //! target.
 
+use rotor_rub::driver::SegmentStart;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -187,7 +188,13 @@ impl Case {
 /// A solver started at `(t0, y0)`.
 pub fn started(model: &Model, t0: f64, y0: State) -> Free<'_> {
     let mut free = ExactFree::new(model).unwrap();
-    free.start(Regime::Free, 0.0, t0, y0).unwrap();
+    free.start(SegmentStart {
+        regime: Regime::Free,
+        slip: 0.0,
+        time: t0,
+        state: y0,
+    })
+    .unwrap();
     free
 }
 

@@ -3,6 +3,7 @@
 //! rigid-body mode (no static deflection). Checked against nalgebra's exponential of the
 //! augmented system (independent of the particular solution).
 
+use rotor_rub::driver::SegmentStart;
 use rotor_rub::linalg::LinalgError;
 use rotor_rub::matrix::{ExactFree, MatrixError};
 
@@ -85,7 +86,14 @@ fn a_state_of_the_wrong_size_is_a_typed_error() {
     let model = case.model();
     let mut free = ExactFree::new(&model).unwrap();
     let wrong = State::new(&[0.0; 3], &[0.0; 3]).unwrap();
-    let err = free.start(Regime::Free, 0.0, 0.0, wrong).unwrap_err();
+    let err = free
+        .start(SegmentStart {
+            regime: Regime::Free,
+            slip: 0.0,
+            time: 0.0,
+            state: wrong,
+        })
+        .unwrap_err();
     assert!(
         matches!(err, Error::InvalidModel(MatrixError::Shape { .. })),
         "{err:?}"
@@ -98,14 +106,13 @@ fn the_solver_runs_behind_an_arc_and_a_reference_alike() {
     let case = Case::load("ring_undamped_contact");
     let shared = Arc::new(case.model());
     let mut by_arc: ExactFree<Arc<Model>, CAP> = ExactFree::new(shared.clone()).unwrap();
-    rotor_rub::driver::SegmentSolver::start(
-        &mut by_arc,
-        rotor_rub::propagate::Regime::Free,
-        0.0,
-        case.t0,
-        case.start(),
-    )
-    .unwrap();
+    let at = SegmentStart {
+        regime: rotor_rub::propagate::Regime::Free,
+        slip: 0.0,
+        time: case.t0,
+        state: case.start(),
+    };
+    rotor_rub::driver::SegmentSolver::start(&mut by_arc, at).unwrap();
     let mut by_ref = started(&shared, case.t0, case.start());
     let end = case.t0 + 10.0;
     assert_eq!(contact(&mut by_arc, end), contact(&mut by_ref, end));

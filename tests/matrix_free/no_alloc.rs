@@ -1,6 +1,7 @@
 //! The solver allocates nothing: a counting global allocator sees no allocation on the test's
 //! thread while a ring model is decomposed and searched for 100 forcing periods.
 
+use rotor_rub::driver::SegmentStart;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -43,7 +44,13 @@ fn decomposition_and_search_allocate_nothing() {
     COUNTED.with(|c| c.set(true));
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut free = ExactFree::new(&model).unwrap();
-    free.start(Regime::Free, 0.0, case.t0, start).unwrap();
+    free.start(SegmentStart {
+        regime: Regime::Free,
+        slip: 0.0,
+        time: case.t0,
+        state: start,
+    })
+    .unwrap();
     let mut reached = 0;
     for k in 1..=100 {
         if let rotor_rub::driver::Located::Reached(_) =

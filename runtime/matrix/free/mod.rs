@@ -42,6 +42,7 @@
 mod flight;
 mod search;
 
+use crate::driver::SegmentStart;
 use core::cell::Cell;
 use core::ops::Deref;
 
@@ -55,7 +56,7 @@ use super::state::MatrixState;
 use crate::analytic::switch::EventFunction;
 use crate::driver::{Located, SegmentSolver};
 use crate::linalg::{LinalgError, ProjectedMotion};
-use crate::propagate::{Event, EventKind, PropagationError, Regime};
+use crate::propagate::{Event, EventKind, PropagationError};
 
 /// Work counters of an [`ExactFree`] since it was made (benches and diagnostics).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -274,13 +275,8 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> SegmentSolve
 {
     /// A free segment from `(time, state)` (any regime is taken as free flight: this solver
     /// serves the free regime).
-    fn start(
-        &mut self,
-        _regime: Regime,
-        _slip: f64,
-        time: f64,
-        state: MatrixState<CAP>,
-    ) -> Result<(), PropagationError> {
+    fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
+        let SegmentStart { time, state, .. } = at;
         if state.dofs() != self.model.dofs() {
             return Err(PropagationError::InvalidModel(MatrixError::Shape {
                 what: "state",
