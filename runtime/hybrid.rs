@@ -167,9 +167,7 @@ impl Dop853Contact {
 
 impl SegmentSolver for Dop853Contact {
     fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
-        let SegmentStart {
-            slip, time, state, ..
-        } = at;
+        let (slip, time, state) = (at.slip, at.time, at.state);
         self.begin(slip, time, state);
         Ok(())
     }

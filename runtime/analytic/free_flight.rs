@@ -133,7 +133,7 @@ impl FreeFlightSolver {
 
 impl SegmentSolver for FreeFlightSolver {
     fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
-        let SegmentStart { time, state, .. } = at;
+        let (time, state) = (at.time, at.state);
         self.flight = FreeFlight::new(&self.params, &self.constants, time, state);
         self.located = time;
         Ok(())

@@ -175,9 +175,7 @@ impl ExprbContact {
 
 impl SegmentSolver for ExprbContact {
     fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
-        let SegmentStart {
-            slip, time, state, ..
-        } = at;
+        let (slip, time, state) = (at.slip, at.time, at.state);
         self.time_carry = 0.0;
         self.slip = slip;
         if slip != 0.0 {

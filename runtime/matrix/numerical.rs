@@ -146,12 +146,7 @@ where
 {
     /// Take the regime's field and restart the integration at the switch.
     fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
-        let SegmentStart {
-            regime,
-            slip,
-            time,
-            state,
-        } = at;
+        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
         self.regime = regime;
         self.slip = slip;
         let y = *state.array();

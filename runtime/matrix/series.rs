@@ -22,6 +22,7 @@ use crate::coefficients::{
 use crate::math;
 use crate::propagate::Regime;
 use crate::refine::Knot;
+pub use crate::taylor::expansion::Switch;
 use crate::taylor::kernels::{self, CAPACITY, MAX_ORDER, Series};
 
 /// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
@@ -45,19 +46,6 @@ enum Law {
     Contact(contact::Constants),
     Slipping(slipping::Constants),
     Rolling(rolling::Constants),
-}
-
-/// A switch function of a contact regime, positive inside it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Switch {
-    /// z² − 1: the contact ends (`exit`).
-    Boundary,
-    /// σw while slipping (`roll`, `reverse`, or a touch).
-    SlipVelocity,
-    /// μN − λ while rolling (`slip`).
-    ConeUpper,
-    /// μN + λ while rolling (`slip`).
-    ConeLower,
 }
 
 /// Where a law's series are (every law stores P, P', the phasor first, in one order).

@@ -94,12 +94,7 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> SegmentSolver<Matrix
     for TaylorContact<M, CAP>
 {
     fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
-        let SegmentStart {
-            regime,
-            slip,
-            time,
-            state,
-        } = at;
+        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
         self.slip = slip;
         self.expansion.set_regime(&self.model, regime, slip);
         self.origin = time;

@@ -164,12 +164,7 @@ impl<S: Scheme<4>, F: FieldFamily> Solvers for ReferenceSolver<S, F> {
 impl<S: Scheme<4>, F: FieldFamily> SegmentSolver for ReferenceSolver<S, F> {
     /// Switch the field and restart the integration at the switch.
     fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
-        let SegmentStart {
-            regime,
-            slip,
-            time,
-            state,
-        } = at;
+        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
         self.begin(regime, slip, time, state);
         Ok(())
     }

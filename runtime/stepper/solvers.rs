@@ -428,12 +428,7 @@ pub(super) struct Substeps<'f, 'a, K> {
 
 impl<K: SubstepKind> SegmentSolver for Substeps<'_, '_, K> {
     fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
-        let SegmentStart {
-            regime,
-            slip,
-            time,
-            state,
-        } = at;
+        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
         let f = self.frame;
         self.slip = Slip::of(f.params, regime, time, &state, slip);
         self.progress = Progress::at(f.cursor.get(), state);

@@ -113,12 +113,7 @@ impl TaylorContact {
 
 impl SegmentSolver for TaylorContact {
     fn start(&mut self, at: SegmentStart) -> Result<(), PropagationError> {
-        let SegmentStart {
-            regime,
-            slip,
-            time,
-            state,
-        } = at;
+        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
         self.regime = regime;
         self.slip = slip;
         self.expansion.set_regime(&self.model, regime, slip);

@@ -276,7 +276,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> SegmentSolve
     /// A free segment from `(time, state)` (any regime is taken as free flight: this solver
     /// serves the free regime).
     fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
-        let SegmentStart { time, state, .. } = at;
+        let (time, state) = (at.time, at.state);
         if state.dofs() != self.model.dofs() {
             return Err(PropagationError::InvalidModel(MatrixError::Shape {
                 what: "state",
