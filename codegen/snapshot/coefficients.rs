@@ -4266,7 +4266,7 @@ pub mod station_contact_taylor {
     /// Every operation at the expansion point (order 0; the states' order 0 set by the
     /// caller), and every state's coefficient 1.
     #[inline]
-    pub fn order0(k: &Constants, s: &mut ts::Series) {
+    pub fn order0(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         s[6][0] = 0.0;
         s[7][0] = 0.0;
@@ -4296,7 +4296,7 @@ pub mod station_contact_taylor {
     /// convolution is a loop of known length (unrolled by the compiler). Beyond the
     /// storage's capacity it does nothing.
     #[inline]
-    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         let v = 0.0;
         ts::set(&mut s[6], N, v);
@@ -4347,7 +4347,7 @@ pub mod station_contact_taylor {
     /// of what they are computed from only (the states' polynomials, of degree `N`, are
     /// complete after order `N − 1`).
     #[inline]
-    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         let v = ts::at(&s[0], N);
         ts::set(&mut s[10], N, v);
@@ -4472,7 +4472,7 @@ pub mod station_slipping_taylor {
     /// Every operation at the expansion point (order 0; the states' order 0 set by the
     /// caller), and every state's coefficient 1.
     #[inline]
-    pub fn order0(k: &Constants, s: &mut ts::Series) {
+    pub fn order0(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         s[6][0] = 0.0;
         s[7][0] = 0.0;
@@ -4514,7 +4514,7 @@ pub mod station_slipping_taylor {
     /// convolution is a loop of known length (unrolled by the compiler). Beyond the
     /// storage's capacity it does nothing.
     #[inline]
-    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         let v = 0.0;
         ts::set(&mut s[6], N, v);
@@ -4591,7 +4591,7 @@ pub mod station_slipping_taylor {
     /// of what they are computed from only (the states' polynomials, of degree `N`, are
     /// complete after order `N − 1`).
     #[inline]
-    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         let v = ts::at(&s[0], N);
         ts::set(&mut s[10], N, v);
@@ -4765,7 +4765,7 @@ pub mod station_rolling_taylor {
     /// Every operation at the expansion point (order 0; the states' order 0 set by the
     /// caller), and every state's coefficient 1.
     #[inline]
-    pub fn order0(k: &Constants, s: &mut ts::Series) {
+    pub fn order0(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         s[8][0] = 0.0;
         s[9][0] = 0.0;
@@ -4834,7 +4834,7 @@ pub mod station_rolling_taylor {
     /// convolution is a loop of known length (unrolled by the compiler). Beyond the
     /// storage's capacity it does nothing.
     #[inline]
-    pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+    pub fn order<const N: usize>(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         let v = 0.0;
         ts::set(&mut s[8], N, v);
@@ -4964,7 +4964,7 @@ pub mod station_rolling_taylor {
     /// of what they are computed from only (the states' polynomials, of degree `N`, are
     /// complete after order `N − 1`).
     #[inline]
-    pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+    pub fn last<const N: usize>(k: &Constants, s: &mut ts::StationSeries) {
         let _ = k;
         let v = ts::at(&s[0], N);
         ts::set(&mut s[14], N, v);
@@ -5063,5 +5063,7 @@ pub mod station_rolling_taylor {
         ts::set(&mut s[60], N, v);
     }
 }
-/// The most series any Taylor system uses (the runtime's storage size).
-pub const TAYLOR_SERIES_MAX: usize = 61;
+/// The most series a Taylor system of the planar model uses (the runtime's storage size).
+pub const TAYLOR_SERIES_MAX: usize = 44;
+/// The most series a rub station's Taylor system uses (rotors from matrices).
+pub const STATION_TAYLOR_SERIES_MAX: usize = 61;

@@ -72,14 +72,18 @@ pub fn generate() -> Generated {
         counts.push((f.name.clone(), e.before, e.after));
     }
     let mut taylor_lines = Vec::new();
-    let mut series_max = 0;
+    let (mut series_max, mut station_series_max) = (0, 0);
     let systems = std::mem::take(&mut model.taylor);
     for system in &systems {
         let program = taylor::decompose(&mut model.graph, system);
         let e = taylor::emit::emit_system(&model.graph, system, &program, groups);
         body.extend(e.tokens);
         used.extend(e.constants.groups.iter().map(|g| g.ty));
-        series_max = series_max.max(e.series);
+        if taylor::emit::is_station(system) {
+            station_series_max = station_series_max.max(e.series);
+        } else {
+            series_max = series_max.max(e.series);
+        }
         counts.push((
             format!("{}::constants", system.name),
             e.constants.before,
@@ -88,9 +92,12 @@ pub fn generate() -> Generated {
         taylor_lines.push((system.name.clone(), e.series, e.order0, e.per_order));
     }
     let series_max = proc_macro2::Literal::usize_unsuffixed(series_max);
+    let station_series_max = proc_macro2::Literal::usize_unsuffixed(station_series_max);
     body.extend(quote! {
-        /// The most series any Taylor system uses (the runtime's storage size).
+        /// The most series a Taylor system of the planar model uses (the runtime's storage size).
         pub const TAYLOR_SERIES_MAX: usize = #series_max;
+        /// The most series a rub station's Taylor system uses (rotors from matrices).
+        pub const STATION_TAYLOR_SERIES_MAX: usize = #station_series_max;
     });
     // The declared structs, once each, in table order.
     let mut structs = TokenStream::new();

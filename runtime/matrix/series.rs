@@ -23,7 +23,7 @@ use crate::math;
 use crate::propagate::Regime;
 use crate::refine::Knot;
 pub use crate::taylor::expansion::Switch;
-use crate::taylor::kernels::{self, CAPACITY, MAX_ORDER, Series};
+use crate::taylor::kernels::{self, CAPACITY, MAX_ORDER, StationSeries};
 
 /// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
 macro_rules! orders {
@@ -110,7 +110,7 @@ pub struct MatrixExpansion<const CAP: usize> {
     /// Coefficient k of y = (q, q') at `state[k]` (2n entries used).
     state: [[f64; CAP]; CAPACITY],
     /// The law's series (inputs, phasor, law, switch functions).
-    station: Series,
+    station: StationSeries,
 }
 
 impl<const CAP: usize> MatrixExpansion<CAP> {
@@ -122,7 +122,7 @@ impl<const CAP: usize> MatrixExpansion<CAP> {
             slip: 1.0,
             order: order.clamp(2, MAX_ORDER),
             state: [[0.0; CAP]; CAPACITY],
-            station: [[0.0; CAPACITY]; crate::coefficients::TAYLOR_SERIES_MAX],
+            station: [[0.0; CAPACITY]; crate::coefficients::STATION_TAYLOR_SERIES_MAX],
         }
     }
 

@@ -8,7 +8,7 @@
 //! beyond it are dropped, so no index can panic (the method never asks for more than
 //! [`MAX_ORDER`] + 1 coefficients).
 
-use crate::coefficients::TAYLOR_SERIES_MAX;
+use crate::coefficients::{STATION_TAYLOR_SERIES_MAX, TAYLOR_SERIES_MAX};
 
 /// Coefficients stored per series: orders 0 ..= [`MAX_ORDER`] + 1.
 pub const CAPACITY: usize = 24;
@@ -19,6 +19,9 @@ pub const MAX_ORDER: usize = CAPACITY - 2;
 
 /// The coefficients of every series of a system, states first.
 pub type Series = [[f64; CAPACITY]; TAYLOR_SERIES_MAX];
+
+/// The series of a rub station's Taylor system (rotors from matrices, `crate::matrix`).
+pub type StationSeries = [[f64; CAPACITY]; STATION_TAYLOR_SERIES_MAX];
 
 /// Coefficient `n` of `a` (0 beyond the capacity).
 #[inline(always)]

@@ -196,6 +196,12 @@ fn order_body(
 
 /// Emit `system` (decomposed as `program`) as a module; `groups` resolves the constants'
 /// input symbols.
+/// Whether `system` is a rub station's (a rotor from matrices, `model/station.rs`), stored apart
+/// from the planar model's systems.
+pub fn is_station(system: &System) -> bool {
+    system.name.starts_with("station_")
+}
+
 pub fn emit_system(
     g: &Graph,
     system: &System,
@@ -321,6 +327,13 @@ pub fn emit_system(
         observed.extend(quote!(#[doc = #d] pub const #c: usize = #i;));
     }
     let ctokens = constants.tokens.clone();
+    // A rub station's systems (rotors from matrices) have their own storage, so that the planar
+    // model's storage is not sized by them (`TAYLOR_SERIES_MAX`, `STATION_TAYLOR_SERIES_MAX`).
+    let storage = if is_station(system) {
+        quote!(ts::StationSeries)
+    } else {
+        quote!(ts::Series)
+    };
     let tokens = quote! {
         #[doc = #summary]
         #[doc = ""]
@@ -346,7 +359,7 @@ pub fn emit_system(
             /// Every operation at the expansion point (order 0; the states' order 0 set by the
             /// caller), and every state's coefficient 1.
             #[inline]
-            pub fn order0(k: &Constants, s: &mut ts::Series) {
+            pub fn order0(k: &Constants, s: &mut #storage) {
                 let _ = k;
                 #body0
             }
@@ -356,7 +369,7 @@ pub fn emit_system(
             /// convolution is a loop of known length (unrolled by the compiler). Beyond the
             /// storage's capacity it does nothing.
             #[inline]
-            pub fn order<const N: usize>(k: &Constants, s: &mut ts::Series) {
+            pub fn order<const N: usize>(k: &Constants, s: &mut #storage) {
                 let _ = k;
                 #body
             }
@@ -365,7 +378,7 @@ pub fn emit_system(
             /// of what they are computed from only (the states' polynomials, of degree `N`, are
             /// complete after order `N − 1`).
             #[inline]
-            pub fn last<const N: usize>(k: &Constants, s: &mut ts::Series) {
+            pub fn last<const N: usize>(k: &Constants, s: &mut #storage) {
                 let _ = k;
                 #last
             }
