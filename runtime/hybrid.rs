@@ -256,7 +256,8 @@ impl HybridPropagator {
         Self::INFO.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
-        Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
+        Piecewise::new(problem, Some(REFERENCE_BUDGET), |at| {
+            let (regime, slip, s0) = (at.regime, at.slip, at.state);
             // The solver of the starting regime starts at the problem start; the others are
             // started by the driver at their first segment.
             let contact = if regime == Regime::Contact {

@@ -19,7 +19,8 @@ use matrix_oracle::ring::{self, OracleRun};
 use rotor_rub::Propagate;
 use rotor_rub::events;
 use rotor_rub::matrix::{
-    MatrixPropagator, MatrixState, NumericalFree, RingModel, hybrid, ring_model, ring_start, taylor,
+    MatrixPropagator, MatrixState, NumericalFree, NumericalSolver, RingModel, TaylorContact,
+    ring_model, ring_start, split,
 };
 use rotor_rub::method::{Method, Options};
 
@@ -165,7 +166,8 @@ fn the_contact_solvers_with_a_numerical_free_flight_agree_with_the_oracle() {
         "hybrid (numerical free flight)",
         &|model, start| {
             let free = NumericalFree::new(model).expect("the free flight starts");
-            Box::new(hybrid(model, free, 0.0, start, 1e-13).expect("the method starts"))
+            let contact = NumericalSolver::<rotor_rub::reference::Dop853, _, _>::new(model, 1e-13);
+            Box::new(split(model, free, contact, 0.0, start).expect("the method starts"))
         },
         1e-8,
         1e-6,
@@ -174,7 +176,8 @@ fn the_contact_solvers_with_a_numerical_free_flight_agree_with_the_oracle() {
         "taylor (numerical free flight)",
         &|model, start| {
             let free = NumericalFree::new(model).expect("the free flight starts");
-            Box::new(taylor(model, free, 0.0, start, 1e-13).expect("the method starts"))
+            let contact = TaylorContact::new(model, 1e-13);
+            Box::new(split(model, free, contact, 0.0, start).expect("the method starts"))
         },
         1e-8,
         1e-6,

@@ -258,7 +258,8 @@ impl AnalyticPropagator {
         }
         let params = problem.params;
         let t0 = problem.start_time;
-        Piecewise::new(problem, None, |regime, slip, s0| {
+        Piecewise::new(problem, None, |at| {
+            let (regime, s0) = (at.regime, at.state);
             let mut solvers = ByRegime {
                 free: FreeFlightSolver::new(&params, t0, s0),
                 contact: ExprbContact::new(&params, scheme, tol, fixed_step),
@@ -272,12 +273,7 @@ impl AnalyticPropagator {
                 },
             };
             if regime == Regime::Contact {
-                solvers.contact.start(SegmentStart {
-                    regime,
-                    slip,
-                    time: t0,
-                    state: s0,
-                })?;
+                solvers.contact.start(at)?;
             }
             Ok(solvers)
         })

@@ -34,7 +34,7 @@ impl<S: Solvers> Piecewise<S> {
     pub fn new(
         problem: &Problem,
         budget: Option<StepBudget>,
-        build: impl FnOnce(Regime, f64, crate::params::State) -> Result<S, PropagationError>,
+        build: impl FnOnce(SegmentStart) -> Result<S, PropagationError>,
     ) -> Result<Self, PropagationError> {
         problem.params.planar()?;
         Piecewise::start(
@@ -49,9 +49,9 @@ impl<S: Solvers> Piecewise<S> {
 
 impl<Y: System, S: Solvers<Y::State>> Piecewise<S, Y> {
     /// Start `system` at `(time, state)`, in the regime [`System::start_side`] decides there.
-    /// `build(regime, slip, state)` makes the method's solvers with the solver of `regime`
-    /// started at `time` in `state` (the initial state, or on the contact surface the start
-    /// moved onto its side), with slip direction `slip` (see [`super::SegmentSolver::start`]).
+    /// `build(at)` makes the method's solvers with the solver of `at.regime` started at `at`
+    /// ([`super::SegmentSolver::start`]): at `time`, in the initial state or, on the contact
+    /// surface, the start moved onto its side, with the slip direction the friction rules give.
     ///
     /// # Errors
     /// [`PropagationError::Diverged`] for a start beyond the divergence radius, or what `build`
@@ -62,7 +62,7 @@ impl<Y: System, S: Solvers<Y::State>> Piecewise<S, Y> {
         time: f64,
         state: Y::State,
         budget: Option<StepBudget>,
-        build: impl FnOnce(Regime, f64, Y::State) -> Result<S, PropagationError>,
+        build: impl FnOnce(SegmentStart<Y::State>) -> Result<S, PropagationError>,
     ) -> Result<Self, PropagationError> {
         if !system.within_bounds(&state) {
             return Err(system.diverged(time, &state));
@@ -72,7 +72,12 @@ impl<Y: System, S: Solvers<Y::State>> Piecewise<S, Y> {
             Regime::Contact => system.slip_direction(time, &start, None),
             Regime::Free | Regime::Rolling => 0.0,
         };
-        let solvers = build(regime, slip, start)?;
+        let solvers = build(SegmentStart {
+            regime,
+            slip,
+            time,
+            state: start,
+        })?;
         Ok(Piecewise {
             solvers,
             system,

@@ -17,7 +17,6 @@
 //! [`SegmentSolver`] of free segments ending in `enter` switches); [`FreeFlight`] is the one
 //! [`MatrixPropagator`] builds.
 
-use crate::driver::SegmentStart;
 use core::ops::Deref;
 
 use super::error::MatrixError;
@@ -90,65 +89,20 @@ where
     M: Deref<Target = MatrixModel<CAP>> + Clone,
 {
     let solver_model = model.clone();
-    Piecewise::start(
-        model,
-        time,
-        start,
-        Some(REFERENCE_BUDGET),
-        |regime, slip, s0| {
-            let mut solver = NumericalSolver::new(solver_model, tol);
-            solver.start(SegmentStart {
-                regime,
-                slip,
-                time,
-                state: s0,
-            })?;
-            Ok(solver)
-        },
-    )
+    Piecewise::start(model, time, start, Some(REFERENCE_BUDGET), |at| {
+        let mut solver = NumericalSolver::new(solver_model, tol);
+        solver.start(at)?;
+        Ok(solver)
+    })
 }
 
-/// Start `hybrid` on `model` with free-flight solver `free` (not started: started here when
-/// the run starts in free flight) and DOP853 at `tol` in contact.
+/// Start `hybrid` (contact: [`NumericalSolver`], DOP853) or `taylor` / `analytic` (contact:
+/// [`TaylorContact`]) on `model` with free-flight solver `free` and the contact solver
+/// `contact` (neither started: the one of the start's regime is started here).
 ///
 /// # Errors
 /// As [`Piecewise::start`].
-pub fn hybrid<F, M, const CAP: usize>(
-    model: M,
-    free: F,
-    time: f64,
-    start: MatrixState<CAP>,
-    tol: f64,
-) -> Result<HybridPropagator<F, M, CAP>, PropagationError>
-where
-    F: SegmentSolver<MatrixState<CAP>>,
-    M: Deref<Target = MatrixModel<CAP>> + Clone,
-{
-    let contact = NumericalSolver::new(model.clone(), tol);
-    split(model, free, contact, time, start)
-}
-
-/// Start `taylor` (or `analytic`) on `model` with free-flight solver `free` and Taylor series
-/// at `tol` in contact.
-///
-/// # Errors
-/// As [`Piecewise::start`].
-pub fn taylor<F, M, const CAP: usize>(
-    model: M,
-    free: F,
-    time: f64,
-    start: MatrixState<CAP>,
-    tol: f64,
-) -> Result<TaylorPropagator<F, M, CAP>, PropagationError>
-where
-    F: SegmentSolver<MatrixState<CAP>>,
-    M: Deref<Target = MatrixModel<CAP>> + Clone,
-{
-    let contact = TaylorContact::new(model.clone(), tol);
-    split(model, free, contact, time, start)
-}
-
-fn split<F, C, M, const CAP: usize>(
+pub fn split<F, C, M, const CAP: usize>(
     model: M,
     mut free: F,
     mut contact: C,
@@ -160,29 +114,13 @@ where
     C: SegmentSolver<MatrixState<CAP>>,
     M: Deref<Target = MatrixModel<CAP>>,
 {
-    Piecewise::start(
-        model,
-        time,
-        start,
-        Some(REFERENCE_BUDGET),
-        |regime, slip, s0| {
-            match regime {
-                Regime::Free => free.start(SegmentStart {
-                    regime,
-                    slip,
-                    time,
-                    state: s0,
-                })?,
-                Regime::Contact | Regime::Rolling => contact.start(SegmentStart {
-                    regime,
-                    slip,
-                    time,
-                    state: s0,
-                })?,
-            }
-            Ok(Split { free, contact })
-        },
-    )
+    Piecewise::start(model, time, start, Some(REFERENCE_BUDGET), |at| {
+        match at.regime {
+            Regime::Free => free.start(at)?,
+            Regime::Contact | Regime::Rolling => contact.start(at)?,
+        }
+        Ok(Split { free, contact })
+    })
 }
 
 #[allow(
@@ -251,11 +189,13 @@ where
             Method::Rk45 => Inner::Rk45(numerical(model, time, start, tol)?),
             Method::Hybrid => {
                 let free = FreeFlight::new(model.clone())?;
-                Inner::Hybrid(hybrid(model, free, time, start, tol)?)
+                let contact = NumericalSolver::new(model.clone(), tol);
+                Inner::Hybrid(split(model, free, contact, time, start)?)
             }
             Method::Taylor | Method::Analytic => {
                 let free = FreeFlight::new(model.clone())?;
-                Inner::Taylor(taylor(model, free, time, start, tol)?)
+                let contact = TaylorContact::new(model.clone(), tol);
+                Inner::Taylor(split(model, free, contact, time, start)?)
             }
         };
         Ok(MatrixPropagator {

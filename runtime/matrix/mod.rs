@@ -38,7 +38,7 @@ pub use field::StationMotion;
 pub use free::{ExactFree, FreeWork};
 pub use methods::{
     FreeFlight, HybridPropagator, MatrixPropagator, NumericalPropagator, Split, TaylorPropagator,
-    hybrid, numerical, taylor,
+    numerical, split,
 };
 pub use model::{MatrixModel, Running, SPEED_RANGE, Station, Unbalance};
 pub use numerical::{MatrixField, NumericalFree, NumericalSolver, STAND_IN_TOLERANCE, max_step};

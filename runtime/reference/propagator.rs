@@ -238,8 +238,10 @@ impl<S: Scheme<4>> ReferencePropagator<S> {
         method.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
-        let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, start| {
-            Ok(ReferenceSolver::new(params, regime, slip, t0, start, tol))
+        let driver = Piecewise::new(problem, Some(REFERENCE_BUDGET), |at| {
+            Ok(ReferenceSolver::new(
+                params, at.regime, at.slip, t0, at.state, tol,
+            ))
         })?;
         Ok(ReferencePropagator { driver, events: 0 })
     }

@@ -23,7 +23,6 @@ mod step;
 pub use solver::TaylorContact;
 
 use crate::analytic::free_flight::FreeFlightSolver;
-use crate::driver::SegmentStart;
 use crate::driver::{Located, Piecewise, SegmentSolver, Solvers};
 use crate::params::Problem;
 use crate::params::ValidRange;
@@ -71,18 +70,14 @@ impl TaylorPropagator {
         Self::INFO.check_tolerance(tol)?;
         let params = problem.params;
         let t0 = problem.start_time;
-        Piecewise::new(problem, Some(REFERENCE_BUDGET), |regime, slip, s0| {
+        Piecewise::new(problem, Some(REFERENCE_BUDGET), |at| {
+            let s0 = at.state;
             let mut contact = TaylorContact::new(&params, tol, t0, s0);
             // The one solver serves contact and rolling: a run (or a resumed run) that starts
             // rolling starts it on the rolling field, not on the frictionless one it is built
             // with (issue 32 item 3: a start with w = 0 where the λ rule says roll).
-            if regime != Regime::Free {
-                contact.start(SegmentStart {
-                    regime,
-                    slip,
-                    time: t0,
-                    state: s0,
-                })?;
+            if at.regime != Regime::Free {
+                contact.start(at)?;
             }
             Ok(TaylorSolvers {
                 free: FreeFlightSolver::new(&params, t0, s0),

@@ -106,11 +106,15 @@ impl Program<'_> {
         let tol = self.options.options.tolerance();
         let budget = Some(REFERENCE_BUDGET);
         Ok(match self.options.options.method {
-            Method::Rk45 => Inner::Rk45(Piecewise::new(&problem, budget, |regime, slip, s0| {
-                Ok(ReferenceSolver::new(field, regime, slip, time, s0, tol))
+            Method::Rk45 => Inner::Rk45(Piecewise::new(&problem, budget, |at| {
+                Ok(ReferenceSolver::new(
+                    field, at.regime, at.slip, time, at.state, tol,
+                ))
             })?),
-            _ => Inner::Dop853(Piecewise::new(&problem, budget, |regime, slip, s0| {
-                Ok(ReferenceSolver::new(field, regime, slip, time, s0, tol))
+            _ => Inner::Dop853(Piecewise::new(&problem, budget, |at| {
+                Ok(ReferenceSolver::new(
+                    field, at.regime, at.slip, time, at.state, tol,
+                ))
             })?),
         })
     }
