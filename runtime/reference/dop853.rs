@@ -7,7 +7,7 @@ use super::ode::{OdeSystem, lin};
 use core::marker::PhantomData;
 
 use super::scheme::{
-    Attempt, Controller, Dense, DenseForm, Scheme, Tolerance, stage_input, weighted,
+    Attempt, Controller, Dense, DenseForm, Scheme, StepStart, stage_input, weighted,
 };
 use super::tableau_dop853 as tab;
 
@@ -51,12 +51,9 @@ impl<const N: usize> Scheme<N> for Dop853 {
 
     fn attempt<S: OdeSystem<N> + ?Sized>(
         sys: &S,
-        t: f64,
-        y: &[f64; N],
-        f0: &[f64; N],
-        h: f64,
-        tol: &Tolerance,
+        from: StepStart<'_, N>,
     ) -> Attempt<N, Self::Stages> {
+        let StepStart { t, y, f0, h, tol } = from;
         let mut k = [[0.0; N]; 12];
         k[0] = *f0;
         // One line per stage so that every row is a constant of known length (see
@@ -100,12 +97,10 @@ impl<const N: usize> Scheme<N> for Dop853 {
 
     fn accept<S: OdeSystem<N> + ?Sized>(
         sys: &S,
-        t: f64,
-        y: &[f64; N],
-        _f0: &[f64; N],
-        h: f64,
+        from: StepStart<'_, N>,
         attempt: &Attempt<N, Self::Stages>,
     ) -> ([f64; N], Self::Dense) {
+        let StepStart { t, y, h, .. } = from;
         let y1 = &attempt.y1;
         let mut k = [[0.0; N]; 13];
         for (slot, stage) in k.iter_mut().zip(attempt.stages.iter()) {

@@ -6,7 +6,7 @@ use core::marker::PhantomData;
 
 use super::dop853::{Dop853, Dop853Step};
 use super::ode::{OdeSystem, all_finite};
-use super::scheme::{Attempt, Controller, Scheme, Tolerance};
+use super::scheme::{Attempt, Controller, Scheme, StepStart, Tolerance};
 use crate::math;
 use crate::propagate::PropagationError;
 
@@ -224,7 +224,14 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         t_limit: f64,
     ) -> Result<AcceptedStep<N, S::Dense>, PropagationError> {
         self.accepted_trial(sys, t_limit, |me, h, t1, trial| {
-            let (f1, dense) = S::accept(sys, me.t, &me.y, &me.f, h, trial);
+            let from = StepStart {
+                t: me.t,
+                y: &me.y,
+                f0: &me.f,
+                h,
+                tol: &me.tol,
+            };
+            let (f1, dense) = S::accept(sys, from, trial);
             me.stats.evaluations = me.stats.evaluations.saturating_add(S::ACCEPT_EVALUATIONS);
             let step = AcceptedStep {
                 t0: me.t,
@@ -270,7 +277,14 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
             if h.is_nan() || h <= 10.0 * f64::EPSILON * math::abs(self.t) || h < f64::MIN_POSITIVE {
                 return Err(PropagationError::StepSizeUnderflow { time: self.t });
             }
-            let trial = S::attempt(sys, self.t, &self.y, &self.f, h, &self.tol);
+            let from = StepStart {
+                t: self.t,
+                y: &self.y,
+                f0: &self.f,
+                h,
+                tol: &self.tol,
+            };
+            let trial = S::attempt(sys, from);
             self.stats.evaluations = self.stats.evaluations.saturating_add(S::STAGE_EVALUATIONS);
             let err = if trial.err.is_nan() || !all_finite(&trial.y1) {
                 f64::INFINITY
@@ -340,7 +354,14 @@ impl<S: Scheme<N>, const N: usize> Integrator<S, N> {
         t: f64,
     ) -> [f64; N] {
         self.stats.evaluations = self.stats.evaluations.saturating_add(S::STAGE_EVALUATIONS);
-        S::attempt(sys, t0, y0, f0, t - t0, &self.tol).y1
+        let from = StepStart {
+            t: t0,
+            y: y0,
+            f0,
+            h: t - t0,
+            tol: &self.tol,
+        };
+        S::attempt(sys, from).y1
     }
 }
 

@@ -6,7 +6,7 @@ use core::marker::PhantomData;
 
 use super::ode::{OdeSystem, lin};
 use super::scheme::{
-    Attempt, Controller, Dense, DenseForm, Scheme, Tolerance, stage_input_slice, weighted_slice,
+    Attempt, Controller, Dense, DenseForm, Scheme, StepStart, stage_input_slice, weighted_slice,
 };
 use super::tableau_rk45 as tab;
 
@@ -48,12 +48,9 @@ impl<const N: usize> Scheme<N> for Rk45 {
 
     fn attempt<S: OdeSystem<N> + ?Sized>(
         sys: &S,
-        t: f64,
-        y: &[f64; N],
-        f0: &[f64; N],
-        h: f64,
-        tol: &Tolerance,
+        from: StepStart<'_, N>,
     ) -> Attempt<N, Self::Stages> {
+        let StepStart { t, y, f0, h, tol } = from;
         let mut k = [[0.0; N]; 7];
         k[0] = *f0;
         let rows: [&[f64]; 5] = [&tab::A2, &tab::A3, &tab::A4, &tab::A5, &tab::A6];
@@ -77,12 +74,10 @@ impl<const N: usize> Scheme<N> for Rk45 {
 
     fn accept<S: OdeSystem<N> + ?Sized>(
         _sys: &S,
-        t: f64,
-        y: &[f64; N],
-        _f0: &[f64; N],
-        h: f64,
+        from: StepStart<'_, N>,
         attempt: &Attempt<N, Self::Stages>,
     ) -> ([f64; N], Self::Dense) {
+        let StepStart { t, y, h, .. } = from;
         let k = &attempt.stages;
         let [k1, .., k7] = k;
         let ydiff = lin(&[(1.0, &attempt.y1), (-1.0, y)]);

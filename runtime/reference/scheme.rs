@@ -122,6 +122,22 @@ impl<const N: usize, D: Interpolant<N>> Interpolant<N> for After<'_, D> {
     }
 }
 
+/// Where a trial step starts: `(t, y)` with `f0 = f(t, y)`, its size `h` and the tolerances its
+/// error is measured in.
+#[derive(Clone, Copy, Debug)]
+pub struct StepStart<'a, const N: usize> {
+    /// The start time.
+    pub t: f64,
+    /// The state there.
+    pub y: &'a [f64; N],
+    /// f(t, y).
+    pub f0: &'a [f64; N],
+    /// The step size.
+    pub h: f64,
+    /// The error control.
+    pub tol: &'a Tolerance,
+}
+
 /// One trial step: the new state, the scaled error norm (accept when ≤ 1; may be `inf` or NaN
 /// when the stages overflowed) and the stage derivatives the dense output needs.
 #[derive(Clone, Copy, Debug)]
@@ -149,24 +165,18 @@ pub trait Scheme<const N: usize> {
     /// Right-hand-side evaluations of one [`Scheme::accept`].
     const ACCEPT_EVALUATIONS: u64;
 
-    /// One step of size `h` from `(t, y)` with `f0 = f(t, y)`. Never panics; `h = 0` returns `y`.
+    /// One step of size `from.h` from `(from.t, from.y)` with `from.f0 = f(t, y)`. Never panics;
+    /// `h = 0` returns `y`.
     fn attempt<S: OdeSystem<N> + ?Sized>(
         sys: &S,
-        t: f64,
-        y: &[f64; N],
-        f0: &[f64; N],
-        h: f64,
-        tol: &Tolerance,
+        from: StepStart<'_, N>,
     ) -> Attempt<N, Self::Stages>;
 
     /// Complete an accepted attempt: `f(t + h, y1)` (the next step's first stage) and the dense
     /// output on `[t, t + h]`.
     fn accept<S: OdeSystem<N> + ?Sized>(
         sys: &S,
-        t: f64,
-        y: &[f64; N],
-        f0: &[f64; N],
-        h: f64,
+        from: StepStart<'_, N>,
         attempt: &Attempt<N, Self::Stages>,
     ) -> ([f64; N], Self::Dense);
 }

@@ -20,7 +20,7 @@ use crate::field;
 use crate::params::{Params, State};
 use crate::propagate::{EventKind, PropagationError, Regime};
 use crate::reference::{
-    Dop853, Function, Interpolant, OdeSystem, RotorSystem, Scheme, Switches, Tolerance,
+    Dop853, Function, Interpolant, OdeSystem, RotorSystem, Scheme, StepStart, Switches, Tolerance,
     first_crossing_subdivided,
 };
 
@@ -104,15 +104,14 @@ impl Interpolant<4> for ExactSteps<'_> {
         self.t1
     }
     fn eval(&self, t: f64) -> [f64; 4] {
-        Dop853::attempt(
-            self.sys,
-            self.t0,
-            &self.y0,
-            &self.f0,
-            t - self.t0,
-            &self.tol,
-        )
-        .y1
+        let from = StepStart {
+            t: self.t0,
+            y: &self.y0,
+            f0: &self.f0,
+            h: t - self.t0,
+            tol: &self.tol,
+        };
+        Dop853::attempt(self.sys, from).y1
     }
 }
 

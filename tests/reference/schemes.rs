@@ -3,7 +3,7 @@
 
 use rotor_rub::reference::{
     Controller, Dop853, Integrator, Interpolant, OdeSystem, PhasorRotorSystem, Rk45, RotorSystem,
-    Scheme, Tolerance,
+    Scheme, StepStart, Tolerance,
 };
 use rotor_rub::{Preset, Regime, State};
 
@@ -22,8 +22,15 @@ fn one_step_errors<S: Scheme<2>>(h: f64) -> (f64, f64) {
     let y0 = [1.0, 0.0];
     let f0 = oscillator(0.0, &y0);
     let tol = Tolerance::uniform(1.0);
-    let att = S::attempt(&oscillator, 0.0, &y0, &f0, h, &tol);
-    let (f1, dense) = S::accept(&oscillator, 0.0, &y0, &f0, h, &att);
+    let from = StepStart {
+        t: 0.0,
+        y: &y0,
+        f0: &f0,
+        h,
+        tol: &tol,
+    };
+    let att = S::attempt(&oscillator, from);
+    let (f1, dense) = S::accept(&oscillator, from, &att);
     let e1 = exact(h);
     let step_err = (att.y1[0] - e1[0]).abs().max((att.y1[1] - e1[1]).abs());
     assert_eq!(
