@@ -128,7 +128,18 @@ fn sub_step(c: &mut Criterion) {
         state: slot.segment.point(h).state,
     };
     g.bench_function("slip search on the sub-step", |b| {
-        b.iter(|| locate(&f, 0.0, from, h, Some(to), f64::INFINITY, &Budget::EXPLORE))
+        b.iter(|| {
+            locate(
+                &f,
+                0.0,
+                from,
+                h,
+                Some(to),
+                f64::INFINITY,
+                &Budget::EXPLORE,
+                None,
+            )
+        })
     });
     g.finish();
 }

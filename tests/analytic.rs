@@ -436,7 +436,16 @@ fn the_switch_kernel_finds_a_grazing_crossing_of_any_event_function() {
     for (omega, peak, depth) in [(10.0, 0.7, 1e-9), (37.0, 0.05, 1e-7), (3.0, 0.9, 1e-3)] {
         let f = Cosine::new(1.0, omega, peak, 1.0 - depth);
         let exact = f.first_root(0.0);
-        let explore = locate(&f, 0.0, f.point(0.0), 1.0, None, 0.25, &Budget::EXPLORE);
+        let explore = locate(
+            &f,
+            0.0,
+            f.point(0.0),
+            1.0,
+            None,
+            0.25,
+            &Budget::EXPLORE,
+            None,
+        );
         match explore {
             Search::Found { s, certain, .. } => {
                 assert!(certain);
@@ -444,7 +453,16 @@ fn the_switch_kernel_finds_a_grazing_crossing_of_any_event_function() {
             }
             other => panic!("ω {omega}: missed, {other:?}"),
         }
-        let capped = locate(&f, 0.0, f.point(0.0), 1.0, None, 0.25, &Budget::CAPPED);
+        let capped = locate(
+            &f,
+            0.0,
+            f.point(0.0),
+            1.0,
+            None,
+            0.25,
+            &Budget::CAPPED,
+            None,
+        );
         match capped {
             Search::Found {
                 s, certain: true, ..
@@ -455,7 +473,16 @@ fn the_switch_kernel_finds_a_grazing_crossing_of_any_event_function() {
     }
     // A peak that stays below 0 by 1e-9: proved free.
     let f = Cosine::new(1.0, 10.0, 0.7, 1.0 + 1e-9);
-    let r = locate(&f, 0.0, f.point(0.0), 1.0, None, 0.25, &Budget::EXPLORE);
+    let r = locate(
+        &f,
+        0.0,
+        f.point(0.0),
+        1.0,
+        None,
+        0.25,
+        &Budget::EXPLORE,
+        None,
+    );
     assert_eq!(r, Search::None);
 }
 
@@ -480,7 +507,7 @@ fn the_switch_kernel_work_is_bounded_when_sliding() {
     }
     for budget in [Budget::EXPLORE, Budget::CAPPED] {
         let f = Sliding(std::cell::Cell::new(0));
-        let r = locate(&f, 0.0, (-1e-17, 0.0), 1.0, None, 1.0, &budget);
+        let r = locate(&f, 0.0, (-1e-17, 0.0), 1.0, None, 1.0, &budget, None);
         assert_eq!(r, Search::Unresolved);
         let calls = f.0.get();
         assert!(calls <= budget.tests + 1, "{calls} evaluations");

@@ -227,9 +227,10 @@ pub fn eval(c: &Coefficients, s: f64) -> [f64; 4] {
     eval_terms(c.get(..used(c)).unwrap_or(&[]), s)
 }
 
-/// [`eval`] of the coefficients `c` (the velocity's Horner sum stops before the constant term).
+/// [`eval`] of the coefficients `c` (the velocity's Horner sum stops before the constant term):
+/// (x, y, x', y') of the polynomial Σ c_m s^m at `s`.
 #[inline]
-fn eval_terms(c: &[[f64; 2]], s: f64) -> [f64; 4] {
+pub(crate) fn eval_terms(c: &[[f64; 2]], s: f64) -> [f64; 4] {
     let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
     let Some((c0, rest)) = c.split_first() else {
         return [x, y, vx, vy];

@@ -27,6 +27,7 @@
 
 use crate::analytic::linear::LinearSegment;
 use crate::analytic::segment::{Bounds, Point, Segment};
+use crate::analytic::series::eval_terms;
 use crate::analytic::series::rate;
 use crate::coefficients::{
     self as coef, Acceleration, Force, LinearizedContact, ModelParams, Phasor, Position, Velocity,
@@ -129,20 +130,8 @@ impl<'a> SubstepPolynomial<'a> {
     /// The state at local time `s` (Horner).
     #[inline]
     pub fn state(&self, s: f64) -> State {
-        let (mut x, mut y, mut vx, mut vy) = (0.0, 0.0, 0.0, 0.0);
-        let Some((c0, rest)) = self.c.get(..self.len).and_then(|c| c.split_first()) else {
-            return State::default();
-        };
-        // The index of `cm` as a float (exact for these small counts), counted down.
-        let mut m = rest.len() as f64;
-        for cm in rest.iter().rev() {
-            x = x * s + cm[0];
-            y = y * s + cm[1];
-            vx = vx * s + m * cm[0];
-            vy = vy * s + m * cm[1];
-            m -= 1.0;
-        }
-        State::new(x * s + c0[0], y * s + c0[1], vx, vy)
+        let [x, y, vx, vy] = eval_terms(self.c.get(..self.len).unwrap_or(&[]), s);
+        State::new(x, y, vx, vy)
     }
 
     /// The number of Taylor coefficients in use.

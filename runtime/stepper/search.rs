@@ -37,5 +37,5 @@ pub fn locate_with<S: Segment>(
     budget: &Budget,
 ) -> Search<Point> {
     let f = Boundary::new(seg, direction);
-    switch::locate(&f, lo, start, hi, Some(end), chunk, budget)
+    switch::locate(&f, lo, start, hi, Some(end), chunk, budget, None)
 }

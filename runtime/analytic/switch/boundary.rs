@@ -1,7 +1,7 @@
 //! The switching function of contact, g = ±(z² − 1), as an [`EventFunction`] on a closed-form
 //! [`Segment`], its curvature bound, and the analytic method's entry points to the kernel.
 
-use super::{Budget, EventFunction, TOUCH, locate, locate_knowing, no_crossing};
+use super::{Budget, EventFunction, TOUCH, locate, no_crossing};
 use crate::analytic::segment::{Point, Segment};
 use crate::math;
 
@@ -93,7 +93,7 @@ pub fn first_crossing<S: Segment>(
     max_chunk: f64,
 ) -> Option<(f64, Point)> {
     let f = Boundary::new(seg, direction);
-    locate(&f, lo, start, hi, None, max_chunk, &Budget::EXPLORE).found()
+    locate(&f, lo, start, hi, None, max_chunk, &Budget::EXPLORE, None).found()
 }
 
 /// As [`first_crossing`] over the single chunk (lo, hi], with the point at `hi` already known
@@ -123,7 +123,7 @@ pub fn first_crossing_to<S: Segment>(
             known = Some((lo, hi, m2));
         }
     }
-    locate_knowing(
+    locate(
         &f,
         lo,
         start,

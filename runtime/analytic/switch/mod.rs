@@ -181,23 +181,11 @@ fn refine_switch<F: EventFunction>(
 
 /// The first crossing on (lo, hi], given the point at `lo` (inside the current regime whatever
 /// rounding says) and, if known, at `hi`; searched in chunks of at most `chunk` (the bounds are
-/// tight on chunks of a fraction of the fastest period). See the module docs.
-pub fn locate<F: EventFunction>(
-    f: &F,
-    lo: f64,
-    start: F::Point,
-    hi: f64,
-    end: Option<F::Point>,
-    chunk: f64,
-    budget: &Budget,
-) -> Search<F::Point> {
-    locate_knowing(f, lo, start, hi, end, chunk, budget, None)
-}
-
-/// [`locate`] given the bound `known` = (lo, hi, M) the caller already computed on [lo, hi]
-/// from `start` (a failed quick test before the search): not computed again.
+/// tight on chunks of a fraction of the fastest period). `known` = (lo, hi, M): a bound the
+/// caller already computed on [lo, hi] from `start` (a failed quick test before the search), not
+/// computed again; `None` otherwise. See the module docs.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn locate_knowing<F: EventFunction>(
+pub fn locate<F: EventFunction>(
     f: &F,
     lo: f64,
     start: F::Point,
@@ -259,7 +247,7 @@ struct Work {
     capped: bool,
     /// The last curvature bound computed, as (lo, hi, M): a chunk's quick test and its search's
     /// first interval are the same interval (and a caller's failed test before the search, see
-    /// [`locate_knowing`]), so their bound is computed once. Within one search the point at a
+    /// `known` of [`locate`]), so their bound is computed once. Within one search the point at a
     /// time is always the same, so (lo, hi) identifies the bound.
     bound: Option<(f64, f64, f64)>,
 }

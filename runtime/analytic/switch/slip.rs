@@ -132,7 +132,7 @@ pub fn first_slip_switch(
 ) -> Option<(f64, State, EventKind)> {
     let mut from = SlipPoint { s: 0.0, state };
     for _ in 0..=MAX_TOUCHES {
-        let (s, p) = locate(f, from.s, from, limit, None, f64::INFINITY, budget).found()?;
+        let (s, p) = locate(f, from.s, from, limit, None, f64::INFINITY, budget, None).found()?;
         let model = f.segment.linearization().model();
         let phasor = field::phasor(model, f.t0 + s);
         match field::at_slip_zero(model, &phasor, &p.state, f.slip) {

@@ -109,7 +109,7 @@ pub(super) fn search_chunk<const CAP: usize>(
     b: f64,
     pb: StationPoint,
 ) -> ChunkResult {
-    match locate(f, a, pa, b, Some(pb), f64::INFINITY, &Budget::EXPLORE) {
+    match locate(f, a, pa, b, Some(pb), f64::INFINITY, &Budget::EXPLORE, None) {
         Search::None => ChunkResult::Free { unresolved: false },
         Search::Found { s, certain, .. } => ChunkResult::Contact { s, certain },
         Search::Unresolved => {
@@ -123,7 +123,16 @@ pub(super) fn search_chunk<const CAP: usize>(
                     a + width * k as f64
                 };
                 let phi = if k == RETRY_PARTS { pb } else { f.point(hi) };
-                match locate(f, lo, plo, hi, Some(phi), f64::INFINITY, &Budget::EXPLORE) {
+                match locate(
+                    f,
+                    lo,
+                    plo,
+                    hi,
+                    Some(phi),
+                    f64::INFINITY,
+                    &Budget::EXPLORE,
+                    None,
+                ) {
                     Search::None => {}
                     Search::Found { s, certain, .. } => {
                         return ChunkResult::Contact { s, certain };
