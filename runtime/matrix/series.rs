@@ -23,22 +23,8 @@ use crate::math;
 use crate::propagate::Regime;
 use crate::refine::Knot;
 pub use crate::taylor::expansion::Switch;
+use crate::taylor::kernels::orders;
 use crate::taylor::kernels::{self, CAPACITY, MAX_ORDER, StationSeries};
-
-/// `$call` for the orders N = 1 ..= `$p` (at most [`MAX_ORDER`] = 22), each a constant.
-macro_rules! orders {
-    ($p:expr, |$n:ident| $call:expr) => {{
-        orders!(@each $p, $n, $call; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
-    }};
-    (@each $p:expr, $n:ident, $call:expr; $($k:literal)+) => {
-        $(
-            if $k <= $p {
-                const $n: usize = $k;
-                $call;
-            }
-        )+
-    };
-}
 
 /// The station's law: which generated recurrences, with their constants.
 #[derive(Clone, Copy, Debug)]

@@ -3,6 +3,7 @@
 //! the last two orders' coefficients (Jorba–Zou), and the same polynomials give the state
 //! anywhere in the step (dense output) and the switch functions as polynomials.
 
+use super::kernels::orders;
 use super::kernels::{self, CAPACITY, MAX_ORDER, Series};
 use super::step::StepRule;
 use crate::coefficients::{
@@ -13,25 +14,6 @@ use crate::math;
 use crate::params::State;
 use crate::propagate::Regime;
 use crate::refine::Knot;
-
-/// `$each` for the orders N = 1 .. `$p` and `$last` for N = `$p` (at most [`MAX_ORDER`] = 22),
-/// N a constant in each.
-macro_rules! orders {
-    ($p:expr, |$n:ident| $each:expr, $last:expr) => {{
-        orders!(@each $p, $n, $each, $last; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
-    }};
-    (@each $p:expr, $n:ident, $each:expr, $last:expr; $($k:literal)+) => {
-        $(
-            if $k < $p {
-                const $n: usize = $k;
-                $each;
-            } else if $k == $p {
-                const $n: usize = $k;
-                $last;
-            }
-        )+
-    };
-}
 
 /// A regime's field: which generated recurrences, with their constants.
 #[derive(Clone, Copy, Debug)]

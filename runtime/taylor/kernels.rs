@@ -17,6 +17,38 @@ pub const CAPACITY: usize = 24;
 /// states get one more).
 pub const MAX_ORDER: usize = CAPACITY - 2;
 
+/// The orders of an expansion with N a constant in each (every convolution a loop of known
+/// length), at most [`MAX_ORDER`] = 22: `orders!(p, |N| each, last)` runs `each` for
+/// N = 1 .. `p` and `last` for N = `p`; `orders!(p, |N| call)` runs `call` for N = 1 ..= `p`.
+macro_rules! orders {
+    ($p:expr, |$n:ident| $each:expr, $last:expr) => {{
+        orders!(@split $p, $n, $each, $last; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
+    }};
+    ($p:expr, |$n:ident| $call:expr) => {{
+        orders!(@all $p, $n, $call; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22);
+    }};
+    (@split $p:expr, $n:ident, $each:expr, $last:expr; $($k:literal)+) => {
+        $(
+            if $k < $p {
+                const $n: usize = $k;
+                $each;
+            } else if $k == $p {
+                const $n: usize = $k;
+                $last;
+            }
+        )+
+    };
+    (@all $p:expr, $n:ident, $call:expr; $($k:literal)+) => {
+        $(
+            if $k <= $p {
+                const $n: usize = $k;
+                $call;
+            }
+        )+
+    };
+}
+pub(crate) use orders;
+
 /// The coefficients of every series of a system, states first.
 pub type Series = [[f64; CAPACITY]; TAYLOR_SERIES_MAX];
 
