@@ -71,6 +71,15 @@ pub struct ProjectedBound {
     pub acceleration: f64,
 }
 
+impl ProjectedBound {
+    /// No bound (every entry infinite): what an interval the bounds do not cover gets.
+    pub const UNBOUNDED: ProjectedBound = ProjectedBound {
+        value: f64::INFINITY,
+        rate: f64::INFINITY,
+        acceleration: f64::INFINITY,
+    };
+}
+
 /// The projection W = B S of a fixed 2 × m matrix B, and one state's modal data: evaluates
 /// d(s) = B e^{As} y0 and its bounds with the [`ModalExponential`] it was made from (passed to
 /// each call, so this stays small plain data: 2·16·CAP + 16·CAP + 32·CAP + 32·CAP bytes).
@@ -284,30 +293,28 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         }
     }
 
+    /// The bound coefficients of mode `p` (|d|, |d'|, |d''| per unit of its basis); infinite
+    /// for a mode the projection does not have (never for the modal form it was made from).
+    fn coefficient(&self, p: usize) -> [f64; 3] {
+        self.coefficients
+            .get(p)
+            .copied()
+            .unwrap_or([f64::INFINITY; 3])
+    }
+
     /// Upper bounds of |d|, |d'|, |d''| valid for every s in [lo, hi] (module docs: the proof).
     pub fn bound(&self, modal: &ModalExponential<CAP>, lo: f64, hi: f64) -> ProjectedBound {
-        let inf = ProjectedBound {
-            value: f64::INFINITY,
-            rate: f64::INFINITY,
-            acceleration: f64::INFINITY,
-        };
+        let inf = ProjectedBound::UNBOUNDED;
         if !(0.0 <= lo && lo <= hi && hi < f64::INFINITY) {
             return inf;
         }
         let mut sum = [0.0f64; 3];
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
-            let alpha = range
-                .clone()
-                .map(|p| modal.j.get(p, p).re)
-                .fold(f64::NEG_INFINITY, f64::max);
+            let alpha = growth_rate(modal, range.clone());
             let mut poly = [0.0f64; 3];
             for (i, p) in range.enumerate() {
-                let b = self
-                    .coefficients
-                    .get(p)
-                    .copied()
-                    .unwrap_or([f64::INFINITY; 3]);
+                let b = self.coefficient(p);
                 let weight = peak(alpha, i, lo, hi);
                 for (acc, bj) in poly.iter_mut().zip(b) {
                     *acc += bj * weight;
@@ -335,27 +342,16 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
     /// nonzero coefficient gives ∞. The switch search stops searching a free flight whose
     /// reach over all later times is inside the clearance.
     pub fn bound_after(&self, modal: &ModalExponential<CAP>, lo: f64) -> ProjectedBound {
-        let inf = ProjectedBound {
-            value: f64::INFINITY,
-            rate: f64::INFINITY,
-            acceleration: f64::INFINITY,
-        };
+        let inf = ProjectedBound::UNBOUNDED;
         if !(0.0..f64::INFINITY).contains(&lo) {
             return inf;
         }
         let mut sum = [0.0f64; 3];
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
-            let alpha = range
-                .clone()
-                .map(|p| modal.j.get(p, p).re)
-                .fold(f64::NEG_INFINITY, f64::max);
+            let alpha = growth_rate(modal, range.clone());
             for (i, p) in range.enumerate() {
-                let b = self
-                    .coefficients
-                    .get(p)
-                    .copied()
-                    .unwrap_or([f64::INFINITY; 3]);
+                let b = self.coefficient(p);
                 if b.iter().all(|&x| x == 0.0) {
                     continue;
                 }
@@ -408,4 +404,15 @@ fn peak(alpha: f64, i: usize, lo: f64, hi: f64) -> f64 {
         v *= at / k as f64;
     }
     v
+}
+
+/// The largest real part of the eigenvalues of a triangular block (rows `range` of the modal
+/// form): the block's exponential growth rate in the bound e^{αs} e^{|U|s}.
+fn growth_rate<const CAP: usize>(
+    modal: &ModalExponential<CAP>,
+    range: core::ops::Range<usize>,
+) -> f64 {
+    range
+        .map(|p| modal.j.get(p, p).re)
+        .fold(f64::NEG_INFINITY, f64::max)
 }

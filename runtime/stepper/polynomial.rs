@@ -336,6 +336,28 @@ mod tests {
             .fold(0.0, f64::max)
     }
 
+    /// `poly` equals the closed form `exact` to rounding at 9 points of [0, dt], and its |r''|
+    /// bound holds on sampled differences; its bounds.
+    fn matches_within_bounds(
+        poly: &SubstepPolynomial,
+        dt: f64,
+        exact: impl Fn(f64) -> State,
+        what: &str,
+    ) -> Bounds {
+        for i in 0..=8 {
+            let s = dt * f64::from(i) / 8.0;
+            assert_close(poly.state(s), exact(s), what);
+        }
+        let b = poly.bounds(0.0, dt);
+        let accel = sampled_accel(|s| poly.state(s), dt);
+        assert!(
+            accel <= b.accel,
+            "|r''| {accel:e} above its bound {:e}",
+            b.accel
+        );
+        b
+    }
+
     /// The polynomial of a contact sub-step is its closed form to rounding over the sub-step,
     /// and its bounds hold.
     #[test]
@@ -363,17 +385,7 @@ mod tests {
                     let start = geometry::point(&model, w);
                     let poly = SubstepPolynomial::contact(&sub.segment, &start, dt).unwrap();
                     assert!(poly.terms() <= TERMS);
-                    for i in 0..=8 {
-                        let s = dt * f64::from(i) / 8.0;
-                        assert_close(poly.state(s), sub.segment.point(s).state, "contact");
-                    }
-                    let b = poly.bounds(0.0, dt);
-                    let accel = sampled_accel(|s| poly.state(s), dt);
-                    assert!(
-                        accel <= b.accel,
-                        "|r''| {accel:e} above its bound {:e}",
-                        b.accel
-                    );
+                    matches_within_bounds(&poly, dt, |s| sub.segment.point(s).state, "contact");
                     checked += 1;
                 });
             }
@@ -398,17 +410,7 @@ mod tests {
                     let p = field::phasor(&model, t);
                     let start = geometry::point(&model, w);
                     let poly = SubstepPolynomial::free(&model, &start, (p.ct, p.st), dt).unwrap();
-                    for i in 0..=8 {
-                        let s = dt * f64::from(i) / 8.0;
-                        assert_close(poly.state(s), seg.point(s).state, "free");
-                    }
-                    let b = poly.bounds(0.0, dt);
-                    let accel = sampled_accel(|s| poly.state(s), dt);
-                    assert!(
-                        accel <= b.accel,
-                        "|r''| {accel:e} above its bound {:e}",
-                        b.accel
-                    );
+                    let b = matches_within_bounds(&poly, dt, |s| seg.point(s).state, "free");
                     assert!(b.radius >= (start.h.max(-1.0) + 1.0).sqrt() * (1.0 - 1e-15));
                     checked += 1;
                 });
