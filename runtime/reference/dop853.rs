@@ -49,6 +49,7 @@ impl<const N: usize> Scheme<N> for Dop853 {
         beta: 0.0,
     };
 
+    #[inline]
     fn attempt<S: OdeSystem<N> + ?Sized>(
         sys: &S,
         from: StepStart<'_, N>,

@@ -46,6 +46,7 @@ impl<const N: usize> Scheme<N> for Rk45 {
         beta: 0.04,
     };
 
+    #[inline]
     fn attempt<S: OdeSystem<N> + ?Sized>(
         sys: &S,
         from: StepStart<'_, N>,
