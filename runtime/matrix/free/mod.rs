@@ -243,16 +243,17 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
                         self.chunk
                     };
                 }
-                ChunkResult::Contact { s, .. }
-                    if self.flight.point(&self.model, &self.decomposition, s).dh < 0.0 =>
-                {
-                    // h falling through 0 is no contact: the closed form's rounding (≈ 1e-14)
-                    // above TOUCH just after a start on z = 1 moving outward (an exit). Free
-                    // up to s; the search goes on from there (g clamped to ≤ 0 again).
-                    self.horizon = s;
-                    self.last = self.flight.point(&self.model, &self.decomposition, s);
-                }
                 ChunkResult::Contact { s, certain } => {
+                    let at = self.flight.point(&self.model, &self.decomposition, s);
+                    if at.dh < 0.0 {
+                        // h falling through 0 is no contact: the closed form's rounding
+                        // (≈ 1e-14) above TOUCH just after a start on z = 1 moving outward (an
+                        // exit). Free up to s; the search goes on from there (g clamped to ≤ 0
+                        // again).
+                        self.horizon = s;
+                        self.last = at;
+                        continue;
+                    }
                     self.work.contacts += 1;
                     self.work.uncertain += u64::from(!certain);
                     let state = self.state_at(s);
