@@ -63,7 +63,7 @@ macro_rules! propagate_through_driver {
 }
 pub use piecewise::Piecewise;
 pub(crate) use propagate_through_driver;
-pub use system::System;
+pub use system::{Borrowed, System};
 
 use crate::params::State;
 use crate::propagate::{Event, PropagationError, Regime};

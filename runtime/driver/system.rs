@@ -54,3 +54,31 @@ impl System for Params {
         }
     }
 }
+
+/// The planar model borrowed: the fixed-step stepper's driver runs on the stepper's own
+/// parameters in place (a [`Params`] is ~300 bytes: a copy per step was measurable).
+#[derive(Clone, Copy)]
+pub struct Borrowed<'a>(pub &'a Params);
+
+impl System for Borrowed<'_> {
+    type State = State;
+
+    #[inline(always)]
+    fn start_side(&self, time: f64, state: &State) -> (Regime, State) {
+        self.0.start_side(time, state)
+    }
+
+    #[inline]
+    fn slip_direction(&self, time: f64, state: &State, cause: Option<EventKind>) -> f64 {
+        self.0.slip_direction(time, state, cause)
+    }
+
+    #[inline(always)]
+    fn within_bounds(&self, state: &State) -> bool {
+        self.0.within_bounds(state)
+    }
+
+    fn diverged(&self, time: f64, state: &State) -> PropagationError {
+        self.0.diverged(time, state)
+    }
+}

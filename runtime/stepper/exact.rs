@@ -8,7 +8,7 @@ use super::report::StepReport;
 use super::solvers::{Frame, carried_slip, step_solvers};
 use super::{Stepper, StepperError};
 use crate::analytic::schemes::SubStep;
-use crate::driver::Piecewise;
+use crate::driver::{Borrowed, Piecewise};
 use crate::field;
 use crate::params::State;
 use crate::propagate::{Propagate, Regime};
@@ -36,7 +36,7 @@ impl Stepper {
         let mut sub = SubStep::zeroed();
         let mut solvers = step_solvers(&frame, &mut sub, self.regime, self.state, self.slip);
         let mut driver = Piecewise::resume(
-            self.params,
+            Borrowed(&self.params),
             t0,
             self.state,
             self.regime,
