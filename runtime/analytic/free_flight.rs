@@ -12,7 +12,7 @@ use super::free::{FreeConstants, FreeSegment};
 use super::segment::{Point, Segment};
 use super::switch::{Direction, first_crossing_to};
 use crate::driver::SegmentStart;
-use crate::driver::{Located, SegmentSolver};
+use crate::driver::{Located, SegmentSolver, switch_time};
 use crate::geometry;
 use crate::params::{Params, State};
 use crate::propagate::{Event, EventKind, PropagationError};
@@ -99,10 +99,15 @@ impl FreeFlight {
             self.last = pb;
         }
         match self.found {
-            Some((s, p)) if s <= s_target => FreeAdvance::Contact {
-                time: self.t0 + s,
-                state: p.state,
-            },
+            Some((s, p)) if s <= s_target => {
+                let (time, at) = switch_time(self.t0, s);
+                let state = if at == s {
+                    p.state
+                } else {
+                    self.segment.point(at).state
+                };
+                FreeAdvance::Contact { time, state }
+            }
             _ => FreeAdvance::Reached(self.segment.point(s_target).state),
         }
     }

@@ -79,6 +79,23 @@ pub enum Located<S = State> {
     NeedStep,
 }
 
+/// A switch found at local time `local` of a segment starting at `origin`: its time
+/// `origin + local` as stored (rounded to f64), and the local time that stored time stands for,
+/// at which the switch's state is to be evaluated.
+///
+/// Why: the next segment starts from (time, state). With the state taken at the exact root
+/// `local` but the time rounded by up to half an ulp of the absolute time, each switch shifts
+/// the rest of the trajectory in time by that rounding, and the shifts add up as a random walk
+/// (τ ≈ 20, 43 switches: 1.2e-14, 3 ulps, from a 30-digit reference). Taking the state at
+/// the stored time keeps time and state consistent (2.7e-15); the state then lies off the
+/// switching surface by the rounding of the time times the surface's rate, which every search
+/// already treats as a start on the surface.
+#[inline]
+pub fn switch_time(origin: f64, local: f64) -> (f64, f64) {
+    let time = origin + local;
+    (time, time - origin)
+}
+
 /// Where a segment starts: its regime, the slip direction σ (±1 in slipping contact under
 /// friction, 0 when no slip is tracked), its time and state. What the driver hands a solver
 /// ([`SegmentSolver::start`]).

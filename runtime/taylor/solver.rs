@@ -6,7 +6,7 @@ use super::expansion::{Expansion, Switch, order_for};
 use super::roots::{Crossing, first_exit};
 use crate::coefficients::ModelParams;
 use crate::driver::SegmentStart;
-use crate::driver::{Located, SegmentSolver};
+use crate::driver::{Located, SegmentSolver, switch_time};
 use crate::field::{self, SlipZero};
 use crate::math;
 use crate::params::{Params, State};
@@ -170,8 +170,12 @@ impl SegmentSolver for TaylorContact {
                 Switch::Boundary => self.expansion.polish_boundary(&self.model, crossing.at, h),
                 _ => crossing.at,
             };
-            let time = self.origin + (self.local + s);
-            let state = self.expansion.state_at(s);
+            let (time, since) = switch_time(self.origin, self.local + s);
+            let at = since - self.local;
+            // (The stored time's local time, within the step: else the root itself.)
+            let state = self
+                .expansion
+                .state_at(if at > 0.0 && at <= h { at } else { s });
             let kind = match sw {
                 Switch::Boundary => Some(EventKind::Exit),
                 Switch::ConeUpper | Switch::ConeLower => Some(EventKind::Slip),
