@@ -78,6 +78,8 @@
 //                               after:     2 add     9 mul    0 div   0 sqrt   0 trans
 // forcing_phase                before:     1 add     1 mul    0 div   0 sqrt   0 trans
 //                               after:     1 add     1 mul    0 div   0 sqrt   0 trans
+// ramp_phase                   before:     4 add     4 mul    0 div   0 sqrt   0 trans
+//                               after:     3 add     4 mul    0 div   0 sqrt   0 trans
 // switching_function           before:     9 add     6 mul    0 div   0 sqrt   0 trans
 //                               after:     5 add     6 mul    0 div   0 sqrt   0 trans
 // switching_curvature          before:     5 add     8 mul    0 div   0 sqrt   0 trans
@@ -224,6 +226,18 @@ pub struct Position {
 pub struct Time {
     /// τ
     pub t: f64,
+}
+/// A piece of a speed profile, η(τ) = η_k + η' (τ − τ_k), and its phase constant c (`docs/MODEL.md` §14).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SpeedRamp {
+    /// η_k, the speed at the piece's start
+    pub speed_ratio: f64,
+    /// η' = dη/dτ on the piece
+    pub rate: f64,
+    /// τ_k, the piece's start
+    pub start: f64,
+    /// c in θ = η_k τ + c + ½η'(τ − τ_k)²
+    pub phase_constant: f64,
 }
 /// A position relative to the stator centre, d = (u, v) = q − ε̂.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -2078,6 +2092,29 @@ pub fn forcing_phase(model: &ModelParams, time: &Time) -> ForcingPhase {
     let t = time.t;
     ForcingPhase {
         theta: phase + speed_ratio * t,
+    }
+}
+/// Outputs of [`ramp_phase`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampPhase {
+    /// θ
+    pub theta: f64,
+}
+/// The forcing phase θ(τ) = η_k τ + c + ½η'(τ − τ_k)² on a piece of a speed profile; with η' = 0 and c = φ0 the constant-speed `forcing_phase`.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: θ' = η(τ) = η_k + η'(τ − τ_k), integrated; written with the absolute time τ like the constant-speed phase.
+#[inline]
+#[must_use]
+pub fn ramp_phase(time: &Time, ramp: &SpeedRamp) -> RampPhase {
+    let t = time.t;
+    let speed_ratio = ramp.speed_ratio;
+    let rate = ramp.rate;
+    let start = ramp.start;
+    let phase_constant = ramp.phase_constant;
+    let t0 = t - start;
+    RampPhase {
+        theta: phase_constant + t * speed_ratio + 0.5 * rate * t0 * t0,
     }
 }
 /// Outputs of [`switching_function`].

@@ -1,6 +1,7 @@
 //! One linear piece of a speed profile: η(τ) = η_k + η'_k (τ − τ_k) on [τ_k, τ_{k+1}), and the
 //! forcing phase θ(τ) = ∫η that goes with it (`docs/MODEL.md` §14).
 
+use crate::coefficients::{self as coef, SpeedRamp, Time};
 use crate::math;
 
 /// A piece of a speed profile on which the speed ratio changes linearly in time.
@@ -38,15 +39,20 @@ impl SpeedPiece {
         }
     }
 
-    /// The forcing phase θ at time `t` (the constant-speed η τ + φ0 when η' = 0).
+    /// The forcing phase θ at time `t` (generated `ramp_phase`; with η' = 0 the constant-speed
+    /// η τ + φ0, bit for bit: the ramp's term is then +0).
     #[inline]
     pub fn phase_at(&self, t: f64) -> f64 {
-        if self.rate == 0.0 {
-            self.speed_ratio * t + self.phase_constant
-        } else {
-            let s = t - self.start;
-            self.speed_ratio * t + self.phase_constant + 0.5 * self.rate * s * s
-        }
+        coef::ramp_phase(
+            &Time { t },
+            &SpeedRamp {
+                speed_ratio: self.speed_ratio,
+                rate: self.rate,
+                start: self.start,
+                phase_constant: self.phase_constant,
+            },
+        )
+        .theta
     }
 
     /// Whether `t` lies on the piece, [start, end).

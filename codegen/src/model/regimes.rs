@@ -14,6 +14,7 @@ use crate::expr::ExprId;
 
 pub(super) fn derive(m: &mut Model) {
     forcing_phase(m);
+    ramp_phase(m);
     switching_function(m);
     switching_curvature(m);
     stator_offset(m);
@@ -110,6 +111,33 @@ fn forcing_phase(m: &mut Model) {
         "docs/MODEL.md §1",
         "the model's forcing phasor's angle, θ' = η, θ(0) = φ0.",
         "ForcingPhase",
+        vec![("theta", "θ", theta)],
+    );
+}
+
+/// θ(τ) = η_k τ + c + ½η'(τ − τ_k)² on a piece of a speed profile.
+fn ramp_phase(m: &mut Model) {
+    let (eta, rate, start, c, t) = (
+        m.var("ramp_speed"),
+        m.var("ramp_rate"),
+        m.var("ramp_start"),
+        m.var("ramp_constant"),
+        m.var("abs_time"),
+    );
+    let g = &mut m.graph;
+    let e = g.mul(eta, t);
+    let linear = g.add(e, c);
+    let s = g.sub(t, start);
+    let rs = g.mul(rate, s);
+    let rss = g.mul(rs, s);
+    let half = g.scale(0.5, rss);
+    let theta = g.add(linear, half);
+    m.add_formula(
+        "ramp_phase",
+        "The forcing phase θ(τ) = η_k τ + c + ½η'(τ − τ_k)² on a piece of a speed profile; with η' = 0 and c = φ0 the constant-speed `forcing_phase`.",
+        "docs/MODEL.md §14",
+        "θ' = η(τ) = η_k + η'(τ − τ_k), integrated; written with the absolute time τ like the constant-speed phase.",
+        "RampPhase",
         vec![("theta", "θ", theta)],
     );
 }

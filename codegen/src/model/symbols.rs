@@ -58,6 +58,26 @@ pub const GROUPS: &[Group] = &[
         external: None,
     },
     Group {
+        ty: "SpeedRamp",
+        arg: "ramp",
+        doc: "A piece of a speed profile, η(τ) = η_k + η' (τ − τ_k), and its phase constant c (`docs/MODEL.md` §14).",
+        fields: &[
+            (
+                "ramp_speed",
+                "speed_ratio",
+                "η_k, the speed at the piece's start",
+            ),
+            ("ramp_rate", "rate", "η' = dη/dτ on the piece"),
+            ("ramp_start", "start", "τ_k, the piece's start"),
+            (
+                "ramp_constant",
+                "phase_constant",
+                "c in θ = η_k τ + c + ½η'(τ − τ_k)²",
+            ),
+        ],
+        external: None,
+    },
+    Group {
         ty: "StatorOffset",
         arg: "offset",
         doc: "A position relative to the stator centre, d = (u, v) = q − ε̂.",
