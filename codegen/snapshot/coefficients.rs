@@ -80,6 +80,12 @@
 //                               after:     1 add     1 mul    0 div   0 sqrt   0 trans
 // ramp_phase                   before:     4 add     4 mul    0 div   0 sqrt   0 trans
 //                               after:     3 add     4 mul    0 div   0 sqrt   0 trans
+// ramp_speed                   before:     2 add     1 mul    0 div   0 sqrt   0 trans
+//                               after:     2 add     1 mul    0 div   0 sqrt   0 trans
+// ramp_phase_constant          before:     1 add     1 mul    0 div   0 sqrt   0 trans
+//                               after:     1 add     1 mul    0 div   0 sqrt   0 trans
+// ramp_time_to_phase           before:     3 add     7 mul    1 div   1 sqrt   0 trans
+//                               after:     2 add     4 mul    1 div   1 sqrt   0 trans
 // switching_function           before:     9 add     6 mul    0 div   0 sqrt   0 trans
 //                               after:     5 add     6 mul    0 div   0 sqrt   0 trans
 // switching_curvature          before:     5 add     8 mul    0 div   0 sqrt   0 trans
@@ -238,6 +244,12 @@ pub struct SpeedRamp {
     pub start: f64,
     /// c in θ = η_k τ + c + ½η'(τ − τ_k)²
     pub phase_constant: f64,
+}
+/// A forcing phase θ, or an advance Δθ of it, rad.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PhaseAdvance {
+    /// θ or Δθ
+    pub theta: f64,
 }
 /// A position relative to the stator centre, d = (u, v) = q − ε̂.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -2115,6 +2127,75 @@ pub fn ramp_phase(time: &Time, ramp: &SpeedRamp) -> RampPhase {
     let t0 = t - start;
     RampPhase {
         theta: phase_constant + t * speed_ratio + 0.5 * rate * t0 * t0,
+    }
+}
+/// Outputs of [`ramp_speed`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampSpeed {
+    /// η
+    pub eta: f64,
+}
+/// The speed ratio η(τ) = η_k + η'(τ − τ_k) on a piece of a speed profile.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: the piece's statement: η linear in τ.
+#[inline]
+#[must_use]
+pub fn ramp_speed(time: &Time, ramp: &SpeedRamp) -> RampSpeed {
+    let t = time.t;
+    let speed_ratio = ramp.speed_ratio;
+    let rate = ramp.rate;
+    let start = ramp.start;
+    RampSpeed {
+        eta: speed_ratio + rate * (t - start),
+    }
+}
+/// Outputs of [`ramp_phase_constant`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampPhaseConstant {
+    /// c
+    pub c: f64,
+}
+/// The phase constant c = θ − η_k τ of a piece whose phase is θ at time τ (its start): `ramp_phase` solved for c at s = 0.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: `ramp_phase` at τ = τ_k solved for c.
+#[inline]
+#[must_use]
+pub fn ramp_phase_constant(
+    time: &Time,
+    ramp: &SpeedRamp,
+    advance: &PhaseAdvance,
+) -> RampPhaseConstant {
+    let t = time.t;
+    let speed_ratio = ramp.speed_ratio;
+    let theta = advance.theta;
+    RampPhaseConstant {
+        c: theta - t * speed_ratio,
+    }
+}
+/// Outputs of [`ramp_time_to_phase`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampTimeToPhase {
+    /// η_k² + 2η'Δθ
+    pub disc: f64,
+    /// s
+    pub s: f64,
+}
+/// The time s = τ − τ_k at which a piece's phase has advanced by Δθ from its start: ½η' s² + η_k s = Δθ solved as s = 2Δθ / (η_k + √(η_k² + 2η'Δθ)), which does not cancel.
+///
+/// Source: docs/MODEL.md §14.
+/// Derivation: `ramp_phase` minus its value at τ_k, a quadratic in s; the root with s → Δθ/η_k as η' → 0.
+#[inline]
+#[must_use]
+pub fn ramp_time_to_phase(ramp: &SpeedRamp, advance: &PhaseAdvance) -> RampTimeToPhase {
+    let speed_ratio = ramp.speed_ratio;
+    let rate = ramp.rate;
+    let theta = advance.theta;
+    let t0 = speed_ratio * speed_ratio + 2.0 * rate * theta;
+    RampTimeToPhase {
+        disc: t0,
+        s: 2.0 * theta / (speed_ratio + m::sqrt(t0)),
     }
 }
 /// Outputs of [`switching_function`].

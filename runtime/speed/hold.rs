@@ -12,7 +12,7 @@
 //! η within the step: an amplitude error of relative size ≈ 2|η'|(t1 − t0)/η that averages out
 //! over the step, and the phase error above.
 
-use super::piece::SpeedPiece;
+use super::piece::{SpeedPiece, phase_constant};
 use crate::coefficients::{self as coef, ModelParams, SpeedChange};
 use crate::math;
 use crate::params::{Parameter, Params};
@@ -68,14 +68,14 @@ impl HeldSpeed {
                 } else {
                     (eta1 - eta0) / length
                 },
-                phase_constant: theta0 - speed_ratio * t0,
+                phase_constant: phase_constant(speed_ratio, theta0, t0),
             };
         }
         let speed_ratio = (theta1 - theta0) / length;
         HeldSpeed {
             speed_ratio,
             rate: (eta1 - eta0) / length,
-            phase_constant: theta0 - speed_ratio * t0,
+            phase_constant: phase_constant(speed_ratio, theta0, t0),
         }
     }
 

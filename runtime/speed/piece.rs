@@ -1,8 +1,7 @@
 //! One linear piece of a speed profile: η(τ) = η_k + η'_k (τ − τ_k) on [τ_k, τ_{k+1}), and the
 //! forcing phase θ(τ) = ∫η that goes with it (`docs/MODEL.md` §14).
 
-use crate::coefficients::{self as coef, SpeedRamp, Time};
-use crate::math;
+use crate::coefficients::{self as coef, PhaseAdvance, SpeedRamp, Time};
 
 /// A piece of a speed profile on which the speed ratio changes linearly in time.
 ///
@@ -29,13 +28,13 @@ pub struct SpeedPiece {
 }
 
 impl SpeedPiece {
-    /// η at time `t`.
+    /// η at time `t` (generated `ramp_speed`; η_k itself when η' = 0).
     #[inline]
     pub fn speed_at(&self, t: f64) -> f64 {
         if self.rate == 0.0 {
             self.speed_ratio
         } else {
-            self.speed_ratio + self.rate * (t - self.start)
+            coef::ramp_speed(&Time { t }, &self.ramp()).eta
         }
     }
 
@@ -43,16 +42,18 @@ impl SpeedPiece {
     /// η τ + φ0, bit for bit: the ramp's term is then +0).
     #[inline]
     pub fn phase_at(&self, t: f64) -> f64 {
-        coef::ramp_phase(
-            &Time { t },
-            &SpeedRamp {
-                speed_ratio: self.speed_ratio,
-                rate: self.rate,
-                start: self.start,
-                phase_constant: self.phase_constant,
-            },
-        )
-        .theta
+        coef::ramp_phase(&Time { t }, &self.ramp()).theta
+    }
+
+    /// The piece as the generated formulas' input.
+    #[inline]
+    fn ramp(&self) -> SpeedRamp {
+        SpeedRamp {
+            speed_ratio: self.speed_ratio,
+            rate: self.rate,
+            start: self.start,
+            phase_constant: self.phase_constant,
+        }
     }
 
     /// Whether `t` lies on the piece, [start, end).
@@ -62,29 +63,37 @@ impl SpeedPiece {
     }
 
     /// The time at which the phase reaches `phase` (≥ the phase at `start`), if that is on the
-    /// piece. Solves ½ η' s² + η_k s = Δθ for s = τ − τ_k in the form
-    /// s = 2Δθ / (η_k + √(η_k² + 2η'Δθ)), which does not cancel; the speed stays positive on a
-    /// piece, so the root exists wherever the piece reaches the phase.
+    /// piece: the generated `ramp_time_to_phase` (½ η' s² + η_k s = Δθ solved without
+    /// cancellation); the speed stays positive on a piece, so the root exists wherever the piece
+    /// reaches the phase.
     pub fn time_of_phase(&self, phase: f64) -> Option<f64> {
         let delta = phase - self.phase_at(self.start);
-        let root = self.speed_ratio * self.speed_ratio + 2.0 * self.rate * delta;
-        if !(delta >= 0.0 && root >= 0.0) {
+        let time = coef::ramp_time_to_phase(&self.ramp(), &PhaseAdvance { theta: delta });
+        if !(delta >= 0.0 && time.disc >= 0.0 && time.s.is_finite() && time.s >= 0.0) {
             return None;
         }
-        let denominator = self.speed_ratio + math::sqrt(root);
-        if denominator <= 0.0 {
-            return None;
-        }
-        let t = self.start + 2.0 * delta / denominator;
+        let t = self.start + time.s;
         (t < self.end).then_some(t)
     }
 
     /// `next` (the piece after this one) with the phase constant that keeps θ continuous.
     pub(crate) fn continued_by(&self, next: SpeedPiece) -> SpeedPiece {
-        let phase = self.phase_at(self.end);
         SpeedPiece {
-            phase_constant: phase - next.speed_ratio * self.end,
+            phase_constant: phase_constant(next.speed_ratio, self.phase_at(self.end), self.end),
             ..next
         }
     }
+}
+
+/// The phase constant c of a piece of speed η_k whose phase is `theta` at time `t` (its start):
+/// the generated `ramp_phase_constant`, c = θ − η_k τ.
+#[inline]
+pub(crate) fn phase_constant(speed_ratio: f64, theta: f64, t: f64) -> f64 {
+    let ramp = SpeedRamp {
+        speed_ratio,
+        rate: 0.0,
+        start: t,
+        phase_constant: 0.0,
+    };
+    coef::ramp_phase_constant(&Time { t }, &ramp, &PhaseAdvance { theta }).c
 }

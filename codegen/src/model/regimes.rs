@@ -15,6 +15,7 @@ use crate::expr::ExprId;
 pub(super) fn derive(m: &mut Model) {
     forcing_phase(m);
     ramp_phase(m);
+    ramp_quantities(m);
     switching_function(m);
     switching_curvature(m);
     stator_offset(m);
@@ -139,6 +140,58 @@ fn ramp_phase(m: &mut Model) {
         "θ' = η(τ) = η_k + η'(τ − τ_k), integrated; written with the absolute time τ like the constant-speed phase.",
         "RampPhase",
         vec![("theta", "θ", theta)],
+    );
+}
+
+/// The rest of a speed ramp's statement: its speed, the phase constant that gives a phase at a
+/// time, and the time a phase advance takes.
+fn ramp_quantities(m: &mut Model) {
+    let (eta, rate, start, t) = (
+        m.var("ramp_speed"),
+        m.var("ramp_rate"),
+        m.var("ramp_start"),
+        m.var("abs_time"),
+    );
+    let theta = m.var("phase_value");
+    let g = &mut m.graph;
+    let s = g.sub(t, start);
+    let rs = g.mul(rate, s);
+    let speed = g.add(eta, rs);
+    m.add_formula(
+        "ramp_speed",
+        "The speed ratio η(τ) = η_k + η'(τ − τ_k) on a piece of a speed profile.",
+        "docs/MODEL.md §14",
+        "the piece's statement: η linear in τ.",
+        "RampSpeed",
+        vec![("eta", "η", speed)],
+    );
+    let g = &mut m.graph;
+    let e = g.mul(eta, t);
+    let constant = g.sub(theta, e);
+    m.add_formula(
+        "ramp_phase_constant",
+        "The phase constant c = θ − η_k τ of a piece whose phase is θ at time τ (its start): `ramp_phase` solved for c at s = 0.",
+        "docs/MODEL.md §14",
+        "`ramp_phase` at τ = τ_k solved for c.",
+        "RampPhaseConstant",
+        vec![("c", "c", constant)],
+    );
+    let g = &mut m.graph;
+    let eta_sq = g.mul(eta, eta);
+    let rate2 = g.scale(2.0, rate);
+    let r2d = g.mul(rate2, theta);
+    let disc = g.add(eta_sq, r2d);
+    let root = g.sqrt(disc);
+    let denominator = g.add(eta, root);
+    let twice = g.scale(2.0, theta);
+    let s = g.div(twice, denominator);
+    m.add_formula(
+        "ramp_time_to_phase",
+        "The time s = τ − τ_k at which a piece's phase has advanced by Δθ from its start: ½η' s² + η_k s = Δθ solved as s = 2Δθ / (η_k + √(η_k² + 2η'Δθ)), which does not cancel.",
+        "docs/MODEL.md §14",
+        "`ramp_phase` minus its value at τ_k, a quadratic in s; the root with s → Δθ/η_k as η' → 0.",
+        "RampTimeToPhase",
+        vec![("disc", "η_k² + 2η'Δθ", disc), ("s", "s", s)],
     );
 }
 

@@ -78,6 +78,13 @@ pub const GROUPS: &[Group] = &[
         external: None,
     },
     Group {
+        ty: "PhaseAdvance",
+        arg: "advance",
+        doc: "A forcing phase θ, or an advance Δθ of it, rad.",
+        fields: &[("phase_value", "theta", "θ or Δθ")],
+        external: None,
+    },
+    Group {
         ty: "StatorOffset",
         arg: "offset",
         doc: "A position relative to the stator centre, d = (u, v) = q − ε̂.",
