@@ -11,9 +11,12 @@
 //!   [`MatrixRun`], SI, columns named after the DOFs).
 //! - `ring.rs`: the stator ring with mass (issue 28, `stator_mass_ratio` > 0) as the n = 4
 //!   matrix model, run by the same propagation ([`simulate_ring`]).
+//! - `analyses.rs`: what `poincare`, `spectrum`, `sweep` and `runup` run on a model file or the
+//!   ring ([`Subject`]: states sampled at chosen times, named columns, SI for a file).
 //! - `command.rs`: `rotor-rub check-model FILE`, `rotor-rub simulate --model FILE` and the
 //!   ring's `simulate` ([`simulate_ring_command`]).
 
+mod analyses;
 mod command;
 mod npz;
 mod read;
@@ -21,6 +24,10 @@ mod ring;
 mod run;
 mod spec;
 
+pub use analyses::{
+    STATION_COLUMNS, Subject, Table, Target, chosen_columns, model_error, orbit_indices,
+    orbit_state, planar_only, target,
+};
 pub use command::{
     CheckArgs, SimulateModel, check, report, simulate, simulate_ring_command, write_run,
 };

@@ -1,0 +1,388 @@
+//! The analyses (`poincare`, `spectrum`, `sweep`, `runup`) on a matrix model: a model file
+//! (`--model FILE`, SI) or the paper's rotor with a stator ring of mass (`stator_mass_ratio` >
+//! 0, dimensionless). Both run the matrix propagator (`rotor_rub::matrix::MatrixPropagator`,
+//! every method); [`Subject::sample`] records the states at the times an analysis asks for, as
+//! rows of named columns, every switch charged to the command's work budget.
+//!
+//! Columns: a model file's rows are the DOFs (m, or rad on rotations), their velocities (`v` +
+//! name), then the rub station's relative displacement and velocity P = q_rotor − q_stator
+//! (`rub_x`, `rub_y`, `rub_vx`, `rub_vy`), all SI; the ring's are `x, y, vx, vy, xs, ys, vxs,
+//! vys` (clearances, τ). Plots draw the station (the rotor for the ring) in clearances with the
+//! clearance circle.
+
+use std::sync::Arc;
+
+use rotor_rub::matrix::{MatrixModel, MatrixPropagator, MatrixState, ring_model, ring_start};
+use rotor_rub::{Options, Problem, Propagate, PropagationError, Regime, State};
+
+use super::ring::RING_COLUMNS;
+use super::spec::{CAPACITY, ModelError, ModelSpec, on_large_stack};
+use crate::error::{CliError, Result};
+use crate::limits::Tracker;
+
+/// The station's columns of a model file's rows (after the DOFs and their velocities).
+pub const STATION_COLUMNS: [&str; 4] = ["rub_x", "rub_y", "rub_vx", "rub_vy"];
+
+/// What a matrix analysis runs.
+#[derive(Clone, Debug)]
+pub enum Subject {
+    /// A model file, SI (`label`: the file's name, for messages).
+    File {
+        /// The model.
+        spec: Box<ModelSpec>,
+        /// The file's path as the user gave it.
+        label: String,
+    },
+    /// The paper's rotor with a stator ring of mass (m̂ > 0), dimensionless.
+    Ring(Problem),
+}
+
+/// States sampled at chosen times: `columns` (every column of the subject), one row per time.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// The columns' names.
+    pub columns: Vec<String>,
+    /// The sample times (s for a model file, τ for the ring).
+    pub times: Vec<f64>,
+    /// The rows, `columns.len()` entries each.
+    pub data: Vec<f64>,
+    /// The regime at each sample.
+    pub regimes: Vec<Regime>,
+}
+
+impl Table {
+    /// The rows.
+    pub fn rows(&self) -> impl Iterator<Item = &[f64]> {
+        self.data.chunks(self.columns.len().max(1))
+    }
+
+    /// The index of column `name`.
+    pub fn index(&self, name: &str) -> Option<usize> {
+        self.columns.iter().position(|c| c == name)
+    }
+
+    /// The values of column `index`, one per row.
+    pub fn column(&self, index: usize) -> Vec<f64> {
+        self.rows()
+            .map(|r| r.get(index).copied().unwrap_or(f64::NAN))
+            .collect()
+    }
+}
+
+impl Subject {
+    /// A model file's subject.
+    pub fn file(spec: ModelSpec, path: &std::path::Path) -> Self {
+        Subject::File {
+            spec: Box::new(spec),
+            label: path.display().to_string(),
+        }
+    }
+
+    /// The forcing period: 2π/Ω s for a model file, 2π/η for the ring.
+    pub fn period(&self) -> f64 {
+        match self {
+            Subject::File { spec, .. } => std::f64::consts::TAU / spec.speed,
+            Subject::Ring(p) => p.params.forcing_period(),
+        }
+    }
+
+    /// The run's start time (0 for a model file).
+    pub fn start_time(&self) -> f64 {
+        match self {
+            Subject::File { .. } => 0.0,
+            Subject::Ring(p) => p.start_time,
+        }
+    }
+
+    /// The running speed (Ω rad/s, or η).
+    pub fn speed(&self) -> f64 {
+        match self {
+            Subject::File { spec, .. } => spec.speed,
+            Subject::Ring(p) => p.params.speed_ratio,
+        }
+    }
+
+    /// How reports name the speed: `Ω = … rad/s` or `η = …`.
+    pub fn speed_label(&self) -> String {
+        match self {
+            Subject::File { spec, .. } => {
+                format!("Ω = {} rad/s", crate::error::num(spec.speed))
+            }
+            Subject::Ring(p) => format!("η = {}", crate::error::num(p.params.speed_ratio)),
+        }
+    }
+
+    /// The unit of lengths in the files: `m` or `clearances`.
+    pub fn length_unit(&self) -> &'static str {
+        match self {
+            Subject::File { .. } => "m",
+            Subject::Ring(_) => "clearances",
+        }
+    }
+
+    /// The length that is one clearance in the files' unit (δ m, or 1).
+    pub fn clearance(&self) -> f64 {
+        match self {
+            Subject::File { spec, .. } => spec.rub.clearance,
+            Subject::Ring(_) => 1.0,
+        }
+    }
+
+    /// The stator centre in clearances (the plots' clearance circle).
+    pub fn offset(&self) -> (f64, f64) {
+        match self {
+            Subject::File { spec, .. } => {
+                let d = spec.rub.clearance;
+                (spec.rub.offset.0 / d, spec.rub.offset.1 / d)
+            }
+            Subject::Ring(p) => (p.params.offset_x, p.params.offset_y),
+        }
+    }
+
+    /// Every column of the subject's rows, in order.
+    pub fn columns(&self) -> Vec<String> {
+        match self {
+            Subject::File { spec, .. } => {
+                let mut names = spec.dofs.clone();
+                names.extend(spec.dofs.iter().map(|d| format!("v{d}")));
+                names.extend(STATION_COLUMNS.iter().map(|c| c.to_string()));
+                names
+            }
+            Subject::Ring(_) => RING_COLUMNS.iter().map(|c| c.to_string()).collect(),
+        }
+    }
+
+    /// The columns a section writes by default: the station's relative state for a model file,
+    /// the rotor's then the ring's state for the ring.
+    pub fn section_columns(&self) -> Vec<String> {
+        match self {
+            Subject::File { .. } => STATION_COLUMNS.iter().map(|c| c.to_string()).collect(),
+            Subject::Ring(_) => RING_COLUMNS.iter().map(|c| c.to_string()).collect(),
+        }
+    }
+
+    /// The (x, y) pair whose motion the plots and the response class follow: the station's
+    /// relative displacement (`rub_x`, `rub_y`) or the rotor's (`x`, `y`).
+    pub fn orbit_columns(&self) -> [&'static str; 4] {
+        match self {
+            Subject::File { .. } => STATION_COLUMNS,
+            Subject::Ring(_) => ["x", "y", "vx", "vy"],
+        }
+    }
+
+    /// The columns `names` (comma-separated, as an option gives them) as indices into
+    /// [`Subject::columns`].
+    ///
+    /// # Errors
+    /// An unknown or repeated name, naming `flag` and the valid names.
+    pub fn pick(&self, flag: &str, names: &str) -> Result<Vec<usize>> {
+        let all = self.columns();
+        let mut picked = Vec::new();
+        for name in names.split(',').map(str::trim) {
+            let Some(i) = all.iter().position(|c| c == name) else {
+                return Err(CliError::input(format!(
+                    "{flag}: unknown column '{}': expected names among {}",
+                    name.escape_debug(),
+                    all.join(", ")
+                )));
+            };
+            if picked.contains(&i) {
+                return Err(CliError::input(format!(
+                    "{flag}: column '{name}' is given twice"
+                )));
+            }
+            picked.push(i);
+        }
+        Ok(picked)
+    }
+
+    /// Check that the subject states a model the methods run (before any file is created).
+    ///
+    /// # Errors
+    /// The model file's first wrong value (named with the file), or the ring's refusal.
+    pub fn check(&self, options: &Options) -> Result<()> {
+        options.validate().map_err(CliError::from)?;
+        match self {
+            Subject::File { spec, label } => {
+                let spec = spec.as_ref().clone();
+                on_large_stack(move || spec.build().map(|_| ())).map_err(|e| model_error(label, e))
+            }
+            Subject::Ring(p) => ring_model(&p.params)
+                .map(|_| ())
+                .map_err(|e| CliError::from(PropagationError::from(e))),
+        }
+    }
+
+    /// Run from the start to the last of `times` (increasing, from the start time on) and
+    /// record every column at each of them; every switch is charged to `tracker`.
+    ///
+    /// # Errors
+    /// The model's refusal (an input error naming the file), an option the method refuses, a
+    /// failed run, the budget exceeded.
+    pub fn sample(
+        &self,
+        options: &Options,
+        times: &[f64],
+        tracker: &mut Tracker<'_>,
+    ) -> Result<Table> {
+        let columns = self.columns();
+        match self {
+            Subject::File { spec, label } => {
+                let spec = spec.as_ref();
+                on_large_stack(|| {
+                    let model: Arc<MatrixModel<CAPACITY>> =
+                        Arc::from(spec.build().map_err(|e| model_error(label, e))?);
+                    let start = spec.start().map_err(|e| model_error(label, e))?;
+                    let delta = spec.rub.clearance;
+                    let row = |m: &MatrixModel<CAPACITY>, y: &[f64], out: &mut Vec<f64>| {
+                        let p = m.station_motion(y);
+                        out.extend(y.iter().map(|x| x * delta));
+                        out.extend([p.at.x, p.at.y, p.rate.vx, p.rate.vy].map(|x| x * delta));
+                    };
+                    record(model, 0.0, start, options, times, tracker, columns, row)
+                })
+            }
+            Subject::Ring(problem) => {
+                let model = Arc::new(ring_model(&problem.params).map_err(PropagationError::from)?);
+                let start = ring_start(problem);
+                // The ring model's state is (x, y, xs, ys, x', y', xs', ys').
+                let row = |_: &MatrixModel<8>, y: &[f64], out: &mut Vec<f64>| {
+                    out.extend(
+                        [0, 1, 4, 5, 2, 3, 6, 7].map(|i| y.get(i).copied().unwrap_or(f64::NAN)),
+                    );
+                };
+                record(
+                    model,
+                    problem.start_time,
+                    start,
+                    options,
+                    times,
+                    tracker,
+                    columns,
+                    row,
+                )
+            }
+        }
+    }
+}
+
+/// A model file's refusal as an input error naming the file.
+pub fn model_error(label: &str, e: ModelError) -> CliError {
+    CliError::input(format!("{label}: {e}"))
+}
+
+/// The (x, y, x', y') of a row's orbit columns in clearances (`indices` from
+/// [`Subject::orbit_columns`], `clearance` the files' clearance): what the response class and
+/// the plots take.
+pub fn orbit_state(row: &[f64], indices: &[usize; 4], clearance: f64) -> State {
+    let at = |k: usize| {
+        indices
+            .get(k)
+            .and_then(|&i| row.get(i))
+            .map_or(f64::NAN, |v| v / clearance)
+    };
+    State::new(at(0), at(1), at(2), at(3))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn record<const CAP: usize>(
+    model: Arc<MatrixModel<CAP>>,
+    t0: f64,
+    start: MatrixState<CAP>,
+    options: &Options,
+    times: &[f64],
+    tracker: &mut Tracker<'_>,
+    columns: Vec<String>,
+    row: impl Fn(&MatrixModel<CAP>, &[f64], &mut Vec<f64>),
+) -> Result<Table> {
+    let mut propagator = Box::new(MatrixPropagator::new(
+        Arc::clone(&model),
+        t0,
+        start,
+        options,
+    )?);
+    let mut table = Table {
+        data: Vec::with_capacity(times.len().saturating_mul(columns.len())),
+        columns,
+        times: Vec::with_capacity(times.len()),
+        regimes: Vec::with_capacity(times.len()),
+    };
+    for &t in times {
+        while let Some(event) = propagator.advance(t)? {
+            tracker.switch(event.time)?;
+        }
+        tracker.budget().check(t)?;
+        let state = propagator.state();
+        row(&model, state.as_slice(), &mut table.data);
+        table.times.push(propagator.time());
+        table.regimes.push(propagator.regime());
+    }
+    Ok(table)
+}
+
+/// What an analysis runs: the paper's planar model, or a matrix model.
+#[derive(Clone, Debug)]
+pub enum Target {
+    /// The paper's rotor with a massless ring (the planar propagator).
+    Planar(Problem),
+    /// A model file or the ring with mass.
+    Matrix(Subject),
+}
+
+/// The target of a command from its `--model` and problem options: the model file when given
+/// (read and checked value by value: exit 2 naming the file), else the problem, a matrix
+/// subject when its ring has mass (`stator_mass_ratio` > 0).
+///
+/// # Errors
+/// A model file that cannot be read or is wrong; a problem value out of range.
+pub fn target(
+    model: Option<&std::path::Path>,
+    problem: &crate::problem::ProblemArgs,
+) -> Result<Target> {
+    if let Some(path) = model {
+        let spec = super::command::read(path)?;
+        return Ok(Target::Matrix(Subject::file(spec, path)));
+    }
+    let problem = problem.build()?;
+    if problem.params.stator_mass_ratio > 0.0 {
+        Ok(Target::Matrix(Subject::Ring(problem)))
+    } else {
+        Ok(Target::Planar(problem))
+    }
+}
+
+/// The columns an option names (`all`: every column; `None`: `default`).
+///
+/// # Errors
+/// As [`Subject::pick`].
+pub fn chosen_columns(
+    subject: &Subject,
+    flag: &str,
+    names: Option<&str>,
+    default: &[String],
+) -> Result<Vec<usize>> {
+    match names {
+        Some("all") => Ok((0..subject.columns().len()).collect()),
+        Some(names) => subject.pick(flag, names),
+        None => subject.pick(flag, &default.join(",")),
+    }
+}
+
+/// The indices of [`Subject::orbit_columns`].
+pub fn orbit_indices(subject: &Subject) -> [usize; 4] {
+    let all = subject.columns();
+    subject
+        .orbit_columns()
+        .map(|name| all.iter().position(|c| c == name).unwrap_or(usize::MAX))
+}
+
+/// An option the planar model alone has, refused for a matrix model (exit 2).
+pub fn planar_only(flag: &str, subject: &Subject) -> CliError {
+    let what = match subject {
+        Subject::File { label, .. } => format!("a model file (--model {label})"),
+        Subject::Ring(_) => "the stator ring with mass (stator_mass_ratio > 0)".to_string(),
+    };
+    CliError::input(format!(
+        "{flag} applies only to the paper's planar model, not to {what}"
+    ))
+}
