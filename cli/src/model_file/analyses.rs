@@ -13,7 +13,7 @@
 use std::sync::Arc;
 
 use rotor_rub::matrix::{MatrixModel, MatrixPropagator, MatrixState, ring_model, ring_start};
-use rotor_rub::{Options, Problem, Propagate, PropagationError, Regime, State};
+use rotor_rub::{EventKind, Options, Problem, Propagate, PropagationError, Regime, State};
 
 use super::ring::RING_COLUMNS;
 use super::spec::{CAPACITY, ModelError, ModelSpec, on_large_stack};
@@ -225,6 +225,54 @@ impl Subject {
         times: &[f64],
         tracker: &mut Tracker<'_>,
     ) -> Result<Table> {
+        let segment = Segment { start: None, times };
+        Ok(self.run(options, segment, tracker, |_, _, _| Ok(()))?.0)
+    }
+
+    /// The subject run at the speed `speed` (Ω rad/s, or η) with the forcing phase `phase`
+    /// (θ = speed·t + phase): a model file's matrices re-evaluated at that speed when they
+    /// depend on it.
+    pub fn at_speed(&self, speed: f64, phase: f64) -> Subject {
+        match self {
+            Subject::File { spec, label } => {
+                let mut spec = spec.clone();
+                spec.speed = speed;
+                spec.phase = phase;
+                Subject::File {
+                    spec,
+                    label: label.clone(),
+                }
+            }
+            Subject::Ring(problem) => {
+                let mut problem = *problem;
+                problem.params.speed_ratio = speed;
+                problem.params.phase = phase;
+                Subject::Ring(problem)
+            }
+        }
+    }
+
+    /// The forcing phase φ0 at time 0 (θ = speed·t + φ0).
+    pub fn phase(&self) -> f64 {
+        match self {
+            Subject::File { spec, .. } => spec.phase,
+            Subject::Ring(p) => p.params.phase,
+        }
+    }
+
+    /// Run `segment` and record every column at each of its times; every switch is charged to
+    /// `tracker` and handed to `on_event` (its time, kind and row). Returns the table and the
+    /// end state (the model's raw state, in clearances: what [`Segment::start`] takes).
+    ///
+    /// # Errors
+    /// As [`Subject::sample`]; what `on_event` returns.
+    pub fn run(
+        &self,
+        options: &Options,
+        segment: Segment<'_>,
+        tracker: &mut Tracker<'_>,
+        on_event: impl FnMut(f64, EventKind, &[f64]) -> Result<()> + Send,
+    ) -> Result<(Table, Vec<f64>)> {
         let columns = self.columns();
         match self {
             Subject::File { spec, label } => {
@@ -232,38 +280,65 @@ impl Subject {
                 on_large_stack(|| {
                     let model: Arc<MatrixModel<CAPACITY>> =
                         Arc::from(spec.build().map_err(|e| model_error(label, e))?);
-                    let start = spec.start().map_err(|e| model_error(label, e))?;
+                    let start = match segment.start {
+                        Some((_, y)) => MatrixState::from_slice(y)
+                            .map_err(|e| CliError::from(PropagationError::from(e)))?,
+                        None => spec.start().map_err(|e| model_error(label, e))?,
+                    };
+                    let t0 = segment.start.map_or(0.0, |(t, _)| t);
                     let delta = spec.rub.clearance;
                     let row = |m: &MatrixModel<CAPACITY>, y: &[f64], out: &mut Vec<f64>| {
                         let p = m.station_motion(y);
                         out.extend(y.iter().map(|x| x * delta));
                         out.extend([p.at.x, p.at.y, p.rate.vx, p.rate.vy].map(|x| x * delta));
                     };
-                    record(model, 0.0, start, options, times, tracker, columns, row)
+                    let run = Run {
+                        t0,
+                        columns,
+                        times: segment.times,
+                    };
+                    record(model, start, options, run, tracker, row, on_event)
                 })
             }
             Subject::Ring(problem) => {
                 let model = Arc::new(ring_model(&problem.params).map_err(PropagationError::from)?);
-                let start = ring_start(problem);
+                let start = match segment.start {
+                    Some((_, y)) => MatrixState::from_slice(y)
+                        .map_err(|e| CliError::from(PropagationError::from(e)))?,
+                    None => ring_start(problem),
+                };
+                let t0 = segment.start.map_or(problem.start_time, |(t, _)| t);
                 // The ring model's state is (x, y, xs, ys, x', y', xs', ys').
                 let row = |_: &MatrixModel<8>, y: &[f64], out: &mut Vec<f64>| {
                     out.extend(
                         [0, 1, 4, 5, 2, 3, 6, 7].map(|i| y.get(i).copied().unwrap_or(f64::NAN)),
                     );
                 };
-                record(
-                    model,
-                    problem.start_time,
-                    start,
-                    options,
-                    times,
-                    tracker,
+                let run = Run {
+                    t0,
                     columns,
-                    row,
-                )
+                    times: segment.times,
+                };
+                record(model, start, options, run, tracker, row, on_event)
             }
         }
     }
+}
+
+/// A stretch of a run: where it starts and when to record.
+#[derive(Clone, Copy, Debug)]
+pub struct Segment<'a> {
+    /// The start (time, raw state in clearances, as [`Subject::run`] returns it); `None`: the
+    /// subject's start.
+    pub start: Option<(f64, &'a [f64])>,
+    /// The times to record at (increasing).
+    pub times: &'a [f64],
+}
+
+struct Run<'a> {
+    t0: f64,
+    columns: Vec<String>,
+    times: &'a [f64],
 }
 
 /// A model file's refusal as an input error naming the file.
@@ -284,17 +359,16 @@ pub fn orbit_state(row: &[f64], indices: &[usize; 4], clearance: f64) -> State {
     State::new(at(0), at(1), at(2), at(3))
 }
 
-#[allow(clippy::too_many_arguments)]
 fn record<const CAP: usize>(
     model: Arc<MatrixModel<CAP>>,
-    t0: f64,
     start: MatrixState<CAP>,
     options: &Options,
-    times: &[f64],
+    run: Run<'_>,
     tracker: &mut Tracker<'_>,
-    columns: Vec<String>,
     row: impl Fn(&MatrixModel<CAP>, &[f64], &mut Vec<f64>),
-) -> Result<Table> {
+    mut on_event: impl FnMut(f64, EventKind, &[f64]) -> Result<()>,
+) -> Result<(Table, Vec<f64>)> {
+    let Run { t0, columns, times } = run;
     let mut propagator = Box::new(MatrixPropagator::new(
         Arc::clone(&model),
         t0,
@@ -307,9 +381,13 @@ fn record<const CAP: usize>(
         times: Vec::with_capacity(times.len()),
         regimes: Vec::with_capacity(times.len()),
     };
+    let mut event_row = Vec::new();
     for &t in times {
         while let Some(event) = propagator.advance(t)? {
             tracker.switch(event.time)?;
+            event_row.clear();
+            row(&model, event.state.as_slice(), &mut event_row);
+            on_event(event.time, event.kind, &event_row)?;
         }
         tracker.budget().check(t)?;
         let state = propagator.state();
@@ -317,7 +395,7 @@ fn record<const CAP: usize>(
         table.times.push(propagator.time());
         table.regimes.push(propagator.regime());
     }
-    Ok(table)
+    Ok((table, propagator.state().as_slice().to_vec()))
 }
 
 /// What an analysis runs: the paper's planar model, or a matrix model.

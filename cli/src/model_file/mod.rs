@@ -25,11 +25,11 @@ mod run;
 mod spec;
 
 pub use analyses::{
-    STATION_COLUMNS, Subject, Table, Target, chosen_columns, model_error, orbit_indices,
+    STATION_COLUMNS, Segment, Subject, Table, Target, chosen_columns, model_error, orbit_indices,
     orbit_state, planar_only, target,
 };
 pub use command::{
-    CheckArgs, SimulateModel, check, report, simulate, simulate_ring_command, write_run,
+    CheckArgs, SimulateModel, check, read, report, simulate, simulate_ring_command, write_run,
 };
 pub use npz::{Array, read_npy, read_npz};
 pub use read::{FORMAT, MAX_MODEL_BYTES, NPZ_KEYS, from_npz, from_toml, load, locate, npz_message};
