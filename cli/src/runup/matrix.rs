@@ -258,116 +258,122 @@ pub fn run(args: &Args, subject: &Subject, program: &Program, model: Option<&Pat
     let orbit = orbit_indices(subject);
     let clearance = subject.clearance();
     let columns = subject.columns();
-    let mut tracker = budget.run(t_start, t_end);
-    let mut periods: Vec<Period> = Vec::new();
-    let mut events: Vec<(f64, f64, u64, EventKind, Vec<f64>)> = Vec::new();
-    let mut state: Option<Vec<f64>> = None;
-    // The forcing angle θ at t (the subject's θ = speed·t + φ0 at the start).
-    let mut angle = subject.phase() + program.speed_at(t_start) * t_start;
-    let mut t = t_start;
-    let mut index = 0u64;
-    let tau = std::f64::consts::TAU;
-    let bar = stdio::progress(biggest, "{bar:40} {pos} forcing periods, {elapsed} elapsed");
-    loop {
-        let first = program.speed_at(t);
-        let speed = program.speed_at(t + hold as f64 * 0.5 * tau / first);
-        let period = tau / speed;
-        let step_end = t + hold as f64 * period;
-        if step_end > t_end + 1e-9 * period {
-            break;
-        }
-        // θ = speed·t + φ continues the angle reached at t.
-        let phase = (angle - speed * t).rem_euclid(tau);
-        let held = subject.at_speed(speed, phase);
-        let count = (hold * per_period) as usize;
-        // The step's start, then `per_period` samples per forcing period (each period's
-        // polygon closes on the next period's first sample).
-        let times: Vec<f64> = (0..=count)
-            .map(|j| t + period * j as f64 / per_period as f64)
-            .collect();
-        let base = index;
-        let mut kinds: Vec<(f64, EventKind)> = Vec::new();
-        let segment = Segment {
-            start: state.as_deref().map(|y| (t, y)),
-            times: &times,
-        };
-        let mut step_events = Vec::new();
-        let (table, end_state) = held.run(&options, segment, &mut tracker, |time, kind, row| {
-            step_events.push((time, kind, row.to_vec()));
-            Ok(())
-        })?;
-        for (time, kind, row) in step_events {
-            let k = base + ((time - t) / period).floor().clamp(0.0, hold as f64 - 1.0) as u64;
-            kinds.push((time, kind));
-            events.push((time, speed, k, kind, row));
-        }
-        let start_regime_in_contact = table.regimes.first().is_some_and(|r| r.in_contact());
-        let rows: Vec<&[f64]> = table.rows().collect();
-        let mut in_contact = start_regime_in_contact;
-        for p in 0..hold {
-            let (p0, p1) = (t + p as f64 * period, t + (p + 1) as f64 * period);
-            let lo = (p * per_period) as usize;
-            let hi = lo + per_period as usize;
-            let pts: Vec<(f64, f64)> = rows
-                .get(lo..=hi)
-                .unwrap_or(&[])
-                .iter()
-                .map(|r| {
-                    let s = orbit_state(r, &orbit, clearance);
-                    (s.x * clearance, s.y * clearance)
-                })
+    // Every step on one large stack (a model file's statement needs it; one thread for all).
+    let stepped = crate::model_file::on_large_stack(|| -> Result<_> {
+        let mut tracker = budget.run(t_start, t_end);
+        let mut periods: Vec<Period> = Vec::new();
+        let mut events: Vec<(f64, f64, u64, EventKind, Vec<f64>)> = Vec::new();
+        let mut state: Option<Vec<f64>> = None;
+        // The forcing angle θ at t (the subject's θ = speed·t + φ0 at the start).
+        let mut angle = subject.phase() + program.speed_at(t_start) * t_start;
+        let mut t = t_start;
+        let mut index = 0u64;
+        let tau = std::f64::consts::TAU;
+        let bar = stdio::progress(biggest, "{bar:40} {pos} forcing periods, {elapsed} elapsed");
+        loop {
+            let first = program.speed_at(t);
+            let speed = program.speed_at(t + hold as f64 * 0.5 * tau / first);
+            let period = tau / speed;
+            let step_end = t + hold as f64 * period;
+            if step_end > t_end + 1e-9 * period {
+                break;
+            }
+            // θ = speed·t + φ continues the angle reached at t.
+            let phase = (angle - speed * t).rem_euclid(tau);
+            let held = subject.at_speed(speed, phase);
+            let count = (hold * per_period) as usize;
+            // The step's start, then `per_period` samples per forcing period (each period's
+            // polygon closes on the next period's first sample).
+            let times: Vec<f64> = (0..=count)
+                .map(|j| t + period * j as f64 / per_period as f64)
                 .collect();
-            let radius = |q: &(f64, f64)| q.0.hypot(q.1);
-            let max_r = pts.iter().map(radius).fold(0.0, f64::max);
-            let min_r = pts.iter().map(radius).fold(f64::INFINITY, f64::min);
-            let mut contact = 0.0;
-            let mut since = p0;
-            let (mut enters, mut exits) = (0u32, 0u32);
-            for &(time, kind) in kinds.iter().filter(|(tt, _)| *tt >= p0 && *tt < p1) {
-                match kind {
-                    EventKind::Enter => {
-                        enters += 1;
-                        in_contact = true;
-                        since = time;
-                    }
-                    EventKind::Exit => {
-                        exits += 1;
-                        if in_contact {
-                            contact += time - since;
+            let base = index;
+            let mut kinds: Vec<(f64, EventKind)> = Vec::new();
+            let segment = Segment {
+                start: state.as_deref().map(|y| (t, y)),
+                times: &times,
+            };
+            let mut step_events = Vec::new();
+            let (table, end_state) =
+                held.run(&options, segment, &mut tracker, |time, kind, row| {
+                    step_events.push((time, kind, row.to_vec()));
+                    Ok(())
+                })?;
+            for (time, kind, row) in step_events {
+                let k = base + ((time - t) / period).floor().clamp(0.0, hold as f64 - 1.0) as u64;
+                kinds.push((time, kind));
+                events.push((time, speed, k, kind, row));
+            }
+            let start_regime_in_contact = table.regimes.first().is_some_and(|r| r.in_contact());
+            let rows: Vec<&[f64]> = table.rows().collect();
+            let mut in_contact = start_regime_in_contact;
+            for p in 0..hold {
+                let (p0, p1) = (t + p as f64 * period, t + (p + 1) as f64 * period);
+                let lo = (p * per_period) as usize;
+                let hi = lo + per_period as usize;
+                let pts: Vec<(f64, f64)> = rows
+                    .get(lo..=hi)
+                    .unwrap_or(&[])
+                    .iter()
+                    .map(|r| {
+                        let s = orbit_state(r, &orbit, clearance);
+                        (s.x * clearance, s.y * clearance)
+                    })
+                    .collect();
+                let radius = |q: &(f64, f64)| q.0.hypot(q.1);
+                let max_r = pts.iter().map(radius).fold(0.0, f64::max);
+                let min_r = pts.iter().map(radius).fold(f64::INFINITY, f64::min);
+                let mut contact = 0.0;
+                let mut since = p0;
+                let (mut enters, mut exits) = (0u32, 0u32);
+                for &(time, kind) in kinds.iter().filter(|(tt, _)| *tt >= p0 && *tt < p1) {
+                    match kind {
+                        EventKind::Enter => {
+                            enters += 1;
+                            in_contact = true;
+                            since = time;
                         }
-                        in_contact = false;
+                        EventKind::Exit => {
+                            exits += 1;
+                            if in_contact {
+                                contact += time - since;
+                            }
+                            in_contact = false;
+                        }
+                        _ => {}
                     }
-                    _ => {}
                 }
+                if in_contact {
+                    contact += p1 - since.max(p0);
+                }
+                let closed: Vec<(f64, f64)> = pts
+                    .iter()
+                    .take(pts.len().saturating_sub(1))
+                    .copied()
+                    .collect();
+                periods.push(Period {
+                    index: base + p,
+                    start: p0,
+                    end: p1,
+                    speed,
+                    change: program.speed_at(p1) - program.speed_at(p0),
+                    radii: (max_r, if min_r.is_finite() { min_r } else { 0.0 }),
+                    contact: (contact / (p1 - p0)).clamp(0.0, 1.0),
+                    whirl: whirl(&closed),
+                    enters,
+                    exits,
+                });
+                bar.inc(1);
             }
-            if in_contact {
-                contact += p1 - since.max(p0);
-            }
-            let closed: Vec<(f64, f64)> = pts
-                .iter()
-                .take(pts.len().saturating_sub(1))
-                .copied()
-                .collect();
-            periods.push(Period {
-                index: base + p,
-                start: p0,
-                end: p1,
-                speed,
-                change: program.speed_at(p1) - program.speed_at(p0),
-                radii: (max_r, if min_r.is_finite() { min_r } else { 0.0 }),
-                contact: (contact / (p1 - p0)).clamp(0.0, 1.0),
-                whirl: whirl(&closed),
-                enters,
-                exits,
-            });
-            bar.inc(1);
+            angle = phase + speed * step_end;
+            state = Some(end_state);
+            t = step_end;
+            index += hold;
         }
-        angle = phase + speed * step_end;
-        state = Some(end_state);
-        t = step_end;
-        index += hold;
-    }
-    bar.finish_and_clear();
+        bar.finish_and_clear();
+        Ok((periods, events))
+    });
+    let (periods, events) = stepped?;
     if periods.is_empty() {
         return Err(CliError::input(
             "the speed program is shorter than one step of --hold forcing periods: nothing to tabulate",
