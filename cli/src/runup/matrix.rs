@@ -124,7 +124,7 @@ pub fn model_program(args: &Args) -> Result<Program> {
         }
         (None, n) => {
             let n = n.unwrap_or(MODEL_RAMP_PERIODS);
-            if !(n.is_finite() && n >= 1.0 && n <= 1e6) {
+            if !(n.is_finite() && (1.0..=1e6).contains(&n)) {
                 return Err(CliError::input(format!(
                     "--ramp-periods {n} is out of range: it must be in [1, 1e6]"
                 )));
