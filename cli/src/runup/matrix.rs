@@ -20,151 +20,14 @@ use rotor_rub::variable_speed::{Revolution, SpeedDirection};
 
 use super::Args;
 use super::analysis::Branch;
-use crate::error::{CliError, Result, num};
+use super::matrix_report::{figure, summary};
+pub use super::steps::{Program, model_program};
+use crate::error::{CliError, Result};
 use crate::limits::fits_memory;
 use crate::model_file::{Segment, Subject, orbit_indices, orbit_state, planar_only};
-use crate::options::describe;
 use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
-use crate::plot::runup::{COAST_DOWN, Curve, RUN_UP, RunupFigure};
-use crate::plot::{self, LegendMark};
+use crate::plot;
 use crate::stdio;
-
-/// Forcing periods held at --from before a model file's ramp when --settle is not given.
-pub const MODEL_SETTLE: f64 = 20.0;
-/// Forcing periods of a model file's ramp when neither --rate nor --ramp-periods is given.
-pub const MODEL_RAMP_PERIODS: f64 = 200.0;
-
-/// A speed program: (time, speed) points, the speed linear in between and held after the last.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Program {
-    /// The points, time increasing.
-    pub points: Vec<(f64, f64)>,
-    /// For the report and the plot.
-    pub description: String,
-}
-
-impl Program {
-    /// The speed at `t`.
-    pub fn speed_at(&self, t: f64) -> f64 {
-        let mut last = self.points.first().map_or(1.0, |p| p.1);
-        for w in self.points.windows(2) {
-            if let [(t0, s0), (t1, s1)] = w {
-                if t <= *t1 {
-                    if t <= *t0 || t1 <= t0 {
-                        return *s0;
-                    }
-                    return s0 + (s1 - s0) * (t - t0) / (t1 - t0);
-                }
-                last = *s1;
-            }
-        }
-        last
-    }
-
-    /// The first and last times.
-    pub fn span(&self) -> (f64, f64) {
-        (
-            self.points.first().map_or(0.0, |p| p.0),
-            self.points.last().map_or(0.0, |p| p.0),
-        )
-    }
-}
-
-/// A model file's speed program from the speed options (Ω in rad/s, t in s): --from and --to
-/// (required), --settle and --dwell forcing periods, the ramp by --rate (rad/s²) or
-/// --ramp-periods (forcing periods of its mean speed), and back unless --one-way.
-///
-/// # Errors
-/// A missing or out-of-range value, naming the option.
-pub fn model_program(args: &Args) -> Result<Program> {
-    let s = &args.speed;
-    if s.profile.is_some() {
-        return Err(CliError::input(
-            "--profile applies only to the paper's planar model; with --model give the ramp by --from, --to (rad/s) and --rate (rad/s²) or --ramp-periods",
-        ));
-    }
-    let speed = |flag: &str, v: Option<f64>| match v {
-        Some(x) if x.is_finite() && x > 0.0 && x <= 1e6 => Ok(x),
-        Some(x) => Err(CliError::input(format!(
-            "{flag} {x} is out of range: with --model it is the speed Ω in rad/s, in (0, 1e6]"
-        ))),
-        None => Err(CliError::input(format!(
-            "{flag} is required with --model: the speed Ω in rad/s (the program's ramp is in the paper's η)"
-        ))),
-    };
-    let (from, to) = (speed("--from", s.from)?, speed("--to", s.to)?);
-    if from == to {
-        return Err(CliError::input(format!(
-            "--from, --to: the ramp needs two different speeds, not {} and {} rad/s",
-            num(from),
-            num(to)
-        )));
-    }
-    let periods = |flag: &str, v: Option<f64>, default: f64| match v.unwrap_or(default) {
-        x if x.is_finite() && (0.0..=1e6).contains(&x) => Ok(x),
-        x => Err(CliError::input(format!(
-            "{flag} {x} is out of range: it must be in [0, 1e6] forcing periods"
-        ))),
-    };
-    let settle = periods("--settle", s.settle, MODEL_SETTLE)?;
-    let dwell = periods("--dwell", s.dwell, 0.0)?;
-    if s.one_way && dwell != 0.0 {
-        return Err(CliError::input(format!(
-            "--dwell {} holds the speed at --to before the ramp back, but the ramp is one-way (--one-way): drop one of them",
-            num(dwell)
-        )));
-    }
-    let mean = 0.5 * (from + to);
-    let ramp = match (s.rate, s.ramp_periods) {
-        (Some(r), _) if r.is_finite() && r > 0.0 => (to - from).abs() / r,
-        (Some(r), _) => {
-            return Err(CliError::input(format!(
-                "--rate {r} is out of range: with --model it is |dΩ/dt| in rad/s², a finite number > 0"
-            )));
-        }
-        (None, n) => {
-            let n = n.unwrap_or(MODEL_RAMP_PERIODS);
-            if !(n.is_finite() && (1.0..=1e6).contains(&n)) {
-                return Err(CliError::input(format!(
-                    "--ramp-periods {n} is out of range: it must be in [1, 1e6]"
-                )));
-            }
-            n * std::f64::consts::TAU / mean
-        }
-    };
-    let tau = std::f64::consts::TAU;
-    let mut t = 0.0;
-    let mut points = vec![(t, from)];
-    t += settle * tau / from;
-    if settle > 0.0 {
-        points.push((t, from));
-    }
-    t += ramp;
-    points.push((t, to));
-    if !s.one_way {
-        if dwell > 0.0 {
-            t += dwell * tau / to;
-            points.push((t, to));
-        }
-        t += ramp;
-        points.push((t, from));
-    }
-    let back = if s.one_way {
-        String::new()
-    } else {
-        format!(" -> {}", num(from))
-    };
-    Ok(Program {
-        points,
-        description: format!(
-            "Ω {} -> {}{back} rad/s at |dΩ/dt| = {} rad/s², stepped: {} forcing period(s) per held speed",
-            num(from),
-            num(to),
-            num((to - from).abs() / ramp),
-            args.hold.unwrap_or(1)
-        ),
-    })
-}
 
 /// One forcing period's sums.
 struct Period {
@@ -448,98 +311,12 @@ pub fn run(args: &Args, subject: &Subject, program: &Program, model: Option<&Pat
         )?;
     }
     let mut files = vec![out.finish()?, ev.finish()?];
-    let unit = subject.length_unit();
     if !args.no_plot {
-        let mut legend = Vec::new();
-        let mut curves = Vec::new();
-        for (branch, color) in [(&up, RUN_UP), (&down, COAST_DOWN)] {
-            if branch.rows.is_empty() {
-                continue;
-            }
-            legend.push((LegendMark::Line(color), branch.label().to_string()));
-            legend.push((
-                LegendMark::Shade(color),
-                format!("rubs ({})", branch.label()),
-            ));
-            curves.push(Curve {
-                color,
-                points: branch
-                    .rows
-                    .iter()
-                    .map(|r| (r.speed_ratio, r.max_radius, r.min_radius))
-                    .collect(),
-                contact: branch.contact_intervals(),
-                jumps: branch
-                    .jumps
-                    .iter()
-                    .map(|j| (j.speed_ratio, j.before, j.after))
-                    .collect(),
-            });
-        }
-        legend.push((LegendMark::Triangle(RUN_UP), "jump".to_string()));
-        let figure = RunupFigure {
-            title: match subject {
-                Subject::File { label, .. } => {
-                    format!("Stepped run-up of {label}: the rub station's orbit radius |P|")
-                }
-                Subject::Ring(p) => format!(
-                    "Stepped run-up of the paper's rotor with a ring of mass m̂ = {}",
-                    num(p.params.stator_mass_ratio)
-                ),
-            },
-            subtitle: format!(
-                "{}; {}; thick: largest radius, thin: smallest radius per forcing period",
-                program.description,
-                describe(&options)
-            ),
-            legend,
-            curves,
-            axes: Some(if file {
-                (
-                    "speed Ω (rad/s), held over each step".to_string(),
-                    format!("rub station radius |P| per forcing period ({unit})"),
-                )
-            } else {
-                (
-                    "speed ratio η = Ω/ω_n, held over each step".to_string(),
-                    format!("orbit radius |q| per forcing period ({unit})"),
-                )
-            }),
-        };
+        let figure = figure(subject, program, &options, [&up, &down]);
         files.extend(plot::render(&figure, &svg, &png)?);
     }
     commit_all(files)?;
-    let mut report = String::new();
-    let _ = writeln!(report, "speed: {}", program.description);
-    let _ = writeln!(report, "method: {}", describe(&options));
-    let symbol = if file { "Ω" } else { "η" };
-    for branch in [&up, &down] {
-        let (Some(first), Some(last)) = (branch.rows.first(), branch.rows.last()) else {
-            continue;
-        };
-        let peak = branch
-            .rows
-            .iter()
-            .max_by(|a, b| a.max_radius.total_cmp(&b.max_radius));
-        let _ = write!(
-            report,
-            "{}: {symbol} {} -> {} over {} forcing periods, rubbing in {:.0} % of them",
-            branch.label(),
-            num(first.speed_ratio),
-            num(last.speed_ratio),
-            branch.rows.len(),
-            100.0 * branch.rubbing_fraction()
-        );
-        if let Some(p) = peak {
-            let _ = write!(
-                report,
-                ", largest radius {:.4e} {unit} at {symbol} = {}",
-                p.max_radius,
-                num(p.speed_ratio)
-            );
-        }
-        let _ = writeln!(report, "; {} jumps", branch.jumps.len());
-    }
+    let mut report = summary(subject, program, &options, [&up, &down]);
     let _ = writeln!(
         report,
         "{} forcing periods, {} switches, run time {:.2} s",

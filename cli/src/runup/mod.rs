@@ -8,9 +8,11 @@ pub mod analysis;
 mod figure;
 mod files;
 mod matrix;
+mod matrix_report;
 pub mod profile_csv;
 pub mod program;
 mod report;
+mod steps;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;

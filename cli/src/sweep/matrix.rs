@@ -9,12 +9,15 @@ use std::path::Path;
 use rayon::prelude::*;
 use rotor_rub::Options;
 
-use super::{Args, SweepParam};
+use rotor_rub::Parameter;
+
+use super::Args;
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, add_counts, fits_memory};
 use crate::model_file::{Subject, chosen_columns, orbit_indices, orbit_state, planar_only};
 use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::BifurcationFigure};
+use crate::problem::parse_parameter;
 use crate::stdio;
 use crate::trajectory::{period_times, uniform_at};
 
@@ -82,6 +85,35 @@ impl ModelParam {
 impl fmt::Display for ModelParam {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// What `--param` names: a table entry (the paper's model, the ring with mass) or a model-file
+/// parameter ([`ModelParam`], with `--model`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SweepParam {
+    /// A parameter-table entry.
+    Table(Parameter),
+    /// A model file's parameter.
+    Model(ModelParam),
+}
+
+impl std::fmt::Display for SweepParam {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SweepParam::Table(p) => write!(f, "{p}"),
+            SweepParam::Model(p) => write!(f, "{p}"),
+        }
+    }
+}
+
+/// `--param`: a table entry's name, or a model-file parameter's.
+pub fn parse_sweep_param(name: &str) -> Result<SweepParam, String> {
+    match parse_parameter(name) {
+        Ok(p) => Ok(SweepParam::Table(p)),
+        Err(table) => ModelParam::from_name(name.trim())
+            .map(SweepParam::Model)
+            .ok_or_else(|| format!("{table}; with --model one of {}", names())),
     }
 }
 

@@ -5,14 +5,14 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use rotor_rub::{Options, Parameter, Problem, State};
+use rotor_rub::{Options, Problem, State};
 
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory, reserve};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
 use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::BifurcationFigure};
-use crate::problem::{ProblemArgs, parse_parameter};
+use crate::problem::ProblemArgs;
 use crate::shard::{ShardInfo, checksum};
 use crate::stdio;
 use crate::trajectory::{self, uniform_at};
@@ -20,7 +20,7 @@ use crate::trajectory::{self, uniform_at};
 mod matrix;
 mod range;
 
-pub use matrix::ModelParam;
+pub use matrix::{ModelParam, SweepParam, parse_sweep_param};
 
 pub use range::{DEFAULT_TO, last_value, parse_shard};
 use range::{run_description, shard_len};
@@ -103,35 +103,6 @@ pub struct Args {
     /// Do not draw the plot
     #[arg(long)]
     pub no_plot: bool,
-}
-
-/// What `--param` names: a table entry (the paper's model, the ring with mass) or a model-file
-/// parameter ([`ModelParam`], with `--model`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SweepParam {
-    /// A parameter-table entry.
-    Table(Parameter),
-    /// A model file's parameter.
-    Model(ModelParam),
-}
-
-impl std::fmt::Display for SweepParam {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            SweepParam::Table(p) => write!(f, "{p}"),
-            SweepParam::Model(p) => write!(f, "{p}"),
-        }
-    }
-}
-
-/// `--param`: a table entry's name, or a model-file parameter's.
-pub fn parse_sweep_param(name: &str) -> Result<SweepParam, String> {
-    match parse_parameter(name) {
-        Ok(p) => Ok(SweepParam::Table(p)),
-        Err(table) => ModelParam::from_name(name.trim())
-            .map(SweepParam::Model)
-            .ok_or_else(|| format!("{table}; with --model one of {}", matrix::names())),
-    }
 }
 
 /// The Poincaré section of one problem: the states at the forcing-period boundaries

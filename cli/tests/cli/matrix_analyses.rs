@@ -542,6 +542,20 @@ fn matrix_analyses_refuse_bad_input_naming_the_value() {
             "--speed-holds applies only",
         ),
         (
+            vec![
+                "poincare",
+                "--model",
+                m,
+                "--method",
+                "analytic",
+                "--contact-scheme",
+                "exprb2",
+                "--out",
+                o,
+            ],
+            "contact scheme exprb2 is not available for a rotor from matrices",
+        ),
+        (
             vec!["runup", "--hold", "2", "--out", o],
             "--hold applies only",
         ),
