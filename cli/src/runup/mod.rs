@@ -48,8 +48,9 @@ pub struct Args {
     /// A rotor from matrices (TOML or .npz, SI units: docs/MODEL_FILES.md) instead of the
     /// paper's model: a stepped run-up (the speed held over each step of --hold forcing periods,
     /// the matrices re-evaluated at each step's speed; the speed's change within a step is left
-    /// out), --from and --to in rad/s, --rate in rad/s², radii of the rub station in m. The ring
-    /// with mass (stator_mass_ratio > 0) runs the same stepped run-up in η
+    /// out), --from and --to in rad/s (required; --program's rotor and ramp do not apply),
+    /// --rate in rad/s², radii of the rub station in m. The ring with mass (stator_mass_ratio >
+    /// 0) runs the same stepped run-up in η
     #[arg(long, value_name = "FILE", conflicts_with_all = ["preset", "config", "set"])]
     pub model: Option<PathBuf>,
 
