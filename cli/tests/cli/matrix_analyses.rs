@@ -156,6 +156,53 @@ fn the_jeffcott_as_matrices_gives_the_planar_sections_spectra_and_sweeps() {
 }
 
 #[test]
+fn compare_runs_on_model_files_and_the_ring() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    let model = jeffcott();
+    let common = [
+        "--periods",
+        "5",
+        "--reference-tol",
+        "1e-13",
+        "--tol",
+        "1e-13",
+    ];
+    let mut args = vec!["compare", "--model", path(&model), "--out-dir", path(&a)];
+    args.extend(common);
+    let report = ok(&args);
+    assert!(report.contains("unmatched 0"), "{report}");
+    let mut args = vec!["compare", "--out-dir", path(&b)];
+    args.extend(common);
+    ok(&args);
+    let (ha, ra) = read_csv(&a.join("compare.csv"));
+    let (hb, rb) = read_csv(&b.join("compare.csv"));
+    assert_eq!(ha, ["kind", "t_analytic", "t_reference", "dt", "dstate"]);
+    assert_eq!(hb[1], "tau_analytic");
+    assert_eq!(ra.len(), rb.len());
+    assert!(!ra.is_empty());
+    // Both methods, matrix against planar: the same switches within 1e-10.
+    for (x, y) in ra.iter().zip(&rb) {
+        assert_eq!(x[0], y[0]);
+        for i in [1, 2] {
+            assert!((num(&x[i]) - num(&y[i])).abs() < 1e-10, "{x:?} vs {y:?}");
+        }
+    }
+    let ring = dir.path().join("r");
+    let report = ok(&[
+        "compare",
+        "--set",
+        "stator_mass_ratio=1",
+        "--periods",
+        "3",
+        "--out-dir",
+        path(&ring),
+    ]);
+    assert!(report.contains("unmatched 0"), "{report}");
+    assert!(ring.join("compare.svg").exists());
+}
+
+#[test]
 fn the_stepped_runup_follows_the_exact_variable_speed_runup() {
     let dir = tempfile::tempdir().expect("tempdir");
     let (a, b) = (dir.path().join("ra.csv"), dir.path().join("rb.csv"));
