@@ -358,6 +358,71 @@ fn every_analysis_runs_on_the_two_disk_model() {
         std::fs::read(&outs[0]).expect("w"),
         std::fs::read(&outs[1]).expect("w0")
     );
+    // The matrices are re-evaluated at each speed: K listed as K at 280 and 1.1 K at 320 rad/s
+    // is 1.05 K at 300, the same run as the file stating 1.05 K (to rounding).
+    let scaled = |factor: f64| {
+        let k = block("stiffness");
+        let numbers: String = k
+            .split_inclusive(|c: char| c == '[' || c == ']' || c == ',')
+            .map(|piece| {
+                let (head, tail) = piece.split_at(piece.len() - 1);
+                match head.trim().parse::<f64>() {
+                    Ok(x) => format!(" {:?}{tail}", x * factor),
+                    Err(_) => piece.to_string(),
+                }
+            })
+            .collect();
+        numbers
+    };
+    let listed = dir.path().join("listed.toml");
+    std::fs::write(
+        &listed,
+        format!(
+            "{text}\n[[speed_dependent]]\nspeed = 280.0\n{}[[speed_dependent]]\nspeed = 320.0\n{}",
+            block("stiffness"),
+            scaled(1.1)
+        ),
+    )
+    .expect("write");
+    let stated = dir.path().join("stated.toml");
+    std::fs::write(
+        &stated,
+        text.replacen(&block("stiffness"), &scaled(1.05), 1),
+    )
+    .expect("write");
+    let mut outs = Vec::new();
+    for (file, name) in [(&listed, "l.csv"), (&stated, "s.csv"), (&model, "m.csv")] {
+        let out = dir.path().join(name);
+        ok(&[
+            "sweep",
+            "--model",
+            path(file),
+            "--param",
+            "speed",
+            "--from",
+            "300",
+            "--steps",
+            "1",
+            "--transient",
+            "2",
+            "--keep",
+            "3",
+            "--method",
+            "hybrid",
+            "--tol",
+            "1e-12",
+            "--no-plot",
+            "--out",
+            path(&out),
+        ]);
+        outs.push(out);
+    }
+    let d = largest_difference(&outs[0], &outs[1], 2);
+    assert!(d < 1e-12, "listed and stated K differ by {d:e} m");
+    assert!(
+        largest_difference(&outs[0], &outs[2], 2) > 1e-7,
+        "the listed K must change the run"
+    );
     // Outside the listed speeds: refused, naming the value and the range, no file.
     let bad = dir.path().join("bad.csv");
     let (code, _, err) = run(&[
