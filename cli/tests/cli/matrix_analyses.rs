@@ -363,7 +363,7 @@ fn every_analysis_runs_on_the_two_disk_model() {
     let scaled = |factor: f64| {
         let k = block("stiffness");
         let numbers: String = k
-            .split_inclusive(|c: char| c == '[' || c == ']' || c == ',')
+            .split_inclusive(['[', ']', ','])
             .map(|piece| {
                 let (head, tail) = piece.split_at(piece.len() - 1);
                 match head.trim().parse::<f64>() {
