@@ -53,9 +53,11 @@ impl CliError {
     /// A propagation error, with `context` (e.g. the parameter value being run) in front.
     pub fn propagation(context: &str, e: PropagationError) -> Self {
         let code = match e {
-            PropagationError::InvalidProblem(_) | PropagationError::InvalidOption { .. } => {
-                EXIT_INPUT
-            }
+            // A matrix model's refusal (an option it does not take, a start of the wrong
+            // size) is bad input too.
+            PropagationError::InvalidProblem(_)
+            | PropagationError::InvalidOption { .. }
+            | PropagationError::InvalidModel(_) => EXIT_INPUT,
             _ => EXIT_FAILURE,
         };
         let message = if context.is_empty() {

@@ -11,9 +11,14 @@
 //!   [`MatrixRun`], SI, columns named after the DOFs).
 //! - `ring.rs`: the stator ring with mass (issue 28, `stator_mass_ratio` > 0) as the n = 4
 //!   matrix model, run by the same propagation ([`simulate_ring`]).
+//! - `analyses.rs`: what `poincare`, `spectrum`, `sweep` and `runup` run on a model file or the
+//!   ring ([`Subject`]: states sampled at chosen times, named columns, SI for a file);
+//!   `choose.rs`: which model a command runs ([`target`]) and the columns an option names.
 //! - `command.rs`: `rotor-rub check-model FILE`, `rotor-rub simulate --model FILE` and the
 //!   ring's `simulate` ([`simulate_ring_command`]).
 
+mod analyses;
+mod choose;
 mod command;
 mod npz;
 mod read;
@@ -21,8 +26,10 @@ mod ring;
 mod run;
 mod spec;
 
+pub use analyses::{STATION_COLUMNS, Segment, Subject, Table, model_error};
+pub use choose::{Target, chosen_columns, orbit_indices, orbit_state, planar_only, target};
 pub use command::{
-    CheckArgs, SimulateModel, check, report, simulate, simulate_ring_command, write_run,
+    CheckArgs, SimulateModel, check, read, report, simulate, simulate_ring_command, write_run,
 };
 pub use npz::{Array, read_npy, read_npz};
 pub use read::{FORMAT, MAX_MODEL_BYTES, NPZ_KEYS, from_npz, from_toml, load, locate, npz_message};

@@ -773,14 +773,19 @@ fn runtime_error(fallback: Key, e: MatrixError) -> ModelError {
 
 /// Run `f` on a thread with a 64 MiB stack: a model of capacity 128 is ~1 MiB of matrices and
 /// the eigenvalue iteration works on ~0.5 MiB of stack, more than a worker thread's 2 MiB holds
-/// in a debug build.
+/// in a debug build. Called on such a thread already (a run-up's steps), `f` runs there.
 pub fn on_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    if LARGE_STACK.with(std::cell::Cell::get) {
+        return f();
+    }
     std::thread::scope(|scope| {
         match std::thread::Builder::new()
             .name("rotor-rub model".into())
             .stack_size(64 << 20)
-            .spawn_scoped(scope, f)
-        {
+            .spawn_scoped(scope, || {
+                LARGE_STACK.with(|flag| flag.set(true));
+                f()
+            }) {
             Ok(handle) => match handle.join() {
                 Ok(value) => value,
                 Err(panic) => std::panic::resume_unwind(panic),
@@ -789,6 +794,11 @@ pub fn on_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
             Err(_) => unreachable_spawn(),
         }
     })
+}
+
+thread_local! {
+    /// Whether this thread is one [`on_large_stack`] started.
+    static LARGE_STACK: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
 /// Spawning a thread fails only when the system is out of threads or memory: nothing can run.

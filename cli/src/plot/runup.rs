@@ -34,6 +34,8 @@ pub struct RunupFigure {
     pub legend: Vec<(LegendMark, String)>,
     /// The curves, drawn in order.
     pub curves: Vec<Curve>,
+    /// The axes' labels (x, y) when not the paper model's (η, |q| in clearances).
+    pub axes: Option<(String, String)>,
 }
 
 const HEADER: u32 = 92;
@@ -66,8 +68,17 @@ impl Figure for RunupFigure {
             .map_err(err)?;
         chart
             .configure_mesh()
-            .x_desc("speed ratio η = Ω/ω_n (mean over each forcing period)")
-            .y_desc("orbit radius |q| per forcing period (clearances)")
+            .x_desc(self.axes.as_ref().map_or(
+                "speed ratio η = Ω/ω_n (mean over each forcing period)",
+                |a| a.0.as_str(),
+            ))
+            .y_desc(
+                self.axes
+                    .as_ref()
+                    .map_or("orbit radius |q| per forcing period (clearances)", |a| {
+                        a.1.as_str()
+                    }),
+            )
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(err)?;

@@ -61,5 +61,6 @@ pub fn figure(
         ),
         legend,
         curves,
+        axes: None,
     }
 }

@@ -7,9 +7,12 @@
 pub mod analysis;
 mod figure;
 mod files;
+mod matrix;
+mod matrix_report;
 pub mod profile_csv;
 pub mod program;
 mod report;
+mod steps;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -41,6 +44,20 @@ pub struct Args {
 
     #[command(flatten)]
     pub problem: ProblemArgs,
+
+    /// A rotor from matrices (TOML or .npz, SI units: docs/MODEL_FILES.md) instead of the
+    /// paper's model: a stepped run-up (the speed held over each step of --hold forcing periods,
+    /// the matrices re-evaluated at each step's speed; the speed's change within a step is left
+    /// out), --from and --to in rad/s (required; --program's rotor and ramp do not apply),
+    /// --rate in rad/s², radii of the rub station in m. The ring with mass (stator_mass_ratio >
+    /// 0) runs the same stepped run-up in η
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["preset", "config", "set"])]
+    pub model: Option<PathBuf>,
+
+    /// Forcing periods per held speed of the stepped run-up of a model file or the ring with
+    /// mass, >= 1 [default: 1]
+    #[arg(long, value_name = "N", value_parser = at_least(1))]
+    pub hold: Option<u64>,
 
     #[command(flatten)]
     pub speed: SpeedArgs,
@@ -112,11 +129,40 @@ fn speed_holds(args: &Args) -> Result<u32> {
 
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
+    if let Some(path) = &args.model {
+        let spec = crate::model_file::read(path)?;
+        let subject = crate::model_file::Subject::file(spec, path);
+        let program = matrix::model_program(args)?;
+        return matrix::run(args, &subject, &program, Some(path));
+    }
     let mut problem_args = args.problem.clone();
     if problem_args.preset.is_none() && problem_args.config.is_none() {
         problem_args.preset = Some(args.program.rotor());
     }
     let mut problem = problem_args.build()?;
+    if problem.params.stator_mass_ratio > 0.0 {
+        let speed = args.speed.program(args.program)?;
+        let program = matrix::Program {
+            points: speed
+                .points
+                .iter()
+                .map(|p| (p.time, p.speed_ratio))
+                .collect(),
+            description: format!(
+                "{}, stepped: {} forcing period(s) per held speed",
+                speed.description,
+                args.hold.unwrap_or(1)
+            ),
+        };
+        problem.start_time = program.span().0;
+        let subject = crate::model_file::Subject::Ring(problem);
+        return matrix::run(args, &subject, &program, None);
+    }
+    if args.hold.is_some() {
+        return Err(CliError::input(
+            "--hold applies only to the stepped run-up of a model file (--model) or the stator ring with mass (stator_mass_ratio > 0)",
+        ));
+    }
     let options = VariableSpeedOptions {
         options: args.method.options()?,
         speed_holds: speed_holds(args)?,

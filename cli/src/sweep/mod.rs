@@ -5,19 +5,22 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use rotor_rub::{Options, Parameter, Problem, State};
+use rotor_rub::{Options, Problem, State};
 
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory, reserve};
 use crate::options::{MethodArgs, Survey, describe, parse_finite};
 use crate::output::{AtomicFile, check_distinct, commit_all, ensure_parent};
 use crate::plot::{self, scatter::BifurcationFigure};
-use crate::problem::{ProblemArgs, parse_parameter};
+use crate::problem::ProblemArgs;
 use crate::shard::{ShardInfo, checksum};
 use crate::stdio;
 use crate::trajectory::{self, uniform_at};
 
+mod matrix;
 mod range;
+
+pub use matrix::{ModelParam, SweepParam, parse_sweep_param};
 
 pub use range::{DEFAULT_TO, last_value, parse_shard};
 use range::{run_description, shard_len};
@@ -35,15 +38,29 @@ pub struct Args {
     #[command(flatten)]
     pub problem: ProblemArgs,
 
+    /// A rotor from matrices (TOML or .npz, SI units: docs/MODEL_FILES.md) instead of the
+    /// paper's model: --param speed (Ω, rad/s; C and K re-evaluated per speed when the file
+    /// lists them), clearance (m), contact_stiffness (N/m, K_c = k·I) or friction_coefficient;
+    /// the points are the rub station's relative state (rub_x, rub_y, rub_vx, rub_vy, SI)
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["preset", "config", "set"])]
+    pub model: Option<PathBuf>,
+
+    /// The columns written for a model file or the ring with mass (comma-separated, or `all`):
+    /// a model file's DOF names, `v` + a DOF name, rub_x, rub_y, rub_vx, rub_vy [default:
+    /// rub_x,rub_y,rub_vx,rub_vy]; the ring's x, y, vx, vy, xs, ys, vxs, vys [default: all]
+    #[arg(long, value_name = "NAMES")]
+    pub columns: Option<String>,
+
     #[command(flatten)]
     pub method: MethodArgs<Survey>,
 
     #[command(flatten)]
     pub limits: LimitArgs,
 
-    /// Parameter to sweep (a --set name)
-    #[arg(long, value_name = "NAME", default_value = "speed_ratio", value_parser = parse_parameter)]
-    pub param: Parameter,
+    /// Parameter to sweep: a --set name; with --model one of speed, clearance,
+    /// contact_stiffness, friction_coefficient
+    #[arg(long, value_name = "NAME", default_value = "speed_ratio", value_parser = parse_sweep_param)]
+    pub param: SweepParam,
 
     /// First value
     #[arg(long, value_name = "VALUE", default_value_t = 1.0, value_parser = parse_finite, allow_hyphen_values = true)]
@@ -160,7 +177,26 @@ pub fn plot_rows(
 
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
-    let base = args.problem.build()?;
+    let base = match crate::model_file::target(args.model.as_deref(), &args.problem)? {
+        crate::model_file::Target::Planar(problem) => problem,
+        crate::model_file::Target::Matrix(subject) => {
+            let to = last_value(args)?;
+            return matrix::run(args, &subject, args.model.as_deref(), to);
+        }
+    };
+    let param = match args.param {
+        SweepParam::Table(p) => p,
+        SweepParam::Model(p) => {
+            return Err(CliError::input(format!(
+                "--param {p} is a model-file parameter: give the model with --model FILE"
+            )));
+        }
+    };
+    if args.columns.is_some() {
+        return Err(CliError::input(
+            "--columns applies only to a model file (--model) or the stator ring with mass (stator_mass_ratio > 0)",
+        ));
+    }
     let options = args.method.options()?;
     let to = last_value(args)?;
     add_counts(("--transient", args.transient), ("--keep", args.keep))?;
@@ -194,10 +230,9 @@ pub fn run(args: &Args) -> Result<()> {
     for k in 0..count {
         let v = uniform_at(args.from, to, args.steps, shard + k * shards);
         let mut p = base;
-        args.param.set(&mut p, v);
-        p.validate().map_err(|e| {
-            CliError::input(format!("--param {} = {} (swept): {e}", args.param, num(v)))
-        })?;
+        param.set(&mut p, v);
+        p.validate()
+            .map_err(|e| CliError::input(format!("--param {param} = {} (swept): {e}", num(v))))?;
         problems.push((v, p));
     }
     trajectory::start(&base, &options)?;
@@ -214,7 +249,7 @@ pub fn run(args: &Args) -> Result<()> {
         args.transient,
         args.keep,
         &budget,
-        |v| format!("{} = {}", args.param, num(*v)),
+        |v| format!("{param} = {}", num(*v)),
         || bar.inc(1),
     );
     bar.finish_and_clear();
@@ -260,7 +295,7 @@ pub fn run(args: &Args) -> Result<()> {
             args.transient + args.keep,
             describe(&options)
         );
-        files.extend(plot_rows(&rows, args.param.name(), &subtitle, &args.out)?);
+        files.extend(plot_rows(&rows, param.name(), &subtitle, &args.out)?);
     }
     commit_all(files)?;
     let slice = if shards > 1 {

@@ -6,6 +6,7 @@ mod errors;
 mod fig2;
 mod friction;
 mod inputs;
+mod matrix_analyses;
 mod memory;
 mod messages;
 mod orbit;

@@ -9,13 +9,17 @@ use rotor_rub::{Options, Problem};
 use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
 use crate::error::{CliError, Result, num};
 use crate::limits::{Budget, LimitArgs, add_counts, fits_memory, reserve};
+use crate::model_file::{Target, target};
 use crate::options::{MethodArgs, Survey, describe, parse_positive};
 use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
 use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
+
+mod matrix;
 use crate::plot::{self, ANALYTIC};
 use crate::problem::ProblemArgs;
 use crate::stdio;
 use crate::trajectory;
+use matrix::run_matrix;
 
 /// Amplitude spectrum from uniform samples over an integer number of forcing periods after a
 /// transient, Hann window. Frequencies are orders: multiples of the running speed η, so the ½×
@@ -24,6 +28,19 @@ use crate::trajectory;
 pub struct Args {
     #[command(flatten)]
     pub problem: ProblemArgs,
+
+    /// A rotor from matrices (TOML or .npz, SI units: docs/MODEL_FILES.md) instead of the
+    /// paper's model: the spectrum of the rub station's relative displacement (rub_x, rub_y, m)
+    /// in orders of Ω, or of the --columns named
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["preset", "config", "set"])]
+    pub model: Option<PathBuf>,
+
+    /// The signals analysed for a model file or the ring with mass (comma-separated): a model
+    /// file's DOF names, `v` + a DOF name, rub_x, rub_y, rub_vx, rub_vy [default: rub_x,rub_y];
+    /// the ring's x, y, vx, vy, xs, ys, vxs, vys [default: x,y]. With --whirl exactly two, the
+    /// whirl's real and imaginary parts
+    #[arg(long, value_name = "NAMES")]
+    pub columns: Option<String>,
 
     #[command(flatten)]
     pub method: MethodArgs<Survey>,
@@ -53,15 +70,23 @@ pub struct Args {
     #[arg(long, value_name = "ORDER", default_value_t = 4.0, value_parser = parse_positive, allow_hyphen_values = true)]
     pub max_order: f64,
 
-    /// Output CSV: header order,x,y (or order,whirl with --whirl), amplitudes in clearances; the
-    /// plot goes next to it (.svg and .png)
+    /// Output CSV: header order,x,y (or order,whirl with --whirl), amplitudes in clearances (a
+    /// model file: order then --columns, in SI units); the plot goes next to it (.svg and .png)
     #[arg(long, value_name = "FILE.csv", default_value = "out/spectrum.csv")]
     pub out: PathBuf,
 }
 
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
-    let problem = args.problem.build()?;
+    let problem = match target(args.model.as_deref(), &args.problem)? {
+        Target::Planar(problem) => problem,
+        Target::Matrix(subject) => return run_matrix(args, &subject),
+    };
+    if args.columns.is_some() {
+        return Err(CliError::input(
+            "--columns applies only to a model file (--model) or the stator ring with mass (stator_mass_ratio > 0)",
+        ));
+    }
     let options = args.method.options()?;
     let end_period = add_counts(("--transient", args.transient), ("--periods", args.periods))?;
     let n = sample_count(args.periods, args.samples_per_period)?;

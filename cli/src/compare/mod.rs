@@ -19,12 +19,19 @@ use crate::problem::ProblemArgs;
 use crate::stdio;
 use crate::trajectory::{self, dense_count, dense_times};
 
+mod matrix;
+
 /// Compare the analytic method with a numerical reference: switch table, largest differences,
 /// both orbits in one plot.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     #[command(flatten)]
     pub problem: ProblemArgs,
+
+    /// A rotor from matrices (TOML or .npz, SI units: docs/MODEL_FILES.md) instead of the
+    /// paper's model: --t-end in s, --periods of 2π/Ω, the rub station's switches and orbit
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["preset", "config", "set"])]
+    pub model: Option<PathBuf>,
 
     #[command(flatten)]
     pub time: TimeArgs,
@@ -95,7 +102,12 @@ fn fmt_opt(x: Option<f64>) -> String {
 
 /// Run the command.
 pub fn run(args: &Args) -> Result<()> {
-    let problem = args.problem.build()?;
+    let problem = match crate::model_file::target(args.model.as_deref(), &args.problem)? {
+        crate::model_file::Target::Planar(problem) => problem,
+        crate::model_file::Target::Matrix(subject) => {
+            return matrix::run(args, &subject, args.model.as_deref());
+        }
+    };
     let end = args.time.end_time(&problem.params);
     let analytic = args.scheme.cli_options(Method::Analytic)?;
     let reference = reference_options(args.reference, args.reference_tol)?;
