@@ -19,16 +19,60 @@ pub enum Preset {
     /// Sustained dry whip (rolling without slip): isotropic K̂ = 300, ε̂ = (0, 0), η = 1.5,
     /// μ = 0.6, ρ_R = 2 (`docs/MODEL.md §10`).
     DryWhip,
+    /// The `paper` rotor and stator support (K̂ = (20, 20, 20, 40), ε̂ = (0.3, −0.2), η = 1.5)
+    /// holding a stator ring of the disk's mass (`docs/MODEL.md §17`): m̂ = 1, contact
+    /// stiffness k̂_c = 100, support damping ĉ = 0.5 (damping ratios 0.090 and 0.035 of the
+    /// ring's two support modes, 2.76 and 7.24 per unit τ). The rub is sustained and the ring
+    /// moves with it: over forcing periods 50–100 (hybrid, 20 001 samples over 100 periods) the
+    /// rotor enters contact 321 times and is in contact 46 % of the time, the ring's centre
+    /// moves up to 0.59 clearances and the rotor up to 1.73. With ĉ = 1 the rub is as heavy
+    /// (67 % in contact); with ĉ ≤ 0.25 and k̂_c = 50 the ring rings down undamped or the rub
+    /// dies out after the start (`tests/ring_presets.rs` checks the numbers).
+    StatorMass,
+    /// Dry whip set by the coupled rotor–ring mode (`docs/MODEL.md §17`): the `friction` rotor
+    /// and stator (isotropic K̂ = 100, ε̂ = (0.3, −0.2), η = 1.5, ρ_R = 100) with μ = 0.5 and a
+    /// ring of m̂ = 1, k̂_c = 300, ĉ = 0.5. After the start the rotor locks into full annular
+    /// backward whirl, slipping (w > 0 throughout: no reversal, no rolling), and the ring whirls
+    /// with it: over forcing periods 90–100 the contact never opens, the relative position whirls
+    /// at −23.68 per unit τ (15.8 times the running speed, backward), the rotor reaches 3.23
+    /// clearances and the ring 3.49, unchanged from periods 40–50. −23.68 is the frequency of
+    /// the rotor–ring system's out-of-phase mode (rotor and ring moving against each other) with
+    /// the contact's secant stiffness k̂_c (1 − 1/z̄) at the mean relative radius z̄ = 6.34:
+    /// 23.68, where a massless ring on the same springs (their series stiffness) would whip at
+    /// 8.52. (k̂_c = 100: −15.57 against the same mode's 15.57; μ = 0.4 or ĉ = 1: no whip, the
+    /// synchronous orbit with light rub.)
+    RingWhirl,
 }
 
 impl Preset {
     /// Every preset, in the order `presets` lists them.
-    pub const ALL: [Preset; 4] = [
+    pub const ALL: [Preset; 6] = [
+        Preset::Paper,
+        Preset::PaperText,
+        Preset::Friction,
+        Preset::DryWhip,
+        Preset::StatorMass,
+        Preset::RingWhirl,
+    ];
+
+    /// The presets of the planar model (`stator_mass_ratio` = 0): what the planar driver, the
+    /// stepper, the C ABI and the FMU run.
+    pub const PLANAR: [Preset; 4] = [
         Preset::Paper,
         Preset::PaperText,
         Preset::Friction,
         Preset::DryWhip,
     ];
+
+    /// The presets with a stator ring of mass (`stator_mass_ratio` > 0): the n = 4 matrix model
+    /// (`matrix::MatrixModel::ring`), which the CLI's and Python's `simulate` choose for them.
+    pub const RING: [Preset; 2] = [Preset::StatorMass, Preset::RingWhirl];
+
+    /// Whether the preset states a stator ring with mass (`stator_mass_ratio` > 0), which the
+    /// planar entry points refuse ([`crate::ParamError::RingNeedsMatrixModel`]).
+    pub const fn has_ring_mass(self) -> bool {
+        self.problem().params.stator_mass_ratio > 0.0
+    }
 
     /// The preset's command-line name.
     pub const fn name(self) -> &'static str {
@@ -37,6 +81,8 @@ impl Preset {
             Preset::PaperText => "paper-text",
             Preset::Friction => "friction",
             Preset::DryWhip => "dry-whip",
+            Preset::StatorMass => "stator-mass",
+            Preset::RingWhirl => "ring-whirl",
         }
     }
 
@@ -54,6 +100,12 @@ impl Preset {
             }
             Preset::DryWhip => {
                 "sustained dry whip (rolling): isotropic K = 300, offset (0, 0), mu = 0.6, R/clearance = 2"
+            }
+            Preset::StatorMass => {
+                "paper rotor and stator with a ring of mass: mass ratio 1, contact stiffness 100, ring damping 0.5 (sustained rub, the ring moving up to 0.6 clearances)"
+            }
+            Preset::RingWhirl => {
+                "dry whip at the coupled rotor-ring mode: friction preset with mu = 0.5 and a ring of mass ratio 1, contact stiffness 300, damping 0.5 (backward whirl at -15.8 times the running speed)"
             }
         }
     }
@@ -85,6 +137,21 @@ impl Preset {
                 (Parameter::OffsetY, 0.0),
                 (Parameter::FrictionCoefficient, 0.6),
                 (Parameter::RadiusRatio, 2.0),
+            ],
+            Preset::StatorMass => &[
+                (Parameter::StatorMassRatio, 1.0),
+                (Parameter::ContactStiffness, 100.0),
+                (Parameter::StatorDamping, 0.5),
+            ],
+            Preset::RingWhirl => &[
+                (Parameter::KXx, 100.0),
+                (Parameter::KXy, 0.0),
+                (Parameter::KYx, 0.0),
+                (Parameter::KYy, 100.0),
+                (Parameter::FrictionCoefficient, 0.5),
+                (Parameter::StatorMassRatio, 1.0),
+                (Parameter::ContactStiffness, 300.0),
+                (Parameter::StatorDamping, 0.5),
             ],
         }
     }
