@@ -10,7 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use rotor_rub::matrix::{MatrixPropagator, ring_model, ring_start};
 use rotor_rub::method::{Method, Options};
-use rotor_rub::{EventKind, ParamError, Preset, PropagationError, Propagator, advance_to};
+use rotor_rub::{EventKind, ParamError, Preset, PropagationError, Propagator, Regime, advance_to};
 
 /// What a stretch of a ring preset's run shows.
 #[derive(Debug)]
@@ -19,6 +19,8 @@ struct Stretch {
     enters: usize,
     /// Events other than enter and exit (reversals, rolling) in the stretch.
     other_events: usize,
+    /// Fraction of the samples rolling without slip.
+    rolling: f64,
     /// Fraction of the samples in contact (|relative offset| > 1).
     contact: f64,
     /// Largest |(x, y)| of the rotor.
@@ -44,6 +46,7 @@ fn stretch(preset: Preset, method: Method, from: f64, to: f64) -> Stretch {
     let period = p.forcing_period();
     let per_period = 200;
     let (mut enters, mut other_events, mut in_contact, mut samples) = (0, 0, 0, 0);
+    let mut rolling = 0;
     let (mut rotor, mut ring, mut offset_sum) = (0.0f64, 0.0f64, 0.0);
     let (mut turned, mut previous, mut first_time, mut last_time) = (0.0f64, 0.0f64, 0.0, 0.0);
     let total = (to * f64::from(per_period)) as u32;
@@ -70,6 +73,7 @@ fn stretch(preset: Preset, method: Method, from: f64, to: f64) -> Stretch {
         let z = dx.hypot(dy);
         samples += 1;
         in_contact += usize::from(z > 1.0);
+        rolling += usize::from(sample.regime == Regime::Rolling);
         rotor = rotor.max(x.hypot(y));
         ring = ring.max(xs.hypot(ys));
         offset_sum += z;
@@ -87,6 +91,7 @@ fn stretch(preset: Preset, method: Method, from: f64, to: f64) -> Stretch {
     Stretch {
         enters,
         other_events,
+        rolling: rolling as f64 / samples as f64,
         contact: in_contact as f64 / samples as f64,
         rotor,
         ring,
@@ -154,8 +159,9 @@ fn stator_mass_rubs_with_the_ring_moving() {
     assert!((1.5..=2.0).contains(&s.rotor), "{s:?}");
 }
 
-/// `ring-whirl`: full annular backward whirl at the coupled mode, the ring whirling with the
-/// rotor; the same with taylor (another contact solver).
+/// `ring-whirl`: the rotor rolls on the ring in full annular backward whirl, the ring whirling
+/// with it, at the coupled mode's frequency and the radius where rolling needs no slip; the same
+/// with taylor (another contact solver).
 #[test]
 fn ring_whirl_whips_backward_at_the_coupled_mode() {
     let p = Preset::RingWhirl.problem().params;
@@ -163,7 +169,13 @@ fn ring_whirl_whips_backward_at_the_coupled_mode() {
         let s = stretch(Preset::RingWhirl, method, 90.0, 100.0);
         println!("ring-whirl {method:?}, periods 90–100: {s:?}");
         assert_eq!((s.enters, s.other_events), (0, 0), "{s:?}");
-        assert_eq!(s.contact, 1.0, "{s:?}");
+        assert_eq!((s.contact, s.rolling), (1.0, 1.0), "{s:?}");
+        // Rolling: the relative position's surface speed is the rotor's, z̄ |ω| = ρ_R η.
+        let surface = p.radius_ratio * p.speed_ratio;
+        assert!(
+            (s.mean_offset * -s.whirl - surface).abs() < 1e-3 * surface,
+            "{s:?}"
+        );
         assert!(s.ring > 3.0 && s.rotor > 3.0, "{s:?}");
         // The out-of-phase mode with the contact's secant stiffness at the mean offset.
         let secant = p.contact_stiffness * (1.0 - 1.0 / s.mean_offset);

@@ -29,18 +29,19 @@ pub enum Preset {
     /// (67 % in contact); with ĉ ≤ 0.25 and k̂_c = 50 the ring rings down undamped or the rub
     /// dies out after the start (`tests/ring_presets.rs` checks the numbers).
     StatorMass,
-    /// Dry whip set by the coupled rotor–ring mode (`docs/MODEL.md §17`): the `friction` rotor
+    /// Dry whip of the rotor and the ring together (`docs/MODEL.md §17`): the `friction` rotor
     /// and stator (isotropic K̂ = 100, ε̂ = (0.3, −0.2), η = 1.5, ρ_R = 100) with μ = 0.5 and a
-    /// ring of m̂ = 1, k̂_c = 300, ĉ = 0.5. After the start the rotor locks into full annular
-    /// backward whirl, slipping (w > 0 throughout: no reversal, no rolling), and the ring whirls
-    /// with it: over forcing periods 90–100 the contact never opens, the relative position whirls
-    /// at −23.68 per unit τ (15.8 times the running speed, backward), the rotor reaches 3.23
-    /// clearances and the ring 3.49, unchanged from periods 40–50. −23.68 is the frequency of
-    /// the rotor–ring system's out-of-phase mode (rotor and ring moving against each other) with
-    /// the contact's secant stiffness k̂_c (1 − 1/z̄) at the mean relative radius z̄ = 6.34:
-    /// 23.68, where a massless ring on the same springs (their series stiffness) would whip at
-    /// 8.52. (k̂_c = 100: −15.57 against the same mode's 15.57; μ = 0.4 or ĉ = 1: no whip, the
-    /// synchronous orbit with light rub.)
+    /// ring of m̂ = 1, k̂_c = 300, ĉ = 0.5. After a rub of 28.8 time units the rotor starts rolling
+    /// on the ring without slip (one `roll` event, rolling ever after): full annular backward
+    /// whirl, the ring whirling opposite the rotor. Over forcing periods 90–100 the relative
+    /// position whirls at −23.68 per unit τ (15.8 times the running speed, backward) at the mean
+    /// relative radius z̄ = 6.34, the rotor reaches 3.23 clearances and the ring 3.49, as over
+    /// periods 40–50. Rolling fixes the product z̄ω = ρ_R η = 150 (no slip) and the coupled modes
+    /// fix ω: 23.68 is the frequency of the rotor–ring out-of-phase mode (rotor and ring moving
+    /// against each other) with the contact's secant stiffness k̂_c (1 − 1/z̄) at that radius. A
+    /// massless ring on the same springs (their series stiffness, below K̂ = 100) cannot whirl
+    /// faster than √101 = 10.05 (8.52 at z̄ = 6.34). From the same start μ = 0.4 or ĉ = 1 gives no
+    /// whip (the synchronous orbit with light rub); k̂_c = 1000 the same whip at −39.12, z̄ = 3.83.
     RingWhirl,
 }
 
@@ -105,7 +106,7 @@ impl Preset {
                 "paper rotor and stator with a ring of mass: mass ratio 1, contact stiffness 100, ring damping 0.5 (sustained rub, the ring moving up to 0.6 clearances)"
             }
             Preset::RingWhirl => {
-                "dry whip at the coupled rotor-ring mode: friction preset with mu = 0.5 and a ring of mass ratio 1, contact stiffness 300, damping 0.5 (backward whirl at -15.8 times the running speed)"
+                "dry whip of rotor and ring: friction preset with mu = 0.5 and a ring of mass ratio 1, contact stiffness 300, damping 0.5 (rolling, backward whirl at -15.8 times the running speed at the coupled mode)"
             }
         }
     }

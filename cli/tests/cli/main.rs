@@ -10,6 +10,7 @@ mod memory;
 mod messages;
 mod orbit;
 mod pipes;
+mod readme;
 mod profiles;
 mod reliability;
 mod resonance;
