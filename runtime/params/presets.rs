@@ -26,13 +26,13 @@ pub enum Preset {
     /// moves with it: over forcing periods 50–100 (hybrid, 20 001 samples over 100 periods) the
     /// rotor enters contact 321 times and is in contact 46 % of the time, the ring's centre
     /// moves up to 0.59 clearances and the rotor up to 1.73. With ĉ = 1 the rub is as heavy
-    /// (67 % in contact); with ĉ ≤ 0.25 and k̂_c = 50 the ring rings down undamped or the rub
-    /// dies out after the start (`tests/ring_presets.rs` checks the numbers).
+    /// (67 % in contact); with k̂_c = 50 and ĉ = 0.5 it dies out after the start (no contact
+    /// after period 50). `tests/ring_presets.rs` checks the numbers.
     StatorMass,
     /// Dry whip of the rotor and the ring together (`docs/MODEL.md §17`): the `friction` rotor
     /// and stator (isotropic K̂ = 100, ε̂ = (0.3, −0.2), η = 1.5, ρ_R = 100) with μ = 0.5 and a
-    /// ring of m̂ = 1, k̂_c = 300, ĉ = 0.5. After a rub of 28.8 time units the rotor starts rolling
-    /// on the ring without slip (one `roll` event, rolling ever after): full annular backward
+    /// ring of m̂ = 1, k̂_c = 300, ĉ = 0.5. At τ = 28.8, after a rub from the start, the rotor
+    /// starts rolling on the ring without slip (one `roll` event, rolling ever after): full annular backward
     /// whirl, the ring whirling opposite the rotor. Over forcing periods 90–100 the relative
     /// position whirls at −23.68 per unit τ (15.8 times the running speed, backward) at the mean
     /// relative radius z̄ = 6.34, the rotor reaches 3.23 clearances and the ring 3.49, as over
@@ -66,7 +66,7 @@ impl Preset {
     ];
 
     /// The presets with a stator ring of mass (`stator_mass_ratio` > 0): the n = 4 matrix model
-    /// (`matrix::MatrixModel::ring`), which the CLI's and Python's `simulate` choose for them.
+    /// (`matrix::ring_model`), which the CLI's and Python's `simulate` choose for them.
     pub const RING: [Preset; 2] = [Preset::StatorMass, Preset::RingWhirl];
 
     /// Whether the preset states a stator ring with mass (`stator_mass_ratio` > 0), which the
