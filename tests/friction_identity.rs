@@ -48,11 +48,12 @@ fn radius_ratio_changes_nothing_without_friction() {
     }
 }
 
-/// Every preset's stator (with μ set to 0) is among the recorded problems.
+/// Every planar preset's stator (with μ set to 0) is among the recorded problems (the ring
+/// presets are matrix models, outside this record).
 #[test]
 fn every_preset_is_covered() {
     let recorded: Vec<Problem> = problems().into_iter().map(|(_, p)| p).collect();
-    for preset in Preset::ALL {
+    for preset in Preset::PLANAR {
         let mut p = preset.problem();
         p.params.friction_coefficient = 0.0;
         p.params.radius_ratio = rotor_rub::Params::DEFAULT.radius_ratio;

@@ -564,3 +564,41 @@ fn input_force_and_speed_setters_match_rust_and_refuse_bad_values() {
         assert_eq!(read.speed_ratio, 1.8);
     }
 }
+
+/// The C ABI's presets are the planar presets (`Preset::PLANAR`, numbered in order); the ring
+/// presets (`stator-mass`, `ring-whirl`: a ring with mass, which the stepper does not run yet)
+/// have no number, and the numbers after the planar ones are refused as unknown presets.
+#[test]
+fn the_c_presets_are_the_planar_presets() {
+    use rotor_rub::Preset;
+    for (number, preset) in (0..).zip(Preset::PLANAR) {
+        let mut params = RotorRubParams::from(rotor_rub::Params::DEFAULT);
+        let mut initial = RotorRubState::default();
+        let mut t0 = f64::NAN;
+        // SAFETY: valid pointers.
+        let rc = unsafe { rotor_rub_preset(number, &mut params, &mut initial, &mut t0) };
+        assert_eq!(rc, ROTOR_RUB_OK, "{}", preset.name());
+        let problem = preset.problem();
+        assert_eq!(
+            params,
+            RotorRubParams::from(problem.params),
+            "{}",
+            preset.name()
+        );
+        assert_eq!(params.stator_mass_ratio, 0.0, "{}", preset.name());
+        assert_eq!(t0, problem.start_time);
+    }
+    for number in [4, 5] {
+        let mut params = RotorRubParams::from(rotor_rub::Params::DEFAULT);
+        // SAFETY: valid pointers (null skips the optional outputs).
+        let rc = unsafe {
+            rotor_rub_preset(
+                number,
+                &mut params,
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(rc, ROTOR_RUB_ERR_INVALID_ARGUMENT, "preset number {number}");
+    }
+}

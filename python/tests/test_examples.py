@@ -34,3 +34,35 @@ def test_the_quickstart_runs(tmp_path: Path) -> None:
                          capture_output=True, text=True, cwd=tmp_path, timeout=300)
     assert out.returncode == 0, out.stderr[-3000:]
     assert "up jump at η = 2.474" in out.stdout and (tmp_path / "sweep.parquet").is_file()
+
+
+def blocks(page: str, marker: str) -> list[str]:
+    """The ```python blocks that follow each `marker` in `page`."""
+    out = []
+    for block in page.split(marker)[1:]:
+        code = block[block.index("```python\n") + 10:]
+        out.append(code[:code.index("```")])
+    return out
+
+
+def test_the_ring_preset_examples_run(monkeypatch, tmp_path: Path) -> None:
+    """Issue 28 item 7: README's and docs/PYTHON.md's ring-preset examples, as shown."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    monkeypatch.chdir(tmp_path)
+    readme = blocks((ROOT / "README.md").read_text(), "<!-- readme: ring example")
+    docs = blocks((ROOT / "docs" / "PYTHON.md").read_text(), "<!-- ring-example -->")
+    assert len(readme) == 1 and len(docs) == 1
+    for code in readme + docs:
+        exec(compile(code, "example", "exec"), {})
+
+
+def test_the_ring_presets_example_runs(tmp_path: Path) -> None:
+    out = subprocess.run([sys.executable, str(EXAMPLES / "ring_presets.py"),
+                          str(tmp_path / "ring.png")],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert "stator-mass: after 50 periods" in out.stdout, out.stdout
+    assert "ring-whirl: after 90 periods 0 contact starts, in contact 100%" in out.stdout, out.stdout
+    assert (tmp_path / "ring.png").is_file()

@@ -11,6 +11,8 @@ import rotor_rub as rr
 from conftest import columns, run_cli
 
 STATE = ["x", "y", "vx", "vy"]
+#: A ring preset's columns after the rotor's (stator_mass_ratio > 0).
+RING = ["xs", "ys", "vxs", "vys"]
 
 
 def test_issue_call_shape() -> None:
@@ -58,11 +60,12 @@ def test_equals_the_cli(cli: Path, tmp_path: Path, preset: str, method: str) -> 
     events = columns(tmp_path / "e.csv")
     samples = columns(tmp_path / "s.csv")
     run = rr.simulate(preset=preset, method=method, periods=6, samples=257)
+    state = STATE + (RING if rr.presets()[preset]["stator_mass_ratio"] > 0 else [])
     assert np.array_equal(run.events.time, events["tau"])
     assert list(run.events.kind) == list(events["kind"])
-    assert np.array_equal(run.events.state, np.stack([events[c] for c in STATE], axis=1))
+    assert np.array_equal(run.events.state, np.stack([events[c] for c in state], axis=1))
     assert np.array_equal(run.samples.time, samples["tau"])
-    assert np.array_equal(run.samples.state, np.stack([samples[c] for c in STATE], axis=1))
+    assert np.array_equal(run.samples.state, np.stack([samples[c] for c in state], axis=1))
     assert list(run.samples.regime) == list(samples["regime"])
     assert np.array_equal(run.samples.contact.astype(float), samples["contact"])
 
@@ -86,6 +89,8 @@ def test_presets_and_parameters_match_the_table(cli: Path, tmp_path: Path) -> No
         assert name in cli_presets
     assert presets["paper"]["speed_ratio"] == 1.5
     assert presets["dry-whip"]["friction_coefficient"] == 0.6
+    assert presets["stator-mass"]["stator_mass_ratio"] == 1.0
+    assert presets["ring-whirl"]["friction_coefficient"] == 0.5
 
 
 def test_help_reads_well() -> None:

@@ -9,7 +9,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 
 
-EXAMPLES = [ROOT / "examples" / "python" / name for name in ("quickstart.py", "dask_sweep.py")]
+EXAMPLES = [ROOT / "examples" / "python" / name
+            for name in ("quickstart.py", "dask_sweep.py", "ring_presets.py")]
 
 
 def test_mypy_strict_on_the_examples() -> None:

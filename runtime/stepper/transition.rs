@@ -282,7 +282,7 @@ mod tests {
     #[test]
     fn a_kept_map_is_the_map_computed_anew() {
         let mut kept_phi = 0;
-        for preset in Preset::ALL {
+        for preset in Preset::PLANAR {
             let base = preset.problem().params;
             for dt in [1e-3, 0.01, 0.3] {
                 let before = FreeTransition::new(&base, &FreeConstants::new(&base), dt);
@@ -317,7 +317,7 @@ mod tests {
         }
         // Speed, unbalance, stator and input changes away from resonance keep Φ.
         assert!(
-            kept_phi >= 4 * 3 * Preset::ALL.len(),
+            kept_phi >= 4 * 3 * Preset::PLANAR.len(),
             "Φ kept {kept_phi} times"
         );
     }

@@ -12,6 +12,7 @@ mod messages;
 mod orbit;
 mod pipes;
 mod profiles;
+mod readme;
 mod reliability;
 mod resonance;
 mod runtime_reliability;

@@ -242,6 +242,53 @@ fn presets_list_every_value() {
     }
 }
 
+/// `simulate --preset NAME` runs every preset: the planar ones with the rotor's columns, the
+/// ring presets (`stator_mass_ratio` > 0) through the ring's matrix model with the ring's columns
+/// after the rotor's and the ring's largest displacement in the summary; each rubs.
+#[test]
+fn simulate_runs_every_preset() {
+    let dir = tempfile::tempdir().unwrap();
+    for preset in Preset::ALL {
+        let out = bin()
+            .current_dir(dir.path())
+            .args(["simulate", "--preset", preset.name(), "--periods", "10"])
+            .args(["--method", "hybrid", "--events", "e.csv"])
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}: {}",
+            preset.name(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let (header, rows) = read_csv(&dir.path().join("e.csv"));
+        let rotor = ["tau", "kind", "x", "y", "vx", "vy"];
+        assert_eq!(&header[..6], rotor, "{}", preset.name());
+        assert!(
+            rows.iter().any(|r| r[1] == "enter"),
+            "{}: no contact",
+            preset.name()
+        );
+        if preset.has_ring_mass() {
+            assert_eq!(
+                &header[6..],
+                ["xs", "ys", "vxs", "vys"],
+                "{}",
+                preset.name()
+            );
+            let line = text
+                .lines()
+                .find(|l| l.starts_with("ring: largest displacement"))
+                .unwrap_or_else(|| panic!("{}: {text}", preset.name()));
+            let moved = num(line.split(" = ").nth(1).unwrap().split(' ').next().unwrap());
+            assert!(moved > 0.1, "{}: {line}", preset.name());
+        } else {
+            assert_eq!(header.len(), 6, "{}", preset.name());
+        }
+    }
+}
+
 #[test]
 fn help_explains_units_and_defaults() {
     let top = bin().arg("--help").output().unwrap();
