@@ -77,8 +77,10 @@ mod config;
 mod exact;
 pub mod friction;
 mod inputs;
+pub mod matrix;
 pub mod polynomial;
 mod report;
+pub mod ring;
 pub mod search;
 mod solvers;
 mod transition;
@@ -86,7 +88,9 @@ mod transition;
 pub use crate::analytic::switch::Search;
 pub use config::{OnCap, StepperConfig, SwitchStart};
 pub use inputs::Snapshot;
+pub use matrix::{MatrixStepReport, MatrixStepper, MatrixStepperConfig, OwnedModel};
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
+pub use ring::{AnyStepper, RingState, RingStepper};
 pub use search::{
     MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, locate_with,
     no_crossing, no_crossing_likely,
