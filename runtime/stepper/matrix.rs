@@ -391,6 +391,24 @@ where
     pub fn current_dt(&self) -> f64 {
         self.dt
     }
+
+    /// The time anchor: (step length, anchor time, steps since): the time is anchor + steps·dt.
+    pub fn anchor(&self) -> (f64, f64, u64) {
+        (self.dt, self.anchor_time, self.anchor_steps)
+    }
+
+    /// Set the time anchor (a stepper resumed from saved words; dt in (0, [`MAX_STEP`]], the
+    /// time finite).
+    ///
+    /// # Errors
+    /// [`StepperError::InvalidStep`] for an anchor that is not finite or a dt out of range.
+    pub fn set_anchor(&mut self, dt: f64, time: f64, steps: u64) -> Result<(), StepperError> {
+        if !(dt > 0.0 && dt <= MAX_STEP && time.is_finite()) {
+            return Err(StepperError::InvalidStep { dt, time });
+        }
+        (self.dt, self.anchor_time, self.anchor_steps) = (dt, time, steps);
+        Ok(())
+    }
 }
 
 /// A model holder whose statement can be changed in place (a new input force): [`OwnedModel`].

@@ -81,6 +81,7 @@ pub mod matrix;
 pub mod polynomial;
 mod report;
 pub mod ring;
+mod ring_words;
 pub mod search;
 mod solvers;
 mod transition;
@@ -90,7 +91,7 @@ pub use config::{OnCap, StepperConfig, SwitchStart};
 pub use inputs::Snapshot;
 pub use matrix::{MatrixStepReport, MatrixStepper, MatrixStepperConfig, OwnedModel};
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
-pub use ring::{AnyStepper, RingState, RingStepper};
+pub use ring::{AnySnapshot, AnyStepper, RingState, RingStepper};
 pub use search::{
     MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, locate_with,
     no_crossing, no_crossing_likely,

@@ -6,7 +6,7 @@
 //! m̂ > 0.
 
 use super::matrix::{MatrixStepReport, MatrixStepper, MatrixStepperConfig, OwnedModel};
-use super::{StepReport, Stepper, StepperConfig, StepperError};
+use super::{Snapshot, StepReport, Stepper, StepperConfig, StepperError};
 use crate::coefficients::{self as coef, ModelParams, Time};
 use crate::math;
 use crate::matrix::{RING_CAPACITY, ring_model, ring_start};
@@ -36,7 +36,7 @@ pub struct RingStepper {
 }
 
 /// Refuse m̂ = 0 where the ring's stepper runs (the planar [`Stepper`] runs it).
-fn check_ring(params: &Params) -> Result<(), StepperError> {
+pub(super) fn check_ring(params: &Params) -> Result<(), StepperError> {
     if params.stator_mass_ratio > 0.0 {
         Ok(())
     } else {
@@ -47,7 +47,7 @@ fn check_ring(params: &Params) -> Result<(), StepperError> {
     }
 }
 
-fn state_model(params: &Params) -> Result<OwnedModel<RING_CAPACITY>, StepperError> {
+pub(super) fn state_model(params: &Params) -> Result<OwnedModel<RING_CAPACITY>, StepperError> {
     Ok(OwnedModel(
         ring_model(params).map_err(PropagationError::from)?,
     ))
@@ -190,9 +190,29 @@ impl RingStepper {
         &self.params
     }
 
+    /// Build from its parts (words read back, `ring_words.rs`).
+    pub(super) fn from_parts(
+        params: Params,
+        inner: MatrixStepper<OwnedModel<RING_CAPACITY>, RING_CAPACITY>,
+    ) -> Self {
+        RingStepper { params, inner }
+    }
+
     /// The underlying matrix stepper.
     pub fn matrix(&self) -> &MatrixStepper<OwnedModel<RING_CAPACITY>, RING_CAPACITY> {
         &self.inner
+    }
+}
+
+impl core::fmt::Debug for RingStepper {
+    /// The time, regime and state (the model and the method's solvers are not listed).
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("RingStepper")
+            .field("time", &self.time())
+            .field("regime", &self.regime())
+            .field("state", &self.full_state())
+            .field("config", self.inner.config())
+            .finish_non_exhaustive()
     }
 }
 
@@ -252,7 +272,7 @@ pub fn ring_config(config: &StepperConfig) -> MatrixStepperConfig {
     clippy::large_enum_variant,
     reason = "no heap in the runtime: the ring's model lives inline"
 )]
-#[derive(Clone)]
+#[derive(Clone, Debug)]
 pub enum AnyStepper {
     /// The paper's planar model (m̂ = 0).
     Planar(Stepper),
@@ -390,4 +410,60 @@ impl AnyStepper {
             AnyStepper::Ring(s) => s.params(),
         }
     }
+
+    /// What [`AnyStepper::restore`] rebuilds the stepper from: the planar [`Snapshot`] (plain
+    /// data a quarter of the stepper's size) or a copy of the ring's stepper.
+    pub fn snapshot(&self) -> AnySnapshot {
+        match self {
+            AnyStepper::Planar(s) => AnySnapshot::Planar(s.snapshot()),
+            AnyStepper::Ring(s) => AnySnapshot::Ring(s.snapshot()),
+        }
+    }
+
+    /// The stepper a snapshot was taken of (bit for bit: stepping on gives the same bits).
+    ///
+    /// # Errors
+    /// As [`Stepper::restore`] for a planar snapshot.
+    pub fn restore(snapshot: &AnySnapshot) -> Result<AnyStepper, StepperError> {
+        match snapshot {
+            AnySnapshot::Planar(s) => Ok(AnyStepper::Planar(Stepper::restore(s)?)),
+            AnySnapshot::Ring(s) => Ok(AnyStepper::Ring(s.clone())),
+        }
+    }
+
+    /// The stepper as [`Snapshot::WORDS`] words: the planar [`Snapshot::to_words`] or
+    /// [`RingStepper::to_words`] (told apart by their markers).
+    pub fn to_words(&self) -> [u64; Snapshot::WORDS] {
+        match self {
+            AnyStepper::Planar(s) => s.snapshot().to_words(),
+            AnyStepper::Ring(s) => s.to_words(),
+        }
+    }
+
+    /// The stepper written by [`AnyStepper::to_words`].
+    ///
+    /// # Errors
+    /// As [`Snapshot::from_words`] and [`Stepper::restore`], or [`RingStepper::from_words`].
+    pub fn from_words(words: &[u64; Snapshot::WORDS]) -> Result<AnyStepper, StepperError> {
+        if RingStepper::is_ring_words(words) {
+            Ok(AnyStepper::Ring(RingStepper::from_words(words)?))
+        } else {
+            Ok(AnyStepper::Planar(Stepper::restore(
+                &Snapshot::from_words(words)?,
+            )?))
+        }
+    }
+}
+
+/// An [`AnyStepper`]'s snapshot.
+#[allow(
+    clippy::large_enum_variant,
+    reason = "no heap in the runtime: the ring's stepper is copied inline"
+)]
+#[derive(Clone, Debug)]
+pub enum AnySnapshot {
+    /// The planar stepper's.
+    Planar(Snapshot),
+    /// A copy of the ring's stepper.
+    Ring(RingStepper),
 }
