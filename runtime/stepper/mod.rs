@@ -65,6 +65,18 @@
 //! [`Stepper::restore`] (roll back), and [`Stepper::step_to_switch`] (stop at the first switch:
 //! an FMU's early return).
 //!
+//! # The stator ring with mass, and rotors from matrices
+//! [`Stepper`] runs the paper's planar model (m̂ = 0) and refuses a ring with mass
+//! (`ParamError::RingNeedsMatrixModel`); [`AnyStepper::new`] decides from the problem: the
+//! planar [`Stepper`] for m̂ = 0 (its steps unchanged, one match per call), the ring's
+//! [`RingStepper`] for m̂ > 0 (the C ABI and the FMU build it). A ring step is a
+//! [`MatrixStepper`] step ([`matrix`]): the matrix propagator of the configured method
+//! (default taylor: exact free flight of rotor and ring, Taylor-series contact, every switch
+//! located as in a variable-step run) asked for anchor + k·dt; at most `max_switches` (64)
+//! switches per step and the propagator's step budget between switches, else a typed error
+//! with the stepper unchanged (it steps from a copy of its propagator). Its inputs re-state the
+//! ring model and restart the method at the current state (a new free-flight decomposition).
+//!
 //! # Changing parameters or the step length
 //! A `step` with a new `dt` recomputes Φ, G and the bound constants ([`FreeTransition::new`]:
 //! the free basis at dt once (one `exp`, one `sin_cos`), the generated step formulas
