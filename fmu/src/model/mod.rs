@@ -105,11 +105,39 @@ impl Model {
             .into_iter()
             .filter(|&p| variables::of_parameter(p, self.units).is_some());
         for p in offered {
-            let value = p.get(&self.requested);
-            p.set(&mut problem, scales.to_model(dimension(p), value));
+            p.set(&mut problem, self.model_value(p));
         }
         problem.start_time = scales.to_model(Dimension::Time, self.start_time);
         problem
+    }
+
+    /// Whether table entry `p` holds its declared start value (the table's default, converted
+    /// at the SI FMU's default scales).
+    fn at_start(&self, p: Parameter) -> bool {
+        variables::of_parameter(p, self.units).and_then(|v| v.start) == Some(p.get(&self.requested))
+    }
+
+    /// Table entry `p` in model units. An entry at its declared start value is the table's
+    /// default exactly, whatever the scales: the SI start values are the defaults at the default
+    /// scales, and an entry left there means "the default" (so an untouched `contact_stiffness`
+    /// stays k̂_c = 50 when ω_n, δ or M change, and the massless ring's entries stay at their
+    /// defaults, which a ring-less model requires). Any other value is converted.
+    pub fn model_value(&self, p: Parameter) -> f64 {
+        if self.at_start(p) {
+            p.info().default
+        } else {
+            self.scales().to_model(dimension(p), p.get(&self.requested))
+        }
+    }
+
+    /// Table entry `p` in the importer's units: as set, or for an entry at its start value the
+    /// table's default in the current scales ([`Model::model_value`]).
+    pub fn importer_value(&self, p: Parameter) -> f64 {
+        if self.at_start(p) {
+            self.scales().to_importer(dimension(p), p.info().default)
+        } else {
+            p.get(&self.requested)
+        }
     }
 
     /// The FMU's time in the importer's units.
@@ -170,7 +198,7 @@ impl Model {
                 .stepper
                 .as_ref()
                 .map_or(self.requested.params.phase, |s| s.params().phase),
-            Target::Table(p) => p.get(&self.requested),
+            Target::Table(p) => self.importer_value(p),
             Target::Setting(s) => self.setting(s),
             Target::Output(o) => self.output(o),
         })
