@@ -272,7 +272,8 @@ pub unsafe extern "C" fn rotor_rub_stepper_init(
 /// if a contact system is singular or resonant; `ROTOR_RUB_ERR_BUDGET_EXCEEDED` if the step
 /// would exceed its bounded work (planar: a cap under `on_cap` = FAIL; the ring with mass:
 /// more than 64 switches inside the step, or more integration steps between two switches than
-/// its budget; the stepper is then unchanged: take shorter steps); `ROTOR_RUB_ERR_INTERNAL` on
+/// its budget; the stepper is then back at the step's start, its method restarted there:
+/// take shorter steps); `ROTOR_RUB_ERR_INTERNAL` on
 /// a caught bug.
 ///
 /// With `stator_mass_ratio` > 0 the step is the ring's (`rotor_rub::stepper::RingStepper`):

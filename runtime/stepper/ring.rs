@@ -75,7 +75,7 @@ impl RingStepper {
     /// y', x_s', y_s').
     ///
     /// # Errors
-    /// As [`MatrixStepper::step`]; the stepper is then unchanged.
+    /// As [`MatrixStepper::step`]; the stepper is then back at the step's start.
     pub fn step(&mut self, dt: f64) -> Result<MatrixStepReport<RING_CAPACITY>, StepperError> {
         self.inner.step(dt)
     }
@@ -300,7 +300,8 @@ impl AnyStepper {
     /// ring's is [`AnyStepper::ring_state`].
     ///
     /// # Errors
-    /// As the stepper's `step`; it is then unchanged.
+    /// As the stepper's `step`: the planar one unchanged, the ring's back at the step's
+    /// start (its method restarted there).
     #[inline]
     pub fn step(&mut self, dt: f64) -> Result<StepReport, StepperError> {
         match self {
