@@ -5,7 +5,10 @@
 //! tolerance). Every contact switch inside is located exactly by the stepper; with early return
 //! the step ends at the first one ([`AnyStepper::step_to_switch`]) and reports its time. The
 //! stator ring with mass (`stator_mass_ratio` > 0) runs the ring's stepper: no error estimate
-//! (its method meets its own tolerance), every switch located as in the planar model.
+//! (its method meets its own tolerance), every switch located as in the planar model; each of
+//! its internal steps ends at its first switch (the next starts there), so it needs no copy to
+//! undo a step (the ring's stepper is 37 KiB: a copy per internal step would cost more than
+//! the step).
 //!
 //! # Bounded work
 //! One communication step makes at most `max_internal_steps` stepper calls (retries included),
@@ -125,24 +128,34 @@ impl Model {
             } else {
                 remaining
             };
-            let before = stepper.clone();
+            // The planar stepper is copied to undo a step (a few hundred bytes); the ring's
+            // (37 KiB) is not: it has no error estimate to retry on, and it steps to each
+            // switch, so its report never overflows.
+            let ring = matches!(stepper, AnyStepper::Ring(_));
+            let mut before = (!ring).then(|| stepper.clone());
+            let start = stepper.time();
             work += 1;
-            let report = if early_return {
+            let report = if early_return || ring {
                 stepper.step_to_switch(dt)
             } else {
                 stepper.step(dt)
             }
-            .map_err(|e| msg!("step of {dt} from τ = {}: {e}", before.time()))?;
-            if report.error_estimate > settings.tolerance && halvings < MAX_HALVINGS {
+            .map_err(|e| msg!("step of {dt} from τ = {start}: {e}"))?;
+            if report.error_estimate > settings.tolerance
+                && halvings < MAX_HALVINGS
+                && let Some(before) = before.take()
+            {
                 *stepper = before;
                 self.next_step = dt * 0.5;
                 halvings += 1;
                 continue;
             }
             halvings = 0;
-            if report.events.overflowed() {
+            if report.events.overflowed()
+                && let Some(before) = before.take()
+            {
                 // More switches than a report holds: redo the step switch by switch.
-                let stop = before.time() + dt;
+                let stop = start + dt;
                 *stepper = before;
                 while stop - stepper.time() > 1e-12 * scale {
                     if work >= cap {
