@@ -21,8 +21,8 @@ use rotor_rub::method::Method;
 use rotor_rub::stepper::matrix::MatrixStepperConfig;
 use rotor_rub::stepper::{AnyStepper, RingStepper};
 use rotor_rub::{
-    Parameter, Preset, Problem, PropagationError, Regime, Stepper, StepperConfig, StepperError,
-    samples,
+    Parameter, Preset, Problem, Propagate, PropagationError, Regime, Stepper, StepperConfig,
+    StepperError, samples,
 };
 
 fn case(name: &str) -> &'static Case {
@@ -289,4 +289,80 @@ fn bad_input_is_refused() {
     assert_eq!(s.time(), 0.0);
     assert_eq!(s.regime(), Regime::Free);
     let _: Problem = problem;
+}
+
+/// The matrix stepper on any rotor from matrices, not only the ring: a 3-DOF gyroscopic rotor
+/// with a coupled third DOF and a fixed stator (`MatrixStepper<&MatrixModel<8>, 8>`): its
+/// states at k·dt are the continuous run's samples, its switches the continuous run's.
+#[test]
+fn any_matrix_model_steps() {
+    use rotor_rub::linalg::{RealMatrix, SecondOrder};
+    use rotor_rub::matrix::{MatrixModel, MatrixState, Running, Station, Unbalance};
+    use rotor_rub::stepper::MatrixStepper;
+    let m =
+        |a: [[f64; 3]; 3]| RealMatrix::<8>::from_fn(3, 3, |i, j| a[i][j]).expect("a 3×3 matrix");
+    let mass = m([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.5]]);
+    let damping = m([[0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [0.0, 0.0, 0.05]]);
+    let gyroscopic = m([[0.0, 0.05, 0.0], [-0.05, 0.0, 0.0], [0.0, 0.0, 0.0]]);
+    let stiffness = m([[1.0, 0.0, 0.2], [0.0, 1.0, 0.0], [0.2, 0.0, 0.8]]);
+    let rotor = SecondOrder {
+        mass: &mass,
+        damping: &damping,
+        gyroscopic: &gyroscopic,
+        stiffness: &stiffness,
+    };
+    let model = MatrixModel::<8>::new(
+        &rotor,
+        Running {
+            speed_ratio: 1.5,
+            phase: 0.0,
+        },
+        &[Unbalance {
+            x: 0,
+            y: 1,
+            amount: 0.6,
+            phase: 0.0,
+        }],
+        &[],
+        Station {
+            rotor: (0, 1),
+            stator: None,
+            offset: (0.2, 0.0),
+            contact_stiffness: [[25.0, 0.0], [0.0, 25.0]],
+            friction_coefficient: 0.0,
+            radius_ratio: 1.0,
+        },
+    )
+    .expect("a valid model");
+    let start = MatrixState::rest(3).expect("3 DOFs");
+    let dt = 1e-2;
+    let config = MatrixStepperConfig {
+        tol: Some(1e-12),
+        ..MatrixStepperConfig::with_dt(dt)
+    };
+    let mut stepper = MatrixStepper::new(&model, 0.0, start, config).expect("starts");
+    let mut continuous =
+        MatrixPropagator::new(&model, 0.0, start, &config.options()).expect("starts");
+    let times: Vec<f64> = (1..=3000).map(|k| k as f64 * dt).collect();
+    let mut want_switches = Vec::new();
+    let mut sampled = Vec::new();
+    for &t in &times {
+        while let Some(e) = continuous.advance(t).expect("the continuous run") {
+            want_switches.push((e.time, e.kind));
+        }
+        sampled.push(continuous.state());
+    }
+    let mut got_switches = Vec::new();
+    for (k, s) in sampled.iter().enumerate() {
+        let r = stepper.step(dt).expect("a step");
+        got_switches.extend(r.events.iter().map(|e| (e.time, e.kind)));
+        assert_eq!(r.time, times[k]);
+        assert_eq!(r.state.as_slice(), s.as_slice(), "step {k}");
+    }
+    assert_eq!(got_switches, want_switches);
+    assert!(
+        got_switches.len() > 10,
+        "it rubs ({} switches)",
+        got_switches.len()
+    );
 }
