@@ -250,7 +250,12 @@ fn bad_input_is_refused() {
     let config = MatrixStepperConfig::with_dt(1e-2);
     assert!(matches!(
         RingStepper::new(&Preset::Paper.problem(), config),
-        Err(StepperError::InvalidConfig { .. })
+        Err(StepperError::Propagation(PropagationError::InvalidProblem(
+            rotor_rub::ParamError::OutOfRange {
+                parameter: Parameter::StatorMassRatio,
+                ..
+            }
+        )))
     ));
     for max_switches in [0, 100_000] {
         assert!(matches!(

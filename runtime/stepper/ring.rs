@@ -10,7 +10,7 @@ use super::{Snapshot, StepReport, Stepper, StepperConfig, StepperError};
 use crate::coefficients::{self as coef, ModelParams, Time};
 use crate::math;
 use crate::matrix::{RING_CAPACITY, ring_model, ring_start};
-use crate::params::{Parameter, Params, Problem, State};
+use crate::params::{ParamError, Parameter, Params, Problem, Range, State};
 use crate::propagate::{Event, PropagationError, Regime};
 
 /// The ring's state: centre (x_s, y_s) and its velocity, clearances and clearances per τ.
@@ -40,10 +40,15 @@ pub(super) fn check_ring(params: &Params) -> Result<(), StepperError> {
     if params.stator_mass_ratio > 0.0 {
         Ok(())
     } else {
-        Err(StepperError::InvalidConfig {
-            what: "stator_mass_ratio (the ring's stepper needs a ring with mass, > 0; m̂ = 0 is the planar stepper's, and a running stepper cannot change between the two)",
+        // The ring's stepper's range of m̂ (0 is the planar stepper's, and a running stepper
+        // does not change between the two).
+        let table = Parameter::StatorMassRatio.range();
+        Err(ParamError::OutOfRange {
+            parameter: Parameter::StatorMassRatio,
             value: params.stator_mass_ratio,
-        })
+            range: Range::above(0.0, table.max),
+        }
+        .into())
     }
 }
 
@@ -58,8 +63,9 @@ impl RingStepper {
     /// the problem's start: the rotor's initial state and the ring's (`xs0` … `vys0`).
     ///
     /// # Errors
-    /// The parameter's [`crate::ParamError`], [`StepperError::InvalidConfig`] for m̂ = 0 or
-    /// the configuration, or what [`MatrixStepper::new`] reports.
+    /// The parameter's [`ParamError`] (for m̂ = 0: out of the ring stepper's range (0, 1e3]),
+    /// [`StepperError::InvalidConfig`] for the configuration, or what [`MatrixStepper::new`]
+    /// reports.
     pub fn new(problem: &Problem, config: MatrixStepperConfig) -> Result<Self, StepperError> {
         problem.validate()?;
         check_ring(&problem.params)?;
@@ -95,7 +101,7 @@ impl RingStepper {
     /// re-stated and the method restarted at the current state. On error nothing changes.
     ///
     /// # Errors
-    /// The parameter's error, [`StepperError::InvalidConfig`] for m̂ = 0.
+    /// The parameter's error (m̂ = 0 included, [`ParamError::OutOfRange`]).
     pub fn set_params(&mut self, params: &Params) -> Result<(), StepperError> {
         params.validate()?;
         check_ring(params)?;
