@@ -86,6 +86,7 @@
 //! ([`FreeTransition::set_params`]): a new speed costs the validation, the free and contact
 //! constants, G and one `sin_cos`.
 
+mod any;
 mod config;
 mod exact;
 pub mod friction;
@@ -104,7 +105,8 @@ pub use config::{OnCap, StepperConfig, SwitchStart};
 pub use inputs::Snapshot;
 pub use matrix::{MatrixStepReport, MatrixStepper, MatrixStepperConfig, OwnedModel};
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
-pub use ring::{AnySnapshot, AnyStepper, RingState, RingStepper};
+pub use any::{AnySnapshot, AnyStepper};
+pub use ring::{RingState, RingStepper};
 pub use search::{
     MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, locate_with,
     no_crossing, no_crossing_likely,
