@@ -101,11 +101,11 @@ mod solvers;
 mod transition;
 
 pub use crate::analytic::switch::Search;
+pub use any::{AnySnapshot, AnyStepper};
 pub use config::{OnCap, StepperConfig, SwitchStart};
 pub use inputs::Snapshot;
 pub use matrix::{MatrixStepReport, MatrixStepper, MatrixStepperConfig, OwnedModel};
 pub use report::{EVENT_CAPACITY, EventList, StepReport, StepperError};
-pub use any::{AnySnapshot, AnyStepper};
 pub use ring::{RingState, RingStepper};
 pub use search::{
     MAX_REFINE_ITERATIONS, MAX_SEARCH_EVALUATIONS, TOUCH, curvature, locate, locate_with,
