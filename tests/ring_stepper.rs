@@ -371,3 +371,32 @@ fn any_matrix_model_steps() {
         got_switches.len()
     );
 }
+
+/// The slip direction under friction (what the FMU's `slip_regime` reads): ±1 while slipping,
+/// its sign flipping at each `reverse`, 0 when free or rolling.
+#[test]
+fn the_slip_direction_follows_the_switches() {
+    let problem = case("reversal").problem();
+    let mut s = RingStepper::new(&problem, MatrixStepperConfig::with_dt(1e-2)).expect("starts");
+    let (mut seen, mut reversals) = ([false; 3], 0);
+    for _ in 0..3000 {
+        let before = s.slip_direction();
+        let r = s.step_to_switch(1e-2).expect("a step");
+        let sigma = s.slip_direction();
+        match s.regime() {
+            Regime::Contact => assert!(sigma == 1.0 || sigma == -1.0, "slipping: σ = {sigma}"),
+            _ => assert_eq!(sigma, 0.0),
+        }
+        if let Some(e) = r.events.iter().next()
+            && e.kind == rotor_rub::EventKind::Reverse
+        {
+            reversals += 1;
+            assert_eq!(sigma, -before, "a reversal flips σ at {}", e.time);
+        }
+        seen[(sigma + 1.0) as usize] = true;
+    }
+    assert!(
+        reversals > 0 && seen.iter().all(|&x| x),
+        "{reversals} reversals, {seen:?}"
+    );
+}

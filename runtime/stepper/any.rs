@@ -136,12 +136,11 @@ impl AnyStepper {
         }
     }
 
-    /// The slip direction σ (the planar stepper's; 0 for the ring's, which does not expose
-    /// it).
+    /// The slip direction σ of a slipping contact (±1; 0 when free, rolling or frictionless).
     pub fn slip_direction(&self) -> f64 {
         match self {
             AnyStepper::Planar(s) => s.slip_direction(),
-            AnyStepper::Ring(_) => 0.0,
+            AnyStepper::Ring(s) => s.slip_direction(),
         }
     }
 

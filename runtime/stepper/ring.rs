@@ -194,6 +194,17 @@ impl RingStepper {
         &self.params
     }
 
+    /// The slip direction σ of a slipping contact under friction (±1; 0 when free, rolling
+    /// or frictionless): the matrix model's own rule at the current state (the generated
+    /// station law's slip velocity, `crate::driver::System::slip_direction`).
+    pub fn slip_direction(&self) -> f64 {
+        if self.regime() != Regime::Contact {
+            return 0.0;
+        }
+        let model: &crate::matrix::MatrixModel<RING_CAPACITY> = self.inner.model();
+        crate::driver::System::slip_direction(&model, self.time(), &self.inner.state(), None)
+    }
+
     /// Build from its parts (words read back, `ring_words.rs`).
     pub(super) fn from_parts(
         params: Params,
