@@ -168,8 +168,10 @@
 // Switches one step result holds; more are counted in `dropped_events`.
 #define ROTOR_RUB_EVENT_CAPACITY 4
 
-// Size of `RotorRubStepper` in 64-bit words.
-#define ROTOR_RUB_STEPPER_WORDS 160
+// Size of `RotorRubStepper` in 64-bit words: 4736 (37 KiB) since the stator ring with mass
+// runs in it (its n = 4 matrix model and the method's solvers live inline, no heap; the
+// planar stepper alone needed 160).
+#define ROTOR_RUB_STEPPER_WORDS 4736
 
 // Model parameters (dimensionless, as in the paper). Valid ranges: `rotor_rub_parameter_info`
 // (the Rust parameter table, listed by `rotor-rub params`).
@@ -291,6 +293,19 @@ typedef struct RotorRubStepResult {
   struct RotorRubEvent events[ROTOR_RUB_EVENT_CAPACITY];
 } RotorRubStepResult;
 
+// The stator ring's state: its centre (x_s, y_s) and velocity, in clearances and clearances
+// per τ (all 0 for a massless ring, `stator_mass_ratio` = 0, which does not move).
+typedef struct RotorRubRingState {
+  // x_s.
+  double xs;
+  // y_s.
+  double ys;
+  // x_s'.
+  double vxs;
+  // y_s'.
+  double vys;
+} RotorRubRingState;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -374,7 +389,16 @@ int32_t rotor_rub_stepper_init(struct RotorRubStepper *stepper,
 // `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`; `ROTOR_RUB_ERR_INVALID_STEP` if
 // `dt` is not finite, not in (0, 1] or too small to advance the time;
 // `ROTOR_RUB_ERR_DIVERGED` if the motion diverged (flutter); `ROTOR_RUB_ERR_SINGULAR_CONTACT`
-// if a contact system is singular or resonant; `ROTOR_RUB_ERR_INTERNAL` on a caught bug.
+// if a contact system is singular or resonant; `ROTOR_RUB_ERR_BUDGET_EXCEEDED` if the step
+// would exceed its bounded work (planar: a cap under `on_cap` = FAIL; the ring with mass:
+// more than 64 switches inside the step, or more integration steps between two switches than
+// its budget; the stepper is then back at the step's start, its method restarted there:
+// take shorter steps); `ROTOR_RUB_ERR_INTERNAL` on
+// a caught bug.
+//
+// With `stator_mass_ratio` > 0 the step is the ring's (`rotor_rub::stepper::RingStepper`):
+// `result` holds the rotor's state and switches, `rotor_rub_stepper_ring_state` the ring's;
+// `substeps`, `capped`, `search_capped` and `error_estimate` are 0.
 //
 // # Safety
 // `stepper` is null or valid initialised stepper memory, not used concurrently; `result` is
@@ -501,6 +525,21 @@ int32_t rotor_rub_parameter_get(const struct RotorRubParams *params,
                                 const double *start_time,
                                 int32_t index,
                                 double *value);
+
+// Read the stator ring's state at the current time (`rotor_rub_stepper_state` gives the
+// time, the rotor's state and the regime); all 0 when `stator_mass_ratio` = 0. `is_ring`
+// (optional: null skips it) receives 1 when the stepper runs the ring with mass, 0 for the
+// planar model.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` or `ring` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`.
+//
+// # Safety
+// `stepper` is null or valid initialised stepper memory; `ring` and `is_ring` null or valid
+// for writes.
+int32_t rotor_rub_stepper_ring_state(const struct RotorRubStepper *stepper,
+                                     struct RotorRubRingState *ring,
+                                     int32_t *is_ring);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -5,7 +5,7 @@ use core::fmt::Write;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use rotor_rub::PropagationError;
-use rotor_rub::stepper::{Stepper, StepperError};
+use rotor_rub::stepper::{AnyStepper, StepperError};
 
 use crate::types::*;
 
@@ -16,7 +16,8 @@ pub(crate) const MAGIC: u64 = 0x726f_746f_7272_7562;
 #[repr(C)]
 pub(crate) struct Slot {
     pub(crate) magic: u64,
-    pub(crate) stepper: Stepper,
+    /// The planar stepper (m̂ = 0) or the ring's (m̂ > 0): the problem decides.
+    pub(crate) stepper: AnyStepper,
 }
 
 const _: () = assert!(size_of::<Slot>() <= size_of::<RotorRubStepper>());
@@ -33,10 +34,17 @@ pub(crate) fn guard(body: impl FnOnce() -> Result<(), i32>) -> i32 {
 
 pub(crate) fn error_code(e: &StepperError) -> i32 {
     match e {
-        StepperError::Propagation(PropagationError::InvalidProblem(_)) => {
-            ROTOR_RUB_ERR_INVALID_PARAMS
+        StepperError::Propagation(
+            PropagationError::InvalidProblem(_) | PropagationError::InvalidModel(_),
+        ) => ROTOR_RUB_ERR_INVALID_PARAMS,
+        // The ring's stepper: a stretch between switches beyond its integration-step budget.
+        StepperError::Propagation(PropagationError::StepSizeUnderflow { .. }) => {
+            ROTOR_RUB_ERR_BUDGET_EXCEEDED
         }
-        StepperError::InvalidConfig { .. } => ROTOR_RUB_ERR_INVALID_CONFIG,
+        StepperError::InvalidConfig { .. }
+        | StepperError::Propagation(PropagationError::InvalidOption { .. }) => {
+            ROTOR_RUB_ERR_INVALID_CONFIG
+        }
         StepperError::InvalidStep { .. } => ROTOR_RUB_ERR_INVALID_STEP,
         StepperError::BudgetExceeded { .. } => ROTOR_RUB_ERR_BUDGET_EXCEEDED,
         StepperError::Propagation(PropagationError::Diverged { .. }) => ROTOR_RUB_ERR_DIVERGED,

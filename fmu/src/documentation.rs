@@ -20,6 +20,13 @@ estimate exceeds <code>tolerance</code>, so the result does not depend on the im
 Inputs (<code>fx</code>, <code>fy</code>, the speed) are held constant over a communication step; a speed
 change keeps the forcing phase continuous.</p>
 <ul>
+<li><b>The stator ring with mass</b>: <code>stator_mass_ratio</code> &gt; 0 (fixed) runs the ring's n = 4
+model: rotor and ring move together, the contact acting on their relative displacement. Its internal steps
+are the ring stepper's (the taylor method: exact free flight of both bodies, Taylor-series contact, every
+switch located; no error-estimate halving), each ending at its first switch. <code>contact_stiffness</code>
+and <code>stator_damping</code> are tunable; the outputs <code>xs</code>, <code>ys</code>, <code>vxs</code>,
+<code>vys</code> give the ring's centre and velocity (0 for the massless ring). Left at their start values,
+the ring's entries are the model's defaults whatever the SI scales.</li>
 <li><b>Early return</b> (FMI 3.0, when the importer allows it): <code>fmi3DoStep</code> returns at the first
 switch, with <code>earlyReturn</code> and the switch time as <code>lastSuccessfulTime</code>.</li>
 <li><b>Bounded work</b>: one communication step makes at most <code>max_internal_steps</code> internal steps

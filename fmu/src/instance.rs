@@ -101,15 +101,21 @@ impl Instance {
             "setting a variable",
             &[Phase::Instantiated, Phase::Initialization, Phase::Step],
         )?;
-        let mut model = self.model;
+        // All or nothing: the sets apply in place, and a refused one puts the model back (a
+        // copy of the planar stepper's few words, or of the ring's model; never a heap copy).
+        let backup = self.model.clone();
         for (&vr, value) in vrs.iter().zip(values) {
-            let var = model.variable(vr)?;
-            if !kinds.contains(&var.kind) {
-                self.check_kind(vr, kinds.first().copied().unwrap_or(Kind::Float))?;
+            let applied = self.model.variable(vr).and_then(|var| {
+                if !kinds.contains(&var.kind) {
+                    self.check_kind(vr, kinds.first().copied().unwrap_or(Kind::Float))?;
+                }
+                self.model.set(vr, value)
+            });
+            if let Err(e) = applied {
+                self.model = backup;
+                return Err(e);
             }
-            model.set(vr, value)?;
         }
-        self.model = model;
         Ok(())
     }
 

@@ -23,8 +23,8 @@ macro_rules! saved_state {
                 with_instance(i, |i| {
                     let slot = saved.as_mut().ok_or_else(|| msg!("null state pointer"))?;
                     match (*slot).cast::<Model>().as_mut() {
-                        Some(model) => *model = i.model,
-                        None => *slot = Box::into_raw(Box::new(i.model)).cast(),
+                        Some(model) => model.clone_from(&i.model),
+                        None => *slot = Box::into_raw(Box::new(i.model.clone())).cast(),
                     }
                     Ok(status::OK)
                 })
@@ -51,7 +51,7 @@ macro_rules! saved_state {
                             i.model.units
                         ));
                     }
-                    i.model = *model;
+                    i.model.clone_from(model);
                     if i.model.stepper.is_some() {
                         i.last_time = i.model.time();
                         i.phase = Phase::Step;

@@ -8,17 +8,19 @@
 //! | 1 | unit system (0 dimensionless, 1 SI) |
 //! | `Parameter::COUNT` | the values as set, in the importer's units |
 //! | 9 | start time, internal step, tolerance, work cap, ω_n, δ, M, pending flag, stepper flag |
-//! | `Snapshot::WORDS` | the stepper's [`Snapshot`] |
+//! | `Snapshot::WORDS` | the stepper's words ([`AnyStepper::to_words`]: the planar [`Snapshot`], or the ring's stepper, told apart by their markers) |
 //! | 2 | contact count, next internal step |
 //! | 1 | CRC-32 (IEEE) of every byte before it |
 //!
 //! Read back, the checksum is verified first: a CRC-32 detects every error burst of up to 32
 //! bits, so every single-byte corruption anywhere in a state is refused (the checksum word's
 //! own bytes included: they no longer match). Then every value is checked as a set of it
-//! would be ([`Stepper::restore`] for the stepper).
+//! would be ([`AnyStepper::from_words`] for the stepper). A ring's stepper restored from its
+//! words restarts its method at the saved time and state (within its tolerance of the run it
+//! continues; a saved state that is not serialized is a copy, bit for bit).
 
 use rotor_rub::Parameter;
-use rotor_rub::stepper::{Snapshot, Stepper};
+use rotor_rub::stepper::{AnyStepper, Snapshot};
 
 use crate::message::Message;
 use crate::model::{Model, Settings};
@@ -41,7 +43,7 @@ pub const BYTES: usize = 8 * WORDS;
 pub fn serialize(model: &Model) -> [u8; BYTES] {
     let st = &model.settings;
     let table = Parameter::ALL.map(|p| p.get(&model.requested).to_bits());
-    let snapshot = model.stepper.map(|s| s.snapshot().to_words());
+    let snapshot = model.stepper.as_ref().map(AnyStepper::to_words);
     let words = [
         MARKER,
         BYTES as u64,
@@ -163,8 +165,8 @@ pub fn deserialize(bytes: &[u8], units: Units) -> Result<Model, Message> {
         ));
     }
     if has_stepper {
-        let s = Snapshot::from_words(&snapshot).map_err(|e| msg!("serialized state: {e}"))?;
-        model.stepper = Some(Stepper::restore(&s).map_err(|e| msg!("serialized state: {e}"))?);
+        model.stepper =
+            Some(AnyStepper::from_words(&snapshot).map_err(|e| msg!("serialized state: {e}"))?);
     } else if model.pending {
         return Err(msg!(
             "serialized state: pending parameters before initialization"

@@ -1,9 +1,14 @@
 //! The communication step: [`Model::do_step`] covers (t, t + h] with stepper steps of at most
 //! `internal_step`, so the accuracy does not depend on h. A step whose exprb43 error estimate
-//! exceeds `tolerance` is undone (the stepper is `Copy`) and retried at half the length (at most
+//! exceeds `tolerance` is undone (the stepper is plain data, copied) and retried at half the length (at most
 //! [`MAX_HALVINGS`] times; the length grows back by doubling when the estimate is 64× below the
 //! tolerance). Every contact switch inside is located exactly by the stepper; with early return
-//! the step ends at the first one ([`Stepper::step_to_switch`]) and reports its time.
+//! the step ends at the first one ([`AnyStepper::step_to_switch`]) and reports its time. The
+//! stator ring with mass (`stator_mass_ratio` > 0) runs the ring's stepper: no error estimate
+//! (its method meets its own tolerance), every switch located as in the planar model; each of
+//! its internal steps ends at its first switch (the next starts there), so it needs no copy to
+//! undo a step (the ring's stepper is 37 KiB: a copy per internal step would cost more than
+//! the step).
 //!
 //! # Bounded work
 //! One communication step makes at most `max_internal_steps` stepper calls (retries included),
@@ -13,7 +18,7 @@
 //! (FMI 3 with early return allowed), as `fmi3Discard` with the state of the step's start (FMI 3
 //! without), or as `fmi2Discard` with the time reached (FMI 2.0's "computed a subinterval").
 
-use rotor_rub::stepper::{Snapshot, Stepper};
+use rotor_rub::stepper::{AnySnapshot, AnyStepper};
 use rotor_rub::{Event, EventKind, EventList};
 
 use crate::message::Message;
@@ -36,11 +41,12 @@ pub enum Stepped {
 }
 
 /// What a communication step changes in a [`Model`], as it was before the step: the stepper as
-/// a [`Snapshot`] (a quarter of the stepper's size, so taking one costs little on every step;
-/// rebuilding from it is needed only to rewind), the counters and the pending flag.
-#[derive(Clone, Copy, Debug)]
+/// an [`AnySnapshot`] (planar: a quarter of the stepper's size, so taking one costs little on
+/// every step; rebuilding from it is needed only to rewind; the ring's: a copy), the counters
+/// and the pending flag.
+#[derive(Clone)]
 pub struct Checkpoint {
-    stepper: Option<Snapshot>,
+    stepper: Option<AnySnapshot>,
     contact_count: u64,
     next_step: f64,
     pending: bool,
@@ -50,7 +56,7 @@ impl Model {
     /// The state a communication step starts from, to [`Model::rewind`] to.
     pub fn checkpoint(&self) -> Checkpoint {
         Checkpoint {
-            stepper: self.stepper.as_ref().map(Stepper::snapshot),
+            stepper: self.stepper.as_ref().map(AnyStepper::snapshot),
             contact_count: self.contact_count,
             next_step: self.next_step,
             pending: self.pending,
@@ -58,10 +64,10 @@ impl Model {
     }
 
     /// Back to `checkpoint`: the model as it was (the stepper rebuilt from its snapshot steps on
-    /// with the same bits, `Stepper::restore`).
+    /// with the same bits, `AnyStepper::restore`).
     pub fn rewind(&mut self, checkpoint: &Checkpoint) -> Result<(), Message> {
         self.stepper = match &checkpoint.stepper {
-            Some(s) => Some(Stepper::restore(s).map_err(|e| msg!("rewinding the step: {e}"))?),
+            Some(s) => Some(AnyStepper::restore(s).map_err(|e| msg!("rewinding the step: {e}"))?),
             None => None,
         };
         self.contact_count = checkpoint.contact_count;
@@ -106,7 +112,7 @@ impl Model {
         };
         let scale = 1.0 + end.abs();
         let (mut halvings, mut work) = (0, 0u32);
-        let reached = |s: &Stepper| scales.to_importer(Dimension::Time, s.time());
+        let reached = |s: &AnyStepper| scales.to_importer(Dimension::Time, s.time());
         loop {
             let remaining = end - stepper.time();
             if remaining <= 1e-12 * scale {
@@ -122,25 +128,35 @@ impl Model {
             } else {
                 remaining
             };
-            let before = *stepper;
+            // The planar stepper is copied to undo a step (a few hundred bytes); the ring's
+            // (37 KiB) is not: it has no error estimate to retry on, and it steps to each
+            // switch, so its report never overflows.
+            let ring = matches!(stepper, AnyStepper::Ring(_));
+            let mut before = (!ring).then(|| stepper.clone());
+            let start = stepper.time();
             work += 1;
-            let report = if early_return {
+            let report = if early_return || ring {
                 stepper.step_to_switch(dt)
             } else {
                 stepper.step(dt)
             }
-            .map_err(|e| msg!("step of {dt} from τ = {}: {e}", before.time()))?;
-            if report.error_estimate > settings.tolerance && halvings < MAX_HALVINGS {
+            .map_err(|e| msg!("step of {dt} from τ = {start}: {e}"))?;
+            if report.error_estimate > settings.tolerance
+                && halvings < MAX_HALVINGS
+                && let Some(before) = before.take()
+            {
                 *stepper = before;
                 self.next_step = dt * 0.5;
                 halvings += 1;
                 continue;
             }
             halvings = 0;
-            if report.events.overflowed() {
+            if report.events.overflowed()
+                && let Some(before) = before.take()
+            {
                 // More switches than a report holds: redo the step switch by switch.
+                let stop = start + dt;
                 *stepper = before;
-                let stop = before.time() + dt;
                 while stop - stepper.time() > 1e-12 * scale {
                     if work >= cap {
                         return Ok(Stepped::Capped(reached(stepper)));

@@ -40,6 +40,8 @@ pub enum Dimension {
     Time,
     /// A mass, kg.
     Mass,
+    /// A viscous damping coefficient, N·s/m (over M ω_n in the dimensionless FMU).
+    Damping,
 }
 
 impl Dimension {
@@ -55,6 +57,7 @@ impl Dimension {
             (Units::Si, Dimension::AngularSpeed) => "rad/s",
             (Units::Si, Dimension::Time) => "s",
             (Units::Si, Dimension::Mass) => "kg",
+            (Units::Si, Dimension::Damping) => "N.s/m",
         }
     }
 
@@ -90,7 +93,7 @@ const DEG: f64 = 180.0 / core::f64::consts::PI;
 const RPM: f64 = 60.0 / core::f64::consts::TAU;
 
 /// The units the SI FMU declares, with their display units.
-pub const SI_UNITS: [UnitDefinition; 9] = [
+pub const SI_UNITS: [UnitDefinition; 10] = [
     unit("1", 0, 0, 0, 0, &[]),
     unit("rad", 0, 0, 0, 1, &[("deg", DEG)]),
     unit("m", 0, 1, 0, 0, &[("mm", 1e3), ("um", 1e6)]),
@@ -100,6 +103,7 @@ pub const SI_UNITS: [UnitDefinition; 9] = [
     unit("rad/s", 0, 0, -1, 1, &[("rpm", RPM)]),
     unit("s", 0, 0, 1, 0, &[("ms", 1e3)]),
     unit("kg", 1, 0, 0, 0, &[]),
+    unit("N.s/m", 1, 0, -1, 0, &[]),
 ];
 
 const fn unit(
@@ -165,6 +169,7 @@ impl Scales {
             Dimension::AngularSpeed => w,
             Dimension::Time => 1.0 / w,
             Dimension::Mass => m,
+            Dimension::Damping => m * w,
         }
     }
 

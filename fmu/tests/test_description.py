@@ -21,7 +21,7 @@ def test_each_output_declares_its_dependencies(name: str) -> None:
     speed = "speed" if "_si_" in name else "speed_ratio"
     declared = {o.variable.name: o.dependencies for o in md.outputs}
     assert set(declared) == {"x", "y", "vx", "vy", "in_contact", "normal_force",
-                             "contact_count", "slip_regime"}
+                             "contact_count", "slip_regime", "xs", "ys", "vxs", "vys"}
     for output, depends in declared.items():
         assert depends is not None, f"{output}: dependencies not declared (means: on all)"
         names = {d.name for d in depends}

@@ -39,6 +39,7 @@ pub type FreeFlight<M, const CAP: usize> = ExactFree<M, CAP>;
 
 /// A free-flight solver and a contact solver (which serves rolling too: a segment of either
 /// starts it afresh).
+#[derive(Clone)]
 pub struct Split<F, C> {
     /// Free flight.
     pub free: F,
@@ -127,6 +128,7 @@ where
     clippy::large_enum_variant,
     reason = "the runtime has no heap to box into; the CLI and Python hold it in a Box"
 )]
+#[derive(Clone)]
 enum Inner<M: System, const CAP: usize> {
     Dop853(NumericalPropagator<Dop853, M, CAP>),
     Rk45(NumericalPropagator<Rk45, M, CAP>),
@@ -140,6 +142,7 @@ enum Inner<M: System, const CAP: usize> {
 // (The definitions bound `M` by `System` only, which every `Deref<Target = MatrixModel<CAP>>`
 // is: rustdoc 1.95 panics canonicalizing a definition's bound that projects to a type with a
 // const parameter.)
+#[derive(Clone)]
 pub struct MatrixPropagator<M: System, const CAP: usize> {
     inner: Inner<M, CAP>,
     method: Method,

@@ -129,9 +129,10 @@ pub enum ParamError {
     },
     /// `stator_mass_ratio` > 0 (a stator ring with mass, an 8-state model) given to an entry
     /// point that runs the planar 4-state model only (the planar methods' propagators, the
-    /// fixed-step stepper and what drives it: the C ABI, the FMU). The ring runs through the
-    /// matrix models (`crate::matrix::ring_model`), which the CLI and Python choose by
-    /// themselves; refused here rather than run as if the ring were massless.
+    /// planar `crate::Stepper`). The ring runs through the matrix models
+    /// (`crate::matrix::ring_model`), which the CLI and Python choose by themselves, as
+    /// `crate::stepper::AnyStepper` (what the C ABI and the FMU run) chooses the ring's
+    /// stepper; refused here rather than run as if the ring were massless.
     RingNeedsMatrixModel {
         /// The stator mass ratio m̂.
         stator_mass_ratio: f64,

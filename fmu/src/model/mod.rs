@@ -1,13 +1,15 @@
 //! The FMU's model, shared by the FMI 2.0 and 3.0 layers and by both unit systems: the values
 //! the importer set (in its units), the stepper after initialization, and the outputs. Plain
-//! data (`Copy`): a saved FMU state is a copy; no call after instantiation allocates. The
+//! data (`Clone`, no heap inside: the ring's stepper holds its model inline): a saved FMU state
+//! is a copy; no call after instantiation allocates. The
 //! communication step is in `step.rs`; setting values, and when they take effect, in `set.rs`.
 
 mod set;
 
 use rotor_rub::params::Number;
-use rotor_rub::stepper::{OnCap, Stepper, StepperConfig};
-use rotor_rub::{Parameter, Problem, Regime, field};
+use rotor_rub::stepper::RingState;
+use rotor_rub::stepper::{AnyStepper, OnCap, StepperConfig};
+use rotor_rub::{Parameter, Problem, Regime, State, field};
 
 use crate::message::Message;
 use crate::msg;
@@ -28,7 +30,7 @@ pub struct Settings {
 }
 
 /// The model of one FMU instance.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Model {
     /// The unit system of the instance.
     pub units: Units,
@@ -38,8 +40,9 @@ pub struct Model {
     pub start_time: f64,
     /// The settings.
     pub settings: Settings,
-    /// The stepper, from the end of initialization on.
-    pub stepper: Option<Stepper>,
+    /// The stepper, from the end of initialization on: the planar one, or the ring's when
+    /// `stator_mass_ratio` > 0 (the problem decides).
+    pub stepper: Option<AnyStepper>,
     /// Tunable parameters were set since the last step: the next step applies them as a set.
     pub pending: bool,
     /// Contact entries so far.
@@ -97,16 +100,44 @@ impl Model {
     pub fn requested_problem(&self) -> Problem {
         let scales = self.scales();
         let mut problem = Problem::DEFAULT;
-        // Entries the FMU does not offer (the ring's) keep their defaults in model units.
+        // Entries the FMU does not offer (`start_time`) keep their defaults in model units.
         let offered = Parameter::ALL
             .into_iter()
             .filter(|&p| variables::of_parameter(p, self.units).is_some());
         for p in offered {
-            let value = p.get(&self.requested);
-            p.set(&mut problem, scales.to_model(dimension(p), value));
+            p.set(&mut problem, self.model_value(p));
         }
         problem.start_time = scales.to_model(Dimension::Time, self.start_time);
         problem
+    }
+
+    /// Whether table entry `p` holds its declared start value (the table's default, converted
+    /// at the SI FMU's default scales).
+    fn at_start(&self, p: Parameter) -> bool {
+        variables::of_parameter(p, self.units).and_then(|v| v.start) == Some(p.get(&self.requested))
+    }
+
+    /// Table entry `p` in model units. An entry at its declared start value is the table's
+    /// default exactly, whatever the scales: the SI start values are the defaults at the default
+    /// scales, and an entry left there means "the default" (so an untouched `contact_stiffness`
+    /// stays k̂_c = 50 when ω_n, δ or M change, and the massless ring's entries stay at their
+    /// defaults, which a ring-less model requires). Any other value is converted.
+    pub fn model_value(&self, p: Parameter) -> f64 {
+        if self.at_start(p) {
+            p.info().default
+        } else {
+            self.scales().to_model(dimension(p), p.get(&self.requested))
+        }
+    }
+
+    /// Table entry `p` in the importer's units: as set, or for an entry at its start value the
+    /// table's default in the current scales ([`Model::model_value`]).
+    pub fn importer_value(&self, p: Parameter) -> f64 {
+        if self.at_start(p) {
+            self.scales().to_importer(dimension(p), p.info().default)
+        } else {
+            p.get(&self.requested)
+        }
     }
 
     /// The FMU's time in the importer's units.
@@ -142,7 +173,7 @@ impl Model {
             on_cap: OnCap::Degrade,
             ..StepperConfig::with_dt(dt)
         };
-        let stepper = Stepper::new(&problem, config)
+        let stepper = AnyStepper::new(&problem, config)
             .map_err(|e| msg!("cannot initialize at start time {}: {e}", self.start_time))?;
         self.stepper = Some(stepper);
         self.next_step = dt;
@@ -167,7 +198,7 @@ impl Model {
                 .stepper
                 .as_ref()
                 .map_or(self.requested.params.phase, |s| s.params().phase),
-            Target::Table(p) => p.get(&self.requested),
+            Target::Table(p) => self.importer_value(p),
             Target::Setting(s) => self.setting(s),
             Target::Output(o) => self.output(o),
         })
@@ -187,18 +218,41 @@ impl Model {
 
     fn output(&self, o: Output) -> f64 {
         let scales = self.scales();
-        let (problem, time, state, regime, sigma) = match &self.stepper {
+        let (problem, time, state, regime, sigma, ring) = match &self.stepper {
             Some(s) => {
                 let problem = Problem {
                     params: *s.params(),
                     ..Problem::DEFAULT
                 };
-                (problem, s.time(), s.state(), s.regime(), s.slip_direction())
+                let ring = s.ring_state();
+                (
+                    problem,
+                    s.time(),
+                    s.state(),
+                    s.regime(),
+                    s.slip_direction(),
+                    ring,
+                )
             }
             None => {
                 let p = self.requested_problem();
-                let regime = field::regime_of(&p.params, p.start_time, &p.initial);
-                (p, p.start_time, p.initial, regime, 0.0)
+                let ring = if p.params.stator_mass_ratio > 0.0 {
+                    RingState {
+                        xs: p.params.xs0,
+                        ys: p.params.ys0,
+                        vxs: p.params.vxs0,
+                        vys: p.params.vys0,
+                    }
+                } else {
+                    RingState::default()
+                };
+                // The planar rule decides the displayed regime before initialization (for a
+                // ring with mass: from the rotor against the ring's start).
+                let mut planar = p.params;
+                planar.offset_x += ring.xs;
+                planar.offset_y += ring.ys;
+                let regime = field::regime_of(&planar, p.start_time, &p.initial);
+                (p, p.start_time, p.initial, regime, 0.0, ring)
             }
         };
         let in_contact = regime != Regime::Free;
@@ -212,7 +266,7 @@ impl Model {
             Output::InContact => f64::from(u8::from(in_contact)),
             Output::NormalForce if in_contact => to(
                 Dimension::Force,
-                field::friction_at(&problem.params, time, &state).normal,
+                normal_force(&problem, time, &state, &ring),
             ),
             Output::NormalForce => 0.0,
             Output::ContactCount => self.contact_count as f64,
@@ -223,6 +277,22 @@ impl Model {
                 Regime::Contact if sigma < 0.0 => 3.0,
                 Regime::Contact => 1.0,
             },
+            Output::Xs => to(Dimension::Length, ring.xs),
+            Output::Ys => to(Dimension::Length, ring.ys),
+            Output::Vxs => to(Dimension::Velocity, ring.vxs),
+            Output::Vys => to(Dimension::Velocity, ring.vys),
         }
+    }
+}
+
+/// The normal contact force at `state`: the planar model's (n'K_s g), or for the ring with
+/// mass k̂_c (z − 1) with z the distance from the ring's centre (`docs/MODEL.md` §17).
+fn normal_force(problem: &Problem, time: f64, state: &State, ring: &RingState) -> f64 {
+    let p = &problem.params;
+    if p.stator_mass_ratio > 0.0 {
+        let z = (state.x - ring.xs - p.offset_x).hypot(state.y - ring.ys - p.offset_y);
+        (p.contact_stiffness * (z - 1.0)).max(0.0)
+    } else {
+        field::friction_at(p, time, state).normal
     }
 }

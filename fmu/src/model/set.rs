@@ -124,25 +124,26 @@ impl Model {
     /// cross-parameter rules). On error nothing changes and the set stays staged: the importer
     /// sets consistent values and steps again.
     pub fn apply_pending(&mut self) -> Result<(), Message> {
-        let Some(stepper) = self.stepper.as_mut() else {
+        let Some(current) = self.stepper.as_ref().map(|s| *s.params()) else {
             return Err(msg!("doStep before the end of initialization"));
         };
         if !self.pending {
             return Ok(());
         }
-        let scales = self.settings.scales;
         let mut candidate = Problem {
-            params: *stepper.params(),
+            params: current,
             ..Problem::DEFAULT
         };
         let tunable = Parameter::ALL.into_iter().filter(|&p| {
             variables::of_parameter(p, self.units).is_some_and(|v| v.role == Role::Tunable)
         });
         for p in tunable {
-            let value = scales.to_model(dimension(p), p.get(&self.requested));
-            p.set(&mut candidate, value);
+            p.set(&mut candidate, self.model_value(p));
         }
         let params = candidate.params;
+        let Some(stepper) = self.stepper.as_mut() else {
+            return Err(msg!("doStep before the end of initialization"));
+        };
         let checked = params.validate().map_err(Into::into);
         match checked.and_then(|()| stepper.set_params(&params)) {
             Ok(()) => {

@@ -5,7 +5,8 @@
 //! (`description.rs`), the documentation (`documentation.rs`) and the value-reference dispatch
 //! of `model.rs` all read this table.
 //!
-//! Value references (the same in both unit systems): time 0, outputs 1–8, inputs 10–12, table
+//! Value references (the same in both unit systems): time 0, outputs 1–8 and the stator ring's
+//! 20–23, inputs 10–12, table
 //! entries 100 + table index, settings 200–202, the SI FMU's scales 210–212. `start_time` is
 //! not a variable: the FMU starts at the importer's start time.
 
@@ -83,6 +84,14 @@ pub enum Output {
     ContactCount,
     /// 0 free, 1 frictionless contact, 2 slipping forward (w > 0), 3 slipping backward, 4 rolling.
     SlipRegime,
+    /// The stator ring's centre x_s (0 for the massless ring).
+    Xs,
+    /// y_s.
+    Ys,
+    /// x_s'.
+    Vxs,
+    /// y_s'.
+    Vys,
 }
 
 /// The FMU's own settings.
@@ -164,7 +173,7 @@ pub fn all(units: Units) -> Vec<Variable> {
 pub fn find(vr: u32, units: Units) -> Option<Variable> {
     match vr {
         0 => Some(time(units)),
-        1..=8 => outputs(units).into_iter().find(|v| v.vr == vr),
+        1..=8 | 20..=23 => outputs(units).into_iter().find(|v| v.vr == vr),
         10..=12 => table::INPUTS
             .iter()
             .find(|(_, r)| *r == vr)

@@ -1,4 +1,5 @@
-//! The outputs (value references 1–8) and the independent variable (0), per unit system.
+//! The outputs (value references 1–8, the stator ring's 20–23) and the independent variable
+//! (0), per unit system.
 
 use super::{Kind, Output, Role, Target, Variable};
 use crate::units::{Dimension, Units};
@@ -29,8 +30,9 @@ const fn output(
     }
 }
 
-/// The outputs, value references 1–8.
-pub fn outputs(units: Units) -> [Variable; 8] {
+/// The outputs, value references 1–8 and 20–23 (the ring's centre and its velocity: at rest,
+/// 0, for the massless ring, `stator_mass_ratio` = 0).
+pub fn outputs(units: Units) -> [Variable; 12] {
     let si = units == Units::Si;
     let pick = |dimensionless, si_text| if si { si_text } else { dimensionless };
     [
@@ -106,6 +108,50 @@ pub fn outputs(units: Units) -> [Variable; 8] {
             Output::SlipRegime,
             Dimension::One,
             "0 free, 1 contact without friction, 2 slipping forward (w > 0), 3 slipping backward (w < 0), 4 rolling",
+        ),
+        output(
+            20,
+            "xs",
+            Kind::Float,
+            Output::Xs,
+            Dimension::Length,
+            pick(
+                "stator ring centre x_s, clearances (0 for the massless ring)",
+                "stator ring centre x_s, m (0 for the massless ring)",
+            ),
+        ),
+        output(
+            21,
+            "ys",
+            Kind::Float,
+            Output::Ys,
+            Dimension::Length,
+            pick(
+                "stator ring centre y_s, clearances (0 for the massless ring)",
+                "stator ring centre y_s, m (0 for the massless ring)",
+            ),
+        ),
+        output(
+            22,
+            "vxs",
+            Kind::Float,
+            Output::Vxs,
+            Dimension::Velocity,
+            pick(
+                "stator ring velocity x_s', clearances per unit time",
+                "stator ring velocity x_s', m/s",
+            ),
+        ),
+        output(
+            23,
+            "vys",
+            Kind::Float,
+            Output::Vys,
+            Dimension::Velocity,
+            pick(
+                "stator ring velocity y_s', clearances per unit time",
+                "stator ring velocity y_s', m/s",
+            ),
         ),
     ]
 }

@@ -21,7 +21,7 @@ pub fn dimension(p: Parameter) -> Dimension {
         P::DampingRatio | P::MassRatio | P::FrictionCoefficient | P::StatorMassRatio => {
             Dimension::One
         }
-        P::StatorDamping => Dimension::One,
+        P::StatorDamping => Dimension::Damping,
         P::Phase => Dimension::Angle,
         P::KXx | P::KXy | P::KYx | P::KYy | P::ContactStiffness => Dimension::Stiffness,
         P::EccentricityRatio
@@ -96,16 +96,44 @@ fn name_and_doc(p: Parameter, units: Units) -> (&'static str, &'static str) {
         (Units::Si, P::Y0) => ("y0", "initial position y, m (at most 100 clearances)"),
         (Units::Si, P::Vx0) => ("vx0", "initial velocity x, m/s (at most 100 δ ω_n)"),
         (Units::Si, P::Vy0) => ("vy0", "initial velocity y, m/s (at most 100 δ ω_n)"),
+        (Units::Si, P::StatorMassRatio) => (
+            "stator_mass_ratio",
+            "stator ring mass over the rotor mass M (0: the paper's massless ring; > 0 runs the ring with mass)",
+        ),
+        (Units::Si, P::ContactStiffness) => (
+            "contact_stiffness",
+            "contact stiffness between rotor and a ring with mass, N/m (k̂_c = k_c/(M ω_n²) in (0, 1e6]; only with stator_mass_ratio > 0)",
+        ),
+        (Units::Si, P::StatorDamping) => (
+            "stator_damping",
+            "damping of the ring with mass on its support, N·s/m (ĉ = c_s/(M ω_n) in [0, 1e3]; only with stator_mass_ratio > 0)",
+        ),
+        (Units::Si, P::Xs0) => (
+            "xs0",
+            "ring's initial centre x_s, m (with stator_mass_ratio > 0)",
+        ),
+        (Units::Si, P::Ys0) => (
+            "ys0",
+            "ring's initial centre y_s, m (with stator_mass_ratio > 0)",
+        ),
+        (Units::Si, P::Vxs0) => (
+            "vxs0",
+            "ring's initial velocity x_s', m/s (with stator_mass_ratio > 0)",
+        ),
+        (Units::Si, P::Vys0) => (
+            "vys0",
+            "ring's initial velocity y_s', m/s (with stator_mass_ratio > 0)",
+        ),
         (Units::Si, _) => (info.name, info.doc),
     }
 }
 
-/// The variable of table entry `p` in `units` (`None` for `start_time`, and for the stator
-/// ring's entries: the FMU runs the stepper, which runs the planar model with the massless ring
-/// only, so the ring's mass, contact spring, damping and start state are not offered).
+/// The variable of table entry `p` in `units` (`None` for `start_time`). The stator ring's
+/// entries are offered: `stator_mass_ratio` > 0 runs the ring with mass (the stepper decides,
+/// `rotor_rub::stepper::AnyStepper`); it is fixed (a running FMU cannot change between the
+/// massless and the massive ring), the ring's stiffness and damping are tunable.
 pub fn of_parameter(p: Parameter, units: Units) -> Option<Variable> {
-    if p == Parameter::StartTime || p == Parameter::StatorMassRatio || Parameter::RING.contains(&p)
-    {
+    if p == Parameter::StartTime {
         return None;
     }
     let info = p.info();
@@ -115,12 +143,15 @@ pub fn of_parameter(p: Parameter, units: Units) -> Option<Variable> {
         Some(&(_, vr)) => (vr, Role::Input),
         None => {
             // Start values and the phase (kept continuous by speed changes) are fixed.
-            let fixed = !p.is_model() || p == Parameter::Phase;
+            let fixed = !p.is_model() || p == Parameter::Phase || p == Parameter::StatorMassRatio;
             let role = if fixed { Role::Fixed } else { Role::Tunable };
             (100 + p as u32, role)
         }
     };
     let scale_free = matches!(dimension, Dimension::One | Dimension::Angle);
+    // An SI start value is the model's default converted: converted back where the value
+    // takes effect it must be the default again, bit for bit (`Model::requested_problem`
+    // keeps an untouched SI default's model value exact).
     let (start, min, max) = match units {
         Units::Dimensionless => (info.default, Some(info.range.min), Some(info.range.max)),
         Units::Si if scale_free => (info.default, Some(info.range.min), Some(info.range.max)),
