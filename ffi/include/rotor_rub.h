@@ -165,6 +165,13 @@
 // Preset: sustained dry whip, rolling ("dry-whip").
 #define ROTOR_RUB_PRESET_DRY_WHIP 3
 
+// Preset: the paper's rotor with a stator ring of mass m̂ = 1 ("stator-mass"; the ring's
+// stepper: `rotor_rub_stepper_ring_state` reads the ring).
+#define ROTOR_RUB_PRESET_STATOR_MASS 4
+
+// Preset: friction drives full annular backward whirl on a ring of mass ("ring-whirl").
+#define ROTOR_RUB_PRESET_RING_WHIRL 5
+
 // Switches one step result holds; more are counted in `dropped_events`.
 #define ROTOR_RUB_EVENT_CAPACITY 4
 
@@ -324,7 +331,8 @@ size_t rotor_rub_stepper_align(void);
 
 // Fill `params` (required), `initial` and `start_time` (optional: null skips) from a preset
 // (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`, `ROTOR_RUB_PRESET_FRICTION`,
-// `ROTOR_RUB_PRESET_DRY_WHIP`).
+// `ROTOR_RUB_PRESET_DRY_WHIP`, and the two with a ring of mass, `ROTOR_RUB_PRESET_STATOR_MASS`
+// and `ROTOR_RUB_PRESET_RING_WHIRL`).
 //
 // Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `preset`;
 // `ROTOR_RUB_ERR_NULL` if `params` is null.

@@ -111,7 +111,8 @@ pub extern "C" fn rotor_rub_stepper_align() -> usize {
 
 /// Fill `params` (required), `initial` and `start_time` (optional: null skips) from a preset
 /// (`ROTOR_RUB_PRESET_PAPER`, `ROTOR_RUB_PRESET_PAPER_TEXT`, `ROTOR_RUB_PRESET_FRICTION`,
-/// `ROTOR_RUB_PRESET_DRY_WHIP`).
+/// `ROTOR_RUB_PRESET_DRY_WHIP`, and the two with a ring of mass, `ROTOR_RUB_PRESET_STATOR_MASS`
+/// and `ROTOR_RUB_PRESET_RING_WHIRL`).
 ///
 /// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_INVALID_ARGUMENT` for an unknown `preset`;
 /// `ROTOR_RUB_ERR_NULL` if `params` is null.
@@ -131,6 +132,8 @@ pub unsafe extern "C" fn rotor_rub_preset(
             ROTOR_RUB_PRESET_PAPER_TEXT => Preset::PaperText,
             ROTOR_RUB_PRESET_FRICTION => Preset::Friction,
             ROTOR_RUB_PRESET_DRY_WHIP => Preset::DryWhip,
+            ROTOR_RUB_PRESET_STATOR_MASS => Preset::StatorMass,
+            ROTOR_RUB_PRESET_RING_WHIRL => Preset::RingWhirl,
             _ => return Err(ROTOR_RUB_ERR_INVALID_ARGUMENT),
         };
         if params.is_null() {

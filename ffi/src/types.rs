@@ -76,6 +76,11 @@ pub const ROTOR_RUB_PRESET_PAPER_TEXT: i32 = 1;
 pub const ROTOR_RUB_PRESET_FRICTION: i32 = 2;
 /// Preset: sustained dry whip, rolling ("dry-whip").
 pub const ROTOR_RUB_PRESET_DRY_WHIP: i32 = 3;
+/// Preset: the paper's rotor with a stator ring of mass m̂ = 1 ("stator-mass"; the ring's
+/// stepper: `rotor_rub_stepper_ring_state` reads the ring).
+pub const ROTOR_RUB_PRESET_STATOR_MASS: i32 = 4;
+/// Preset: friction drives full annular backward whirl on a ring of mass ("ring-whirl").
+pub const ROTOR_RUB_PRESET_RING_WHIRL: i32 = 5;
 
 /// Switches one step result holds; more are counted in `dropped_events`.
 pub const ROTOR_RUB_EVENT_CAPACITY: usize = 4;

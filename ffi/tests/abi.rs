@@ -565,13 +565,13 @@ fn input_force_and_speed_setters_match_rust_and_refuse_bad_values() {
     }
 }
 
-/// The C ABI's presets are the planar presets (`Preset::PLANAR`, numbered in order); the ring
-/// presets (`stator-mass`, `ring-whirl`: a ring with mass, which the stepper does not run yet)
-/// have no number, and the numbers after the planar ones are refused as unknown presets.
+/// The C ABI's presets are the library's (`Preset::ALL`, numbered in order: the planar ones,
+/// then `stator-mass` and `ring-whirl`, whose ring with mass the C stepper runs); other numbers
+/// are refused as unknown presets.
 #[test]
-fn the_c_presets_are_the_planar_presets() {
+fn the_c_presets_are_the_library_presets() {
     use rotor_rub::Preset;
-    for (number, preset) in (0..).zip(Preset::PLANAR) {
+    for (number, preset) in (0..).zip(Preset::ALL) {
         let mut params = RotorRubParams::from(rotor_rub::Params::DEFAULT);
         let mut initial = RotorRubState::default();
         let mut t0 = f64::NAN;
@@ -585,10 +585,15 @@ fn the_c_presets_are_the_planar_presets() {
             "{}",
             preset.name()
         );
-        assert_eq!(params.stator_mass_ratio, 0.0, "{}", preset.name());
+        assert_eq!(
+            params.stator_mass_ratio > 0.0,
+            Preset::RING.contains(&preset),
+            "{}",
+            preset.name()
+        );
         assert_eq!(t0, problem.start_time);
     }
-    for number in [4, 5] {
+    for number in [-1, 6] {
         let mut params = RotorRubParams::from(rotor_rub::Params::DEFAULT);
         // SAFETY: valid pointers (null skips the optional outputs).
         let rc = unsafe {
