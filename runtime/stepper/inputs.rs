@@ -42,19 +42,10 @@ impl Stepper {
     /// (G recomputed, Φ kept) when η changes, nothing otherwise. On error (η not finite or outside
     /// its range) nothing changes.
     pub fn set_speed_ratio(&mut self, eta: f64) -> Result<(), StepperError> {
-        Parameter::SpeedRatio.check(eta)?;
-        if eta == self.params.speed_ratio {
-            return Ok(());
+        match at_speed(&self.params, self.time, eta)? {
+            Some(params) => self.set_params(&params),
+            None => Ok(()),
         }
-        let model = ModelParams::of(&self.params);
-        let theta = math::wrap_angle(coef::forcing_phase(&model, &Time { t: self.time }).theta);
-        let phase = math::wrap_angle(theta - math::wrap_angle(eta * self.time));
-        let params = Params {
-            speed_ratio: eta,
-            phase,
-            ..self.params
-        };
-        self.set_params(&params)
     }
 
     /// The stepper's state as plain data ([`Snapshot`]); [`Stepper::restore`] rebuilds it.
@@ -198,15 +189,7 @@ impl Snapshot {
             what,
             value: value as f64,
         };
-        let (model, tail) = words.split_at(Parameter::MODEL_COUNT);
-        let mut problem = Problem::DEFAULT;
-        for (p, w) in Parameter::ALL.iter().filter(|p| p.is_model()).zip(model) {
-            p.set(&mut problem, f64::from_bits(*w));
-        }
-        let mut t = [0u64; TAIL];
-        for (o, w) in t.iter_mut().zip(tail) {
-            *o = *w;
-        }
+        let (problem, t) = problem_and_tail::<TAIL>(words);
         let f = f64::from_bits;
         let [
             dt0,
@@ -276,4 +259,46 @@ impl Snapshot {
             phasor: (f(c), f(s)),
         })
     }
+}
+
+/// The parameters a snapshot's words start with (the table's model entries, as bits) and the
+/// `N` words after them: the common layout of a planar and a ring stepper's words.
+pub(super) fn problem_and_tail<const N: usize>(
+    words: &[u64; Snapshot::WORDS],
+) -> (Problem, [u64; N]) {
+    let (model, tail) = words.split_at(Parameter::MODEL_COUNT);
+    let mut problem = Problem::DEFAULT;
+    for (p, w) in Parameter::ALL.iter().filter(|p| p.is_model()).zip(model) {
+        p.set(&mut problem, f64::from_bits(*w));
+    }
+    let mut t = [0u64; N];
+    for (o, w) in t.iter_mut().zip(tail) {
+        *o = *w;
+    }
+    (problem, t)
+}
+
+/// `params` running at speed `eta` from `time` on with the forcing phase θ continuous there: the
+/// phase φ0 re-based so that η τ + φ0 = θ(τ), wrapped to [0, 2π) (the planar and the ring
+/// stepper's speed input); `None` when `eta` is the speed already.
+///
+/// # Errors
+/// η not finite or out of its range.
+pub(super) fn at_speed(
+    params: &Params,
+    time: f64,
+    eta: f64,
+) -> Result<Option<Params>, StepperError> {
+    Parameter::SpeedRatio.check(eta)?;
+    if eta == params.speed_ratio {
+        return Ok(None);
+    }
+    let model = ModelParams::of(params);
+    let theta = math::wrap_angle(coef::forcing_phase(&model, &Time { t: time }).theta);
+    let phase = math::wrap_angle(theta - math::wrap_angle(eta * time));
+    Ok(Some(Params {
+        speed_ratio: eta,
+        phase,
+        ..*params
+    }))
 }

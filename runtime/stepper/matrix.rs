@@ -41,15 +41,10 @@
 use core::ops::Deref;
 
 use super::MAX_STEP;
-use super::report::StepperError;
+use super::report::{EventList, StepperError};
 use crate::matrix::{MatrixModel, MatrixPropagator, MatrixState};
 use crate::method::{Method, Options};
-use crate::propagate::{Event, Propagate, PropagationError, Regime};
-
-/// How many switches one [`MatrixStepReport`] holds (more are counted as dropped): the planar
-/// report's [`super::EVENT_CAPACITY`], so that a ring report converts to a planar one
-/// (`super::ring::rotor_report`) keeping the same switches and drop count.
-pub const MATRIX_EVENT_CAPACITY: usize = super::EVENT_CAPACITY;
+use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime};
 
 /// Largest accepted [`MatrixStepperConfig::max_switches`].
 pub const MAX_SWITCHES: u32 = 1024;
@@ -130,59 +125,17 @@ impl MatrixStepperConfig {
     }
 }
 
-/// The switches inside one matrix step, in time order, in a fixed-capacity array (no heap).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MatrixEvents<const CAP: usize> {
-    events: [Option<Event<MatrixState<CAP>>>; MATRIX_EVENT_CAPACITY],
-    len: usize,
-    dropped: u32,
-}
+/// The switches inside one matrix step, in time order (the planar stepper's list over the
+/// model's state).
+pub type MatrixEvents<const CAP: usize> = EventList<MatrixState<CAP>>;
 
 impl<const CAP: usize> Default for MatrixEvents<CAP> {
     fn default() -> Self {
-        MatrixEvents {
-            events: [None; MATRIX_EVENT_CAPACITY],
-            len: 0,
-            dropped: 0,
-        }
-    }
-}
-
-impl<const CAP: usize> MatrixEvents<CAP> {
-    /// Append `event`, or count it as dropped when the list is full.
-    pub fn push(&mut self, event: Event<MatrixState<CAP>>) {
-        if let Some(slot) = self.events.get_mut(self.len) {
-            *slot = Some(event);
-            self.len += 1;
-        } else {
-            self.dropped = self.dropped.saturating_add(1);
-        }
-    }
-
-    /// The kept switches, in time order.
-    pub fn iter(&self) -> impl Iterator<Item = &Event<MatrixState<CAP>>> {
-        self.events.iter().take(self.len).flatten()
-    }
-
-    /// Number of kept switches (at most [`MATRIX_EVENT_CAPACITY`]).
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// Whether no switch happened inside the step.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0 && self.dropped == 0
-    }
-
-    /// Switches that happened inside the step but did not fit (the end state accounts for
-    /// them).
-    pub fn dropped(&self) -> u32 {
-        self.dropped
-    }
-
-    /// Every switch inside the step, kept or dropped.
-    pub fn total(&self) -> usize {
-        self.len + self.dropped as usize
+        EventList::empty(Event {
+            time: 0.0,
+            kind: EventKind::Enter,
+            state: MatrixState::full([0.0; CAP]),
+        })
     }
 }
 
@@ -216,13 +169,9 @@ impl<M, const CAP: usize> MatrixStepper<M, CAP>
 where
     M: Deref<Target = MatrixModel<CAP>> + Clone,
 {
-    /// Validate the configuration and start the configured method on `model` at
-    /// `(time, start)` (the start's regime decided as by every method).
-    ///
-    /// # Errors
-    /// [`StepperError::InvalidConfig`] for the configuration, else what
-    /// [`MatrixPropagator::new`] reports (an invalid tolerance, a start of the wrong size or
-    /// not finite, a diverged start).
+    /// The configured method started on `model` at `(time, start)`, the configuration checked
+    /// first ([`StepperError::InvalidConfig`]); the start is the propagator's to refuse
+    /// ([`MatrixPropagator::new`]: its regime decided as by every method).
     pub fn new(
         model: M,
         time: f64,

@@ -10,10 +10,11 @@ use crate::propagate::{Event, EventKind, PropagationError, Regime};
 /// [`EventList::dropped`], never silently lost.
 pub const EVENT_CAPACITY: usize = 4;
 
-/// The switches inside one step, in time order, in a fixed-capacity array (no heap).
+/// The switches inside one step, in time order, in a fixed-capacity array (no heap): of the
+/// planar stepper (`S` = [`State`]) or of a matrix model's (`S` = its `MatrixState`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EventList {
-    events: [Event; EVENT_CAPACITY],
+pub struct EventList<S = State> {
+    events: [Event<S>; EVENT_CAPACITY],
     len: usize,
     dropped: u32,
 }
@@ -21,15 +22,11 @@ pub struct EventList {
 /// An empty list as a constant: built in read-only memory and copied whole, so a report does not
 /// assemble its blank events from small overlapping stores that the copy into the result then
 /// reads across (a store-forwarding stall on every free step).
-const EMPTY_EVENTS: EventList = EventList {
-    events: [Event {
-        time: 0.0,
-        kind: EventKind::Enter,
-        state: State::new(0.0, 0.0, 0.0, 0.0),
-    }; EVENT_CAPACITY],
-    len: 0,
-    dropped: 0,
-};
+const EMPTY_EVENTS: EventList = EventList::empty(Event {
+    time: 0.0,
+    kind: EventKind::Enter,
+    state: State::new(0.0, 0.0, 0.0, 0.0),
+});
 
 impl Default for EventList {
     fn default() -> Self {
@@ -37,10 +34,19 @@ impl Default for EventList {
     }
 }
 
-impl EventList {
+impl<S: Copy> EventList<S> {
+    /// An empty list whose unused slots hold `blank`.
+    pub const fn empty(blank: Event<S>) -> Self {
+        EventList {
+            events: [blank; EVENT_CAPACITY],
+            len: 0,
+            dropped: 0,
+        }
+    }
+
     /// Append `event`, or count it as dropped when the list is full (the first
     /// [`EVENT_CAPACITY`] switches are kept).
-    pub fn push(&mut self, event: Event) {
+    pub fn push(&mut self, event: Event<S>) {
         if let Some(slot) = self.events.get_mut(self.len) {
             *slot = event;
             self.len += 1;
@@ -50,7 +56,7 @@ impl EventList {
     }
 
     /// The kept switches, in time order.
-    pub fn as_slice(&self) -> &[Event] {
+    pub fn as_slice(&self) -> &[Event<S>] {
         self.events.get(..self.len).unwrap_or(&[])
     }
 
@@ -81,14 +87,14 @@ impl EventList {
     }
 
     /// Iterate over the kept switches.
-    pub fn iter(&self) -> core::slice::Iter<'_, Event> {
+    pub fn iter(&self) -> core::slice::Iter<'_, Event<S>> {
         self.as_slice().iter()
     }
 }
 
-impl<'a> IntoIterator for &'a EventList {
-    type Item = &'a Event;
-    type IntoIter = core::slice::Iter<'a, Event>;
+impl<'a, S: Copy> IntoIterator for &'a EventList<S> {
+    type Item = &'a Event<S>;
+    type IntoIter = core::slice::Iter<'a, Event<S>>;
 
     fn into_iter(self) -> Self::IntoIter {
         self.iter()

@@ -3,10 +3,9 @@
 //! [`MatrixStepper`], keeping the parameter table's names for its inputs. The stepper a caller
 //! builds from any problem is [`super::AnyStepper`] (`any.rs`).
 
+use super::inputs::at_speed;
 use super::matrix::{MatrixStepReport, MatrixStepper, MatrixStepperConfig, OwnedModel};
 use super::{StepReport, StepperConfig, StepperError};
-use crate::coefficients::{self as coef, ModelParams, Time};
-use crate::math;
 use crate::matrix::{RING_CAPACITY, ring_model, ring_start};
 use crate::params::{ParamError, Parameter, Params, Problem, Range, State};
 use crate::propagate::{Event, PropagationError, Regime};
@@ -139,19 +138,10 @@ impl RingStepper {
     /// # Errors
     /// η not finite or out of range; nothing changes.
     pub fn set_speed_ratio(&mut self, eta: f64) -> Result<(), StepperError> {
-        Parameter::SpeedRatio.check(eta)?;
-        if eta == self.params.speed_ratio {
-            return Ok(());
+        match at_speed(&self.params, self.time(), eta)? {
+            Some(params) => self.set_params(&params),
+            None => Ok(()),
         }
-        let time = self.time();
-        let model = ModelParams::of(&self.params);
-        let theta = math::wrap_angle(coef::forcing_phase(&model, &Time { t: time }).theta);
-        let phase = math::wrap_angle(theta - math::wrap_angle(eta * time));
-        self.set_params(&Params {
-            speed_ratio: eta,
-            phase,
-            ..self.params
-        })
     }
 
     /// The stepper as it is now (a copy), to [`RingStepper::restore`] later.

@@ -4,6 +4,7 @@
 //! anchor: stepping on agrees with the original run within the method's tolerance, not bit for
 //! bit (a copy, [`RingStepper::snapshot`], is bit for bit).
 
+use super::inputs::problem_and_tail;
 use super::matrix::{MatrixStepper, MatrixStepperConfig};
 use super::ring::{RingStepper, check_ring, state_model};
 use super::{Snapshot, StepperError};
@@ -72,15 +73,7 @@ impl RingStepper {
         if !Self::is_ring_words(words) {
             return Err(invalid("ring stepper words marker", 0));
         }
-        let (model, tail) = words.split_at(Parameter::MODEL_COUNT);
-        let mut problem = Problem::DEFAULT;
-        for (p, w) in Parameter::ALL.iter().filter(|p| p.is_model()).zip(model) {
-            p.set(&mut problem, f64::from_bits(*w));
-        }
-        let mut t = [0u64; TAIL];
-        for (o, w) in t.iter_mut().zip(tail) {
-            *o = *w;
-        }
+        let (problem, t) = problem_and_tail::<TAIL>(words);
         let f = f64::from_bits;
         let [
             dt0,

@@ -776,7 +776,7 @@ fn runtime_error(fallback: Key, e: MatrixError) -> ModelError {
 /// in a debug build. Called on such a thread already (a run-up's steps), `f` runs there.
 pub fn on_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
     if LARGE_STACK.with(std::cell::Cell::get) {
-        return f();
+        return not_inlined(f);
     }
     std::thread::scope(|scope| {
         match std::thread::Builder::new()
@@ -784,7 +784,7 @@ pub fn on_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
             .stack_size(64 << 20)
             .spawn_scoped(scope, || {
                 LARGE_STACK.with(|flag| flag.set(true));
-                f()
+                not_inlined(f)
             }) {
             Ok(handle) => match handle.join() {
                 Ok(value) => value,
@@ -794,6 +794,15 @@ pub fn on_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
             Err(_) => unreachable_spawn(),
         }
     })
+}
+
+/// `f()` in a frame of its own: inlined into [`on_large_stack`], `f`'s locals (a model of
+/// capacity 128) would be part of the caller's frame, reserved (and stack-probed) on entry on
+/// the small stack too, where the call that runs `f` in place is never taken (a stack overflow
+/// in release builds).
+#[inline(never)]
+fn not_inlined<T>(f: impl FnOnce() -> T) -> T {
+    f()
 }
 
 thread_local! {
