@@ -81,7 +81,7 @@ impl<const CAP: usize> MatrixModel<CAP> {
         let (Some(y), Some(dy)) = (y.get(..2 * n), dy.get_mut(..2 * n)) else {
             return;
         };
-        let a = self.first_order();
+        let a = self.linear();
         let force = self.running().unbalance_force;
         let (ct, st) = (phasor.ct, phasor.st);
         let (dq, dv) = dy.split_at_mut(n);
@@ -90,11 +90,8 @@ impl<const CAP: usize> MatrixModel<CAP> {
         }
         let unbalance = self.unbalance_acceleration();
         let input = self.input_acceleration();
-        for (i, acc) in dv.iter_mut().enumerate() {
-            let row = a.row(n + i);
-            let linear: f64 = row.iter().zip(y).map(|(r, x)| r * x).sum();
-            let u = unbalance.get(i).copied().unwrap_or_default();
-            *acc = linear + force * (u.re * ct - u.im * st) + input.get(i).copied().unwrap_or(0.0);
+        for (i, (acc, (u, &f))) in dv.iter_mut().zip(unbalance.iter().zip(input)).enumerate() {
+            *acc = a.row_times(i, y) + force * (u.re * ct - u.im * st) + f;
         }
         let (fx, fy) = match field {
             Field::Free => return,

@@ -182,12 +182,11 @@ impl<const CAP: usize> MatrixExpansion<CAP> {
         let coef = |s: usize| kernels::at(self.station.get(s).unwrap_or(&[0.0; CAPACITY]), n);
         let (ct, st) = (coef(PHASOR.0), coef(PHASOR.1));
         let force = model.running().unbalance_force;
-        let a = model.first_order();
+        let a = model.linear();
         let unbalance = model.unbalance_acceleration();
         let input = model.input_acceleration();
         for (i, out) in acc.iter_mut().enumerate().take(dofs) {
-            let row = a.row(dofs + i);
-            let linear: f64 = row.iter().zip(y.iter()).map(|(r, x)| r * x).sum();
+            let linear = a.row_times(i, &y);
             let u = unbalance.get(i).copied().unwrap_or_default();
             let constant = if n == 0 {
                 input.get(i).copied().unwrap_or(0.0)
