@@ -267,6 +267,17 @@ impl<const CAP: usize> MatrixModel<CAP> {
         &self.running
     }
 
+    /// M⁻¹f̂, M⁻¹u and M⁻¹Bᵀ over the whole storage (0 beyond n): what the field reads.
+    #[inline]
+    #[allow(clippy::type_complexity, reason = "three named storage arrays")]
+    pub(crate) fn force_accelerations(&self) -> (&[Complex; CAP], &[f64; CAP], &[[f64; CAP]; 2]) {
+        (
+            &self.unbalance_acceleration,
+            &self.input_acceleration,
+            &self.contact_acceleration,
+        )
+    }
+
     /// A's lower rows by their nonzero entries.
     #[inline]
     pub(crate) fn linear(&self) -> &LinearRows<CAP> {
