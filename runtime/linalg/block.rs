@@ -18,7 +18,10 @@
 //! **Cost.** n·(p + 16)·p² complex multiply-adds: for a repeated or defective eigenvalue
 //! (ρ at rounding level) n = 1 for any practical s; for a cluster of distinct close eigenvalues
 //! n grows like ρ s (the spread is ≤ ~1e-2·‖A‖ by the clustering rule in practice).
-//! A 1 × 1 block is one complex exponential.
+//! A 1 × 1 block is one complex exponential; a 2 × 2 block (the repeated eigenvalue of an
+//! isotropic rotor's x and y, a defective pair) is in closed form at one or two ([`exp_pair`]),
+//! not by the series: this block is the one every evaluation of an isotropic model's free flight
+//! pays for.
 
 use super::complex::Complex;
 use super::dense::ComplexMatrix;
@@ -88,6 +91,13 @@ pub(crate) fn apply_block_exp<const CAP: usize>(
         }
         return;
     }
+    if p == 2 {
+        let (i, k) = (range.start, range.start + 1);
+        if let [x0, x1, ..] = x {
+            (*x0, *x1) = exp_pair(j.get(i, i), j.get(i, k), j.get(k, k), s, (*x0, *x1));
+        }
+        return;
+    }
     let n = shift.substeps(s);
     let h = s / n as f64;
     let mut term = [Complex::ZERO; CAP];
@@ -125,6 +135,62 @@ pub(crate) fn apply_block_exp<const CAP: usize>(
     let e = shift.sigma.scale(s);
     for xa in x.iter_mut().take(p) {
         *xa = scale_by_exp(*xa, e);
+    }
+}
+
+/// e^{T s} (x0, x1) for the 2 × 2 upper triangular block T = [[a, u], [0, b]] in closed form:
+/// e^{Ts} = [[e^{as}, u·(e^{as} − e^{bs})/(a − b)], [0, e^{bs}]]. With μ = (a + b)/2 and
+/// w = (a − b)s/2 that is e^{μs}·[[e^{w}, u·s·sinh(w)/w], [0, e^{−w}]]; for |w| < 1/4 (a repeated
+/// eigenvalue, w at rounding level, or a near-defective pair) e^{±w} = cosh w ± sinh w and
+/// sinh(w)/w by their Taylor series to w¹² (the next terms are below 5e-20 relative), so the
+/// divided difference never cancels and the block costs one complex exponential; for larger |w|
+/// the divided difference is (e^{as} − e^{bs})/(a − b), whose rounding is ε·max|e^{as}|, |e^{bs}|
+/// over |a − b| ≤ 2ε·s·max(…)/(2|w|) ≤ 4ε·s·max(…): within rounding of the majorant s·max(…).
+#[inline]
+fn exp_pair(
+    a: Complex,
+    u: Complex,
+    b: Complex,
+    s: f64,
+    (x0, x1): (Complex, Complex),
+) -> (Complex, Complex) {
+    let w = (a - b).scale(0.5 * s);
+    if w.abs1() < 0.25 {
+        let w2 = w * w;
+        let series = |c: &[f64]| {
+            c.iter()
+                .rev()
+                .fold(Complex::ZERO, |acc, &k| acc * w2 + Complex::real(k))
+        };
+        // sinh(w)/w = Σ w^{2k}/(2k + 1)!, cosh w = Σ w^{2k}/(2k)!, k ≤ 6.
+        let sinhc = series(&[
+            1.0,
+            1.0 / 6.0,
+            1.0 / 120.0,
+            1.0 / 5040.0,
+            1.0 / 362_880.0,
+            1.0 / 39_916_800.0,
+            1.0 / 6_227_020_800.0,
+        ]);
+        let cosh = series(&[
+            1.0,
+            0.5,
+            1.0 / 24.0,
+            1.0 / 720.0,
+            1.0 / 40_320.0,
+            1.0 / 3_628_800.0,
+            1.0 / 479_001_600.0,
+        ]);
+        let sinh = w * sinhc;
+        let mu = (a + b).scale(0.5 * s);
+        let y0 = (cosh + sinh) * x0 + (u * sinhc).scale(s) * x1;
+        let y1 = (cosh - sinh) * x1;
+        (scale_by_exp(y0, mu), scale_by_exp(y1, mu))
+    } else {
+        let ea = scale_by_exp(Complex::ONE, a.scale(s));
+        let eb = scale_by_exp(Complex::ONE, b.scale(s));
+        let divided = (ea - eb) / (a - b);
+        (ea * x0 + u * divided * x1, eb * x1)
     }
 }
 

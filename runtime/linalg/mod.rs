@@ -25,6 +25,7 @@
 mod block;
 mod cluster;
 mod complex;
+mod conjugate;
 mod consistent;
 mod dense;
 mod eigen;

@@ -18,6 +18,11 @@
 //! (I + |U|s/(n + αs + c/n))^n (the identity commutes), whose limit is e^{αs} e^{|U|s}. ∎
 //! Since |U| is nilpotent (strictly upper, size p), e^{|U|s} = Σ_{i<p} |U|^i s^i/i!.
 //!
+//! **Conjugate pairs.** d is real, so the parts of two conjugate blocks are conjugate
+//! (`conjugate.rs`): the first block of each pair is evaluated with weight 2 (u_k and the bound
+//! coefficients doubled, exactly) and its partner not at all; the bounds below are of that
+//! weighted sum, the function the evaluations compute (|2 Re z| ≤ 2|z|).
+//!
 //! The j-th derivative of block k's part is W_k e^{J_k s} J_k^j c_k, so componentwise
 //! |d^{(j)}_k(s)| ≤ |W_k| e^{α_k s} e^{|U_k| s} |J_k|^j |c_k| (|Re z| ≤ |z|, |Pv| ≤ |P||v|),
 //! and by the triangle inequality for the Euclidean norm of nonnegative 2-vectors
@@ -42,6 +47,7 @@
 
 use super::block::scale_by_exp;
 use super::complex::Complex;
+use super::conjugate::BlockWeights;
 use super::error::LinalgError;
 use super::modal::{ModalExponential, ModalVector, span};
 use crate::math;
@@ -93,8 +99,11 @@ pub struct ProjectedMotion<const CAP: usize> {
     /// Per position p of a 1 × 1 block: u = W_p c_p; unused in larger blocks.
     u: [[Complex; 2]; CAP],
     /// Per position: the bound coefficients b_{k,j,i} for j = 0..3, stored at position
-    /// start_k + i of block k.
+    /// start_k + i of block k (times the block's weight).
     coefficients: [[f64; 3]; CAP],
+    /// Per block: 2 for the first of a conjugate pair, 0 for its partner (never evaluated nor
+    /// bounded), 1 otherwise (`conjugate.rs`): d is real, so a pair's parts are conjugate.
+    weights: BlockWeights<CAP>,
 }
 
 impl<const CAP: usize> ProjectedMotion<CAP> {
@@ -133,6 +142,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             },
             u: [[Complex::ZERO; 2]; CAP],
             coefficients: [[0.0; 3]; CAP],
+            weights: BlockWeights::of(modal),
         })
     }
 
@@ -165,6 +175,15 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
             let start = range.start;
+            let weight = self.weight(k);
+            if weight == 0.0 {
+                for p in range {
+                    if let Some(b) = self.coefficients.get_mut(p) {
+                        *b = [0.0; 3];
+                    }
+                }
+                continue;
+            }
             if range.len() == 1 {
                 let c = self.c.c.get(start).copied().unwrap_or_default();
                 let (x, y) = (
@@ -172,10 +191,10 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                     wy.get(start).copied().unwrap_or_default(),
                 );
                 if let Some(u) = self.u.get_mut(start) {
-                    *u = [x * c, y * c];
+                    *u = [(x * c).scale(weight), (y * c).scale(weight)];
                 }
                 let lambda = modal.j.get(start, start).abs();
-                let b0 = math::hypot(x.abs(), y.abs()) * c.abs();
+                let b0 = weight * math::hypot(x.abs(), y.abs()) * c.abs();
                 if let Some(b) = self.coefficients.get_mut(start) {
                     *b = [b0, b0 * lambda, b0 * lambda * lambda];
                 }
@@ -210,7 +229,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                         sy += wy.get(start + a).map_or(0.0, |z| z.abs()) * va;
                     }
                     if let Some(bj) = b.get_mut(jd) {
-                        *bj = math::hypot(sx, sy);
+                        *bj = weight * math::hypot(sx, sy);
                     }
                     // vj ← |U| vj for the next power.
                     let mut next = [0.0f64; CAP];
@@ -239,6 +258,10 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         let [wx, wy] = &self.w;
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
+            let weight = self.weight(k);
+            if weight == 0.0 {
+                continue;
+            }
             if range.len() == 1 {
                 let p = range.start;
                 let lambda = modal.j.get(p, p);
@@ -273,8 +296,8 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                     px += wx.get(range.start + a).copied().unwrap_or_default() * ca;
                     py += wy.get(range.start + a).copied().unwrap_or_default() * ca;
                 }
-                o[0] += px;
-                o[1] += py;
+                o[0] += px.scale(weight);
+                o[1] += py.scale(weight);
                 let mut next = [Complex::ZERO; CAP];
                 for (a, na) in next.iter_mut().enumerate().take(range.len()) {
                     *na = (a..range.len()).fold(Complex::ZERO, |acc, b| {
@@ -291,6 +314,12 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             rate: re(out[1]),
             acceleration: re(out[2]),
         }
+    }
+
+    /// Block k's weight (2: a pair's first, 0: its partner, 1: alone).
+    #[inline]
+    fn weight(&self, k: usize) -> f64 {
+        self.weights.weight.get(k).copied().unwrap_or(1.0)
     }
 
     /// The bound coefficients of mode `p` (|d|, |d'|, |d''| per unit of its basis); infinite
@@ -310,6 +339,9 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         }
         let mut sum = [0.0f64; 3];
         for k in 0..modal.blocks.count {
+            if self.weight(k) == 0.0 {
+                continue;
+            }
             let range = modal.blocks.range(k);
             let alpha = growth_rate(modal, range.clone());
             let mut poly = [0.0f64; 3];
@@ -348,6 +380,9 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         }
         let mut sum = [0.0f64; 3];
         for k in 0..modal.blocks.count {
+            if self.weight(k) == 0.0 {
+                continue;
+            }
             let range = modal.blocks.range(k);
             let alpha = growth_rate(modal, range.clone());
             for (i, p) in range.enumerate() {

@@ -78,23 +78,38 @@ impl<const CAP: usize> MatrixModel<CAP> {
     /// rolling `station_rolling` with the offset's acceleration from every other force).
     pub fn derivative(&self, field: Field, phasor: &Phasor, y: &[f64], dy: &mut [f64]) {
         let n = self.dofs();
+        // A model that fills its storage (n = CAP/2: the ring in CAP = 8) runs the same body
+        // with every length a constant, which the compiler unrolls and checks once.
+        if 2 * n == CAP
+            && let (Some(y), Some(dy)) = (y.first_chunk::<CAP>(), dy.first_chunk_mut::<CAP>())
+        {
+            self.field_of_size(CAP / 2, field, phasor, y, dy);
+        } else {
+            self.field_of_size(n, field, phasor, y, dy);
+        }
+    }
+
+    /// [`Self::derivative`] for `n` = the model's DOFs.
+    #[inline(always)]
+    fn field_of_size(&self, n: usize, field: Field, phasor: &Phasor, y: &[f64], dy: &mut [f64]) {
         let (Some(y), Some(dy)) = (y.get(..2 * n), dy.get_mut(..2 * n)) else {
             return;
         };
-        let a = self.first_order();
+        let (unbalance, input, [cx, cy]) = self.force_accelerations();
+        let (Some(unbalance), Some(input), Some(cx), Some(cy)) =
+            (unbalance.get(..n), input.get(..n), cx.get(..n), cy.get(..n))
+        else {
+            return;
+        };
+        let a = self.linear();
         let force = self.running().unbalance_force;
         let (ct, st) = (phasor.ct, phasor.st);
         let (dq, dv) = dy.split_at_mut(n);
         for (d, &v) in dq.iter_mut().zip(y.iter().skip(n)) {
             *d = v;
         }
-        let unbalance = self.unbalance_acceleration();
-        let input = self.input_acceleration();
-        for (i, acc) in dv.iter_mut().enumerate() {
-            let row = a.row(n + i);
-            let linear: f64 = row.iter().zip(y).map(|(r, x)| r * x).sum();
-            let u = unbalance.get(i).copied().unwrap_or_default();
-            *acc = linear + force * (u.re * ct - u.im * st) + input.get(i).copied().unwrap_or(0.0);
+        for (i, (acc, (u, &f))) in dv.iter_mut().zip(unbalance.iter().zip(input)).enumerate() {
+            *acc = a.row_times(i, y) + force * (u.re * ct - u.im * st) + f;
         }
         let (fx, fy) = match field {
             Field::Free => return,
@@ -112,7 +127,6 @@ impl<const CAP: usize> MatrixModel<CAP> {
                 (f.fx, f.fy)
             }
         };
-        let (cx, cy) = (self.contact_acceleration(0), self.contact_acceleration(1));
         for ((acc, x), y) in dv.iter_mut().zip(cx).zip(cy) {
             *acc += x * fx + y * fy;
         }

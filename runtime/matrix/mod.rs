@@ -7,6 +7,7 @@
 //!
 //! - `model.rs`: the statement, checked ([`MatrixModel`], [`Station`], [`Unbalance`]).
 //! - `state.rs`: y = (q, q') ([`MatrixState`]).
+//! - `linear.rs`: A's lower rows by their nonzero entries (the fields' linear part).
 //! - `field.rs`: the regime fields and the station's quantities (generated station law).
 //! - `system.rs`: the model as a [`crate::driver::System`] (start side, slip, divergence).
 //! - `ring.rs`: the stator ring with mass from the parameter table.
@@ -23,6 +24,7 @@
 mod error;
 mod field;
 pub mod free;
+mod linear;
 mod methods;
 mod model;
 mod numerical;

@@ -10,6 +10,7 @@
 //! formulas the planar model runs.
 
 use super::error::MatrixError;
+use super::linear::LinearRows;
 use crate::coefficients::{self as coef, ContactLaw, ModelParams, StationCompliance};
 use crate::linalg::{Complex, Lu, RealMatrix, SecondOrder};
 use crate::params::{Parameter, Params, Range};
@@ -70,6 +71,8 @@ pub struct MatrixModel<const CAP: usize> {
     gyroscopic: RealMatrix<CAP>,
     stiffness: RealMatrix<CAP>,
     first_order: RealMatrix<CAP>,
+    /// A's lower rows by their nonzero entries (what the fields multiply).
+    linear: LinearRows<CAP>,
     mass_lu: Lu<f64, CAP>,
     running: ModelParams,
     law: ContactLaw,
@@ -136,13 +139,15 @@ impl<const CAP: usize> MatrixModel<CAP> {
             ..Params::DEFAULT
         };
         let k = station.contact_stiffness;
+        let first_order = rotor.first_order(running.speed_ratio)?;
         let mut model = MatrixModel {
             dofs: n,
             mass: rotor.mass.clone(),
             damping: rotor.damping.clone(),
             gyroscopic: rotor.gyroscopic.clone(),
             stiffness: rotor.stiffness.clone(),
-            first_order: rotor.first_order(running.speed_ratio)?,
+            linear: LinearRows::new(&first_order, n),
+            first_order,
             mass_lu: Lu::factor(rotor.mass, "mass matrix")?,
             running: coef::model_params(&params),
             law: ContactLaw {
@@ -260,6 +265,23 @@ impl<const CAP: usize> MatrixModel<CAP> {
     /// offset, friction, radius; its `unbalance_force` is η² (per unit of m·e).
     pub fn running(&self) -> &ModelParams {
         &self.running
+    }
+
+    /// M⁻¹f̂, M⁻¹u and M⁻¹Bᵀ over the whole storage (0 beyond n): what the field reads.
+    #[inline]
+    #[allow(clippy::type_complexity, reason = "three named storage arrays")]
+    pub(crate) fn force_accelerations(&self) -> (&[Complex; CAP], &[f64; CAP], &[[f64; CAP]; 2]) {
+        (
+            &self.unbalance_acceleration,
+            &self.input_acceleration,
+            &self.contact_acceleration,
+        )
+    }
+
+    /// A's lower rows by their nonzero entries.
+    #[inline]
+    pub(crate) fn linear(&self) -> &LinearRows<CAP> {
+        &self.linear
     }
 
     /// The running speed η.

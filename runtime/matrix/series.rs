@@ -177,17 +177,32 @@ impl<const CAP: usize> MatrixExpansion<CAP> {
     /// Order `n`'s acceleration without contact a_n into `acc`, and the law's inputs at `n`.
     #[inline]
     fn inputs(&mut self, model: &MatrixModel<CAP>, n: usize, acc: &mut [f64; CAP]) {
-        let dofs = model.dofs();
+        // A model that fills its storage (the ring in CAP = 8): the same body with constant
+        // lengths (as `MatrixModel::derivative`).
+        if 2 * model.dofs() == CAP {
+            self.inputs_of_size(CAP / 2, model, n, acc);
+        } else {
+            self.inputs_of_size(model.dofs(), model, n, acc);
+        }
+    }
+
+    /// [`Self::inputs`] for `dofs` = the model's DOFs.
+    #[inline(always)]
+    fn inputs_of_size(
+        &mut self,
+        dofs: usize,
+        model: &MatrixModel<CAP>,
+        n: usize,
+        acc: &mut [f64; CAP],
+    ) {
         let y = self.state.get(n).copied().unwrap_or([0.0; CAP]);
         let coef = |s: usize| kernels::at(self.station.get(s).unwrap_or(&[0.0; CAPACITY]), n);
         let (ct, st) = (coef(PHASOR.0), coef(PHASOR.1));
         let force = model.running().unbalance_force;
-        let a = model.first_order();
-        let unbalance = model.unbalance_acceleration();
-        let input = model.input_acceleration();
+        let a = model.linear();
+        let (unbalance, input, _) = model.force_accelerations();
         for (i, out) in acc.iter_mut().enumerate().take(dofs) {
-            let row = a.row(dofs + i);
-            let linear: f64 = row.iter().zip(y.iter()).map(|(r, x)| r * x).sum();
+            let linear = a.row_times(i, &y);
             let u = unbalance.get(i).copied().unwrap_or_default();
             let constant = if n == 0 {
                 input.get(i).copied().unwrap_or(0.0)
@@ -224,13 +239,31 @@ impl<const CAP: usize> MatrixExpansion<CAP> {
     /// y_{n+1} from order n: q_{n+1} = q'_n/(n+1), q'_{n+1} = (a_n − M⁻¹Bᵀ r_n)/(n+1).
     #[inline]
     fn feedback(&mut self, model: &MatrixModel<CAP>, n: usize, acc: &[f64; CAP]) {
-        let dofs = model.dofs();
+        if 2 * model.dofs() == CAP {
+            self.feedback_of_size(CAP / 2, model, n, acc);
+        } else {
+            self.feedback_of_size(model.dofs(), model, n, acc);
+        }
+    }
+
+    /// [`Self::feedback`] for `dofs` = the model's DOFs.
+    #[inline(always)]
+    fn feedback_of_size(
+        &mut self,
+        dofs: usize,
+        model: &MatrixModel<CAP>,
+        n: usize,
+        acc: &[f64; CAP],
+    ) {
         let layout = self.law.layout();
         let coef = |s: usize| kernels::at(self.station.get(s).unwrap_or(&[0.0; CAPACITY]), n);
         let (rx, ry) = (coef(layout.restoring.0), coef(layout.restoring.1));
         let inverse = 1.0 / (n as f64 + 1.0);
         let y = self.state.get(n).copied().unwrap_or([0.0; CAP]);
-        let (cx, cy) = (model.contact_acceleration(0), model.contact_acceleration(1));
+        let (_, _, [cx, cy]) = model.force_accelerations();
+        let (Some(cx), Some(cy)) = (cx.get(..dofs), cy.get(..dofs)) else {
+            return;
+        };
         let Some(next) = self.state.get_mut(n + 1) else {
             return;
         };

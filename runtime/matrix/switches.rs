@@ -81,11 +81,10 @@ impl<const CAP: usize> MatrixModel<CAP> {
         let turn: PhasorRate = coef::forcing_phasor_rate(self.running(), phasor);
         let force = self.running().unbalance_force;
         let unbalance = self.unbalance_acceleration();
-        let a = self.first_order();
+        let a = self.linear();
         let mut jerk = [0.0; CAP];
         for (i, j) in jerk.iter_mut().enumerate().take(n) {
-            let row = a.row(n + i);
-            let linear: f64 = row.iter().zip(dy.iter()).map(|(r, x)| r * x).sum();
+            let linear = a.row_times(i, &dy);
             let u = unbalance.get(i).copied().unwrap_or_default();
             *j = linear + force * (u.re * turn.ct_rate - u.im * turn.st_rate);
         }
