@@ -260,6 +260,18 @@ macro_rules! each {
     };
 }
 
+impl<M, const CAP: usize> MatrixPropagator<M, CAP>
+where
+    M: Deref<Target = MatrixModel<CAP>> + Clone,
+{
+    /// The slip direction σ the current contact segment runs with (±1 slipping under friction,
+    /// 0 otherwise), decided at the segment's start (after `reverse` from λ, not from w, whose
+    /// sign at w = 0 is rounding).
+    pub fn slip(&self) -> f64 {
+        each!(&self.inner, p => p.slip())
+    }
+}
+
 impl<M, const CAP: usize> Propagate<MatrixState<CAP>> for MatrixPropagator<M, CAP>
 where
     M: Deref<Target = MatrixModel<CAP>> + Clone,

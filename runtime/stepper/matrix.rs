@@ -346,6 +346,11 @@ where
         self.propagator.regime()
     }
 
+    /// The slip direction σ of the current contact segment ([`MatrixPropagator::slip`]).
+    pub fn slip(&self) -> f64 {
+        self.propagator.slip()
+    }
+
     /// The model in force.
     pub fn model(&self) -> &MatrixModel<CAP> {
         &self.model

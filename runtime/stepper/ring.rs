@@ -185,14 +185,14 @@ impl RingStepper {
     }
 
     /// The slip direction σ of a slipping contact under friction (±1; 0 when free, rolling
-    /// or frictionless): the matrix model's own rule at the current state (the generated
-    /// station law's slip velocity, `crate::driver::System::slip_direction`).
+    /// or frictionless): the one the propagator's contact segment runs with, decided by the
+    /// model's rule at the segment's start (after a `reverse` from λ: w's own sign there is
+    /// rounding, so σ is not read back from the state).
     pub fn slip_direction(&self) -> f64 {
         if self.regime() != Regime::Contact {
             return 0.0;
         }
-        let model: &crate::matrix::MatrixModel<RING_CAPACITY> = self.inner.model();
-        crate::driver::System::slip_direction(&model, self.time(), &self.inner.state(), None)
+        self.inner.slip()
     }
 
     /// Build from its parts (words read back, `ring_words.rs`).
