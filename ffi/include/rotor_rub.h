@@ -175,10 +175,10 @@
 // Switches one step result holds; more are counted in `dropped_events`.
 #define ROTOR_RUB_EVENT_CAPACITY 4
 
-// Size of `RotorRubStepper` in 64-bit words: 4736 (37 KiB) since the stator ring with mass
+// Size of `RotorRubStepper` in 64-bit words: 5120 (40 KiB) since the stator ring with mass
 // runs in it (its n = 4 matrix model and the method's solvers live inline, no heap; the
 // planar stepper alone needed 160).
-#define ROTOR_RUB_STEPPER_WORDS 4736
+#define ROTOR_RUB_STEPPER_WORDS 5120
 
 // Model parameters (dimensionless, as in the paper). Valid ranges: `rotor_rub_parameter_info`
 // (the Rust parameter table, listed by `rotor-rub params`).

@@ -84,10 +84,10 @@ pub const ROTOR_RUB_PRESET_RING_WHIRL: i32 = 5;
 
 /// Switches one step result holds; more are counted in `dropped_events`.
 pub const ROTOR_RUB_EVENT_CAPACITY: usize = 4;
-/// Size of `RotorRubStepper` in 64-bit words: 4736 (37 KiB) since the stator ring with mass
+/// Size of `RotorRubStepper` in 64-bit words: 5120 (40 KiB) since the stator ring with mass
 /// runs in it (its n = 4 matrix model and the method's solvers live inline, no heap; the
 /// planar stepper alone needed 160).
-pub const ROTOR_RUB_STEPPER_WORDS: usize = 4736;
+pub const ROTOR_RUB_STEPPER_WORDS: usize = 5120;
 
 const _: () = assert!(ROTOR_RUB_EVENT_CAPACITY == EVENT_CAPACITY);
 // The scheme codes are the library's (`ContactScheme::code`, the scheme registry).

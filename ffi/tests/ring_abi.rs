@@ -48,7 +48,7 @@ fn ring_problem() -> rotor_rub::Problem {
     problem
 }
 
-/// The stepper memory on the heap (37 KiB: a test thread's stack is small).
+/// The stepper memory on the heap (40 KiB: a test thread's stack is small).
 fn memory() -> Box<RotorRubStepper> {
     Box::new(RotorRubStepper {
         _opaque: [0; ROTOR_RUB_STEPPER_WORDS],

@@ -7,7 +7,7 @@
 //! stator ring with mass (`stator_mass_ratio` > 0) runs the ring's stepper: no error estimate
 //! (its method meets its own tolerance), every switch located as in the planar model; each of
 //! its internal steps ends at its first switch (the next starts there), so it needs no copy to
-//! undo a step (the ring's stepper is 37 KiB: a copy per internal step would cost more than
+//! undo a step (the ring's stepper is 39 KiB: a copy per internal step would cost more than
 //! the step).
 //!
 //! # Bounded work
@@ -129,7 +129,7 @@ impl Model {
                 remaining
             };
             // The planar stepper is copied to undo a step (a few hundred bytes); the ring's
-            // (37 KiB) is not: it has no error estimate to retry on, and it steps to each
+            // (39 KiB) is not: it has no error estimate to retry on, and it steps to each
             // switch, so its report never overflows.
             let ring = matches!(stepper, AnyStepper::Ring(_));
             let mut before = (!ring).then(|| stepper.clone());

@@ -29,7 +29,7 @@
 //!
 //! Measured (`dt` = 1e-3, the paper's rotor with m̂ = 1, k̂_c = 100, ĉ = 0.5, on a loaded
 //! 2-core machine): 1.1–1.5 µs per step on average for taylor and hybrid alike, heavy or
-//! sparse rub; the stepper is 37 KiB (the ring model and the method's solvers inline).
+//! sparse rub; the stepper is 39 KiB (the ring model and the method's solvers inline).
 //!
 //! # Inputs between steps
 //! [`MatrixStepper::set_input`] (the input force, held until the next call) and

@@ -27,6 +27,21 @@ pub fn figure(
         Number(p.mass_ratio),
         Number(p.eccentricity_ratio)
     );
+    let (curves, legend) = branch_curves(branches);
+    RunupFigure {
+        title,
+        subtitle: format!(
+            "{speed}; {method}; thick: largest radius, thin: smallest radius per forcing period"
+        ),
+        legend,
+        curves,
+        axes: None,
+    }
+}
+
+/// The two branches' curves (largest and smallest radius per period, rubbing speeds, jumps) and
+/// their legend: the planar run-up's and a matrix model's alike.
+pub(super) fn branch_curves(branches: [&Branch; 2]) -> (Vec<Curve>, Vec<(LegendMark, String)>) {
     let mut legend = Vec::new();
     let mut curves = Vec::new();
     for (branch, color) in branches.into_iter().zip([RUN_UP, COAST_DOWN]) {
@@ -54,13 +69,5 @@ pub fn figure(
         });
     }
     legend.push((LegendMark::Triangle(RUN_UP), "jump".to_string()));
-    RunupFigure {
-        title,
-        subtitle: format!(
-            "{speed}; {method}; thick: largest radius, thin: smallest radius per forcing period"
-        ),
-        legend,
-        curves,
-        axes: None,
-    }
+    (curves, legend)
 }

@@ -61,7 +61,13 @@ pub fn events_beside(out: &Path) -> PathBuf {
 
 /// The per-period file, uncommitted.
 pub fn rows_file(path: &Path, rows: &[Revolution]) -> Result<AtomicFile> {
-    let mut csv = CsvOut::create(path, &ROWS_HEADER)?;
+    rows_file_with(path, &ROWS_HEADER, rows)
+}
+
+/// The per-period file under `header` (a matrix model names its speed column `speed`),
+/// uncommitted.
+pub fn rows_file_with(path: &Path, header: &[&str], rows: &[Revolution]) -> Result<AtomicFile> {
+    let mut csv = CsvOut::create(path, header)?;
     for r in rows {
         csv.row((
             r.direction().name(),

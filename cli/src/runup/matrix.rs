@@ -11,17 +11,16 @@
 //! run-up closely (the tests compare it with the planar model's exact variable-speed run on the
 //! Jeffcott rotor written as matrices).
 
-use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
 use rotor_rub::EventKind;
 use rotor_rub::variable_speed::{Revolution, SpeedDirection};
 
-use super::Args;
 use super::analysis::Branch;
 use super::matrix_report::{figure, summary};
 pub use super::steps::{Program, model_program};
+use super::{Args, report_files};
 use crate::error::{CliError, Result};
 use crate::limits::fits_memory;
 use crate::model_file::{Segment, Subject, orbit_indices, orbit_state, planar_only};
@@ -269,24 +268,7 @@ pub fn run(args: &Args, subject: &Subject, program: &Program, model: Option<&Pat
     if let Some(h) = header.get_mut(4) {
         *h = speed_name;
     }
-    let mut out = CsvOut::create(&args.out, &header)?;
-    for r in &rows {
-        out.row((
-            r.direction().name(),
-            r.index,
-            r.start,
-            r.end,
-            r.speed_ratio,
-            r.speed_change,
-            r.max_radius,
-            r.min_radius,
-            r.contact_fraction,
-            r.whirl,
-            r.whirl_direction().name(),
-            r.enters,
-            r.exits,
-        ))?;
-    }
+    let rows_out = super::files::rows_file_with(&args.out, &header, &rows)?;
     let time_name = if file { "t" } else { "tau" };
     let ev_header: Vec<&str> = [time_name, speed_name, "period", "direction", "kind"]
         .into_iter()
@@ -310,33 +292,18 @@ pub fn run(args: &Args, subject: &Subject, program: &Program, model: Option<&Pat
             .chain(row.iter().map(|x| format!("{x:?}"))),
         )?;
     }
-    let mut files = vec![out.finish()?, ev.finish()?];
+    let mut files = vec![rows_out, ev.finish()?];
     if !args.no_plot {
         let figure = figure(subject, program, &options, [&up, &down]);
         files.extend(plot::render(&figure, &svg, &png)?);
     }
     commit_all(files)?;
-    let mut report = summary(subject, program, &options, [&up, &down]);
-    let _ = writeln!(
+    let report = summary(subject, program, &options, [&up, &down]);
+    report_files(
         report,
-        "{} forcing periods, {} switches, run time {:.2} s",
-        rows.len(),
-        events.len(),
-        elapsed.as_secs_f64()
-    );
-    let _ = writeln!(
-        report,
-        "wrote {} and {}",
-        args.out.display(),
-        events_path.display()
-    );
-    if !args.no_plot {
-        let _ = writeln!(
-            report,
-            "plot written to {} and {}",
-            svg.display(),
-            png.display()
-        );
-    }
-    stdio::out(&report)
+        args,
+        (rows.len(), events.len(), elapsed),
+        &events_path,
+        [&svg, &png],
+    )
 }

@@ -6,12 +6,12 @@ use std::fmt::Write as _;
 use rotor_rub::Options;
 
 use super::analysis::Branch;
+use super::figure::branch_curves;
 use super::steps::Program;
 use crate::error::num;
 use crate::model_file::Subject;
 use crate::options::describe;
-use crate::plot::LegendMark;
-use crate::plot::runup::{COAST_DOWN, Curve, RUN_UP, RunupFigure};
+use crate::plot::runup::RunupFigure;
 
 /// The run-up diagram of a stepped run (the speed in rad/s and the station's radius in m for a
 /// model file; η and the rotor's radius in clearances for the ring).
@@ -23,33 +23,7 @@ pub fn figure(
 ) -> RunupFigure {
     let file = matches!(subject, Subject::File { .. });
     let unit = subject.length_unit();
-    let mut legend = Vec::new();
-    let mut curves = Vec::new();
-    for (branch, color) in [(up, RUN_UP), (down, COAST_DOWN)] {
-        if branch.rows.is_empty() {
-            continue;
-        }
-        legend.push((LegendMark::Line(color), branch.label().to_string()));
-        legend.push((
-            LegendMark::Shade(color),
-            format!("rubs ({})", branch.label()),
-        ));
-        curves.push(Curve {
-            color,
-            points: branch
-                .rows
-                .iter()
-                .map(|r| (r.speed_ratio, r.max_radius, r.min_radius))
-                .collect(),
-            contact: branch.contact_intervals(),
-            jumps: branch
-                .jumps
-                .iter()
-                .map(|j| (j.speed_ratio, j.before, j.after))
-                .collect(),
-        });
-    }
-    legend.push((LegendMark::Triangle(RUN_UP), "jump".to_string()));
+    let (curves, legend) = branch_curves([up, down]);
     RunupFigure {
         title: match subject {
             Subject::File { label, .. } => {

@@ -291,12 +291,28 @@ pub fn run(args: &Args) -> Result<()> {
     }
     commit_all(files)?;
 
-    let mut report = report::summary(&speed.description, &options, [&up, &down]);
+    let report = report::summary(&speed.description, &options, [&up, &down]);
+    report_files(
+        report,
+        args,
+        (rows.len(), events.len(), elapsed),
+        &events_path,
+        [&svg, &png],
+    )
+}
+
+/// The end of a run-up's report: its size and time, and the files written (the planar and the
+/// matrix run-up alike); printed.
+fn report_files(
+    mut report: String,
+    args: &Args,
+    (periods, switches, elapsed): (usize, usize, std::time::Duration),
+    events_path: &std::path::Path,
+    [svg, png]: [&std::path::Path; 2],
+) -> Result<()> {
     let _ = writeln!(
         report,
-        "{} forcing periods, {} switches, run time {:.2} s",
-        rows.len(),
-        events.len(),
+        "{periods} forcing periods, {switches} switches, run time {:.2} s",
         elapsed.as_secs_f64()
     );
     let _ = writeln!(

@@ -1,17 +1,13 @@
 //! `spectrum` on a model file or the ring with mass (`crate::model_file::Subject`).
 
-use std::fmt::Write as _;
-
-use super::{Args, sample_count};
+use super::{Args, Written, finish, sample_count};
 use crate::analysis::spectrum::{peaks, real_amplitudes, whirl_amplitudes};
-use crate::error::{CliError, Result, num};
+use crate::error::{CliError, Result};
 use crate::limits::{add_counts, fits_memory};
 use crate::model_file::{Subject, chosen_columns};
-use crate::options::describe;
-use crate::output::{CsvOut, check_distinct, commit_all, ensure_parent};
-use crate::plot::spectrum::{Curve, SECOND, SpectrumFigure};
+use crate::output::{CsvOut, check_distinct, ensure_parent};
+use crate::plot::spectrum::{Curve, SECOND};
 use crate::plot::{self, ANALYTIC};
-use crate::stdio;
 
 /// `spectrum` on a model file or the ring with mass: the amplitude spectra of the chosen
 /// columns (or the whirl of two of them) in orders of the running speed, sampled by the matrix
@@ -123,37 +119,18 @@ pub fn run_matrix(args: &Args, subject: &Subject) -> Result<()> {
         }
         (curves, lines)
     };
-    let lowest = if args.whirl { -args.max_order } else { 0.0 };
-    let figure = SpectrumFigure {
-        title: format!(
-            "{} spectrum ({unit}), {}, periods {}-{end_period}, Hann window",
-            if args.whirl { "Whirl" } else { "Amplitude" },
-            subject.speed_label(),
-            args.transient,
-        ),
-        curves,
-        orders: lowest..args.max_order,
+    let written = Written {
+        out,
+        plot: [svg, png],
+        samples: n,
+        end_period,
     };
-    let [svg_file, png_file] = plot::render(&figure, &svg, &png)?;
-    commit_all([out.finish()?, svg_file, png_file])?;
-    let mut report = String::new();
-    let _ = writeln!(report, "method: {}", describe(&options));
-    let _ = writeln!(
-        report,
-        "{n} samples over forcing periods {}-{end_period}, resolution {} orders",
-        args.transient,
-        num(1.0 / args.periods as f64)
-    );
-    let _ = writeln!(report, "largest peaks (order, amplitude in {unit}):");
-    for line in lines {
-        let _ = writeln!(report, "  {line}");
-    }
-    let _ = writeln!(
-        report,
-        "wrote {}, {}, {}",
-        args.out.display(),
-        svg.display(),
-        png.display()
-    );
-    stdio::out(&report)
+    finish(
+        args,
+        &options,
+        written,
+        (&subject.speed_label(), unit),
+        curves,
+        &lines,
+    )
 }

@@ -161,12 +161,54 @@ pub fn run(args: &Args) -> Result<()> {
             lines,
         )
     };
+    let written = Written {
+        out,
+        plot: [svg, png],
+        samples: n,
+        end_period,
+    };
+    let subject = format!("η = {}", num(problem.params.speed_ratio));
+    finish(
+        args,
+        &options,
+        written,
+        (&subject, "clearances"),
+        curves,
+        &lines,
+    )
+}
+
+/// What a spectrum run has written before its figure and report: the CSV (not yet committed),
+/// the plot's paths, the sample count and the last period.
+pub(crate) struct Written {
+    pub out: CsvOut,
+    pub plot: [PathBuf; 2],
+    pub samples: usize,
+    pub end_period: u64,
+}
+
+/// The figure, the files committed together, and the report of a spectrum run (the planar
+/// model's and a matrix model's): `subject` names the run in the title (its speed), `unit` the
+/// amplitudes'.
+pub(crate) fn finish(
+    args: &Args,
+    options: &Options,
+    written: Written,
+    (subject, unit): (&str, &str),
+    curves: Vec<Curve>,
+    lines: &[String],
+) -> Result<()> {
+    let Written {
+        out,
+        plot: [svg, png],
+        samples,
+        end_period,
+    } = written;
     let lowest = if args.whirl { -args.max_order } else { 0.0 };
     let figure = SpectrumFigure {
         title: format!(
-            "{} spectrum, η = {}, periods {}-{end_period}, Hann window",
+            "{} spectrum, {subject}, periods {}-{end_period}, Hann window",
             if args.whirl { "Whirl" } else { "Amplitude" },
-            num(problem.params.speed_ratio),
             args.transient,
         ),
         curves,
@@ -175,14 +217,14 @@ pub fn run(args: &Args) -> Result<()> {
     let [svg_file, png_file] = plot::render(&figure, &svg, &png)?;
     commit_all([out.finish()?, svg_file, png_file])?;
     let mut report = String::new();
-    let _ = writeln!(report, "method: {}", describe(&options));
+    let _ = writeln!(report, "method: {}", describe(options));
     let _ = writeln!(
         report,
-        "{n} samples over forcing periods {}-{end_period}, resolution {} orders",
+        "{samples} samples over forcing periods {}-{end_period}, resolution {} orders",
         args.transient,
         num(1.0 / args.periods as f64)
     );
-    let _ = writeln!(report, "largest peaks (order, amplitude in clearances):");
+    let _ = writeln!(report, "largest peaks (order, amplitude in {unit}):");
     for line in lines {
         let _ = writeln!(report, "  {line}");
     }
