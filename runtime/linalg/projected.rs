@@ -338,12 +338,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             return inf;
         }
         let mut sum = [0.0f64; 3];
-        for k in 0..modal.blocks.count {
-            if self.weight(k) == 0.0 {
-                continue;
-            }
-            let range = modal.blocks.range(k);
-            let alpha = growth_rate(modal, range.clone());
+        for (range, alpha) in self.seen_blocks(modal) {
             let mut poly = [0.0f64; 3];
             for (i, p) in range.enumerate() {
                 let b = self.coefficient(p);
@@ -357,12 +352,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 *acc += if pj.is_nan() { f64::INFINITY } else { pj };
             }
         }
-        let up = |x: f64| x * (1.0 + BOUND_MARGIN);
-        ProjectedBound {
-            value: up(sum[0]),
-            rate: up(sum[1]),
-            acceleration: up(sum[2]),
-        }
+        with_margin(sum)
     }
 }
 
@@ -379,12 +369,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             return inf;
         }
         let mut sum = [0.0f64; 3];
-        for k in 0..modal.blocks.count {
-            if self.weight(k) == 0.0 {
-                continue;
-            }
-            let range = modal.blocks.range(k);
-            let alpha = growth_rate(modal, range.clone());
+        for (range, alpha) in self.seen_blocks(modal) {
             for (i, p) in range.enumerate() {
                 let b = self.coefficient(p);
                 if b.iter().all(|&x| x == 0.0) {
@@ -404,12 +389,33 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 }
             }
         }
-        let up = |x: f64| x * (1.0 + BOUND_MARGIN);
-        ProjectedBound {
-            value: up(sum[0]),
-            rate: up(sum[1]),
-            acceleration: up(sum[2]),
-        }
+        with_margin(sum)
+    }
+}
+
+impl<const CAP: usize> ProjectedMotion<CAP> {
+    /// The blocks the projection sees (nonzero weight): each one's index range and growth
+    /// rate α.
+    fn seen_blocks<'m>(
+        &'m self,
+        modal: &'m ModalExponential<CAP>,
+    ) -> impl Iterator<Item = (core::ops::Range<usize>, f64)> + 'm {
+        (0..modal.blocks.count)
+            .filter(|&k| self.weight(k) != 0.0)
+            .map(|k| {
+                let range = modal.blocks.range(k);
+                (range.clone(), growth_rate(modal, range))
+            })
+    }
+}
+
+/// The bounds |d|, |d'|, |d''| of summed terms, each raised by the rounding margin.
+fn with_margin(sum: [f64; 3]) -> ProjectedBound {
+    let up = |x: f64| x * (1.0 + BOUND_MARGIN);
+    ProjectedBound {
+        value: up(sum[0]),
+        rate: up(sum[1]),
+        acceleration: up(sum[2]),
     }
 }
 

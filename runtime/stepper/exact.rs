@@ -24,14 +24,7 @@ impl Stepper {
         report: &mut StepReport,
     ) -> Result<(State, Regime, Slip, Option<f64>), StepperError> {
         let t0 = self.time;
-        let frame = Frame::new(
-            &self.params,
-            &self.config,
-            &self.transition,
-            t0,
-            dt,
-            self.phasor,
-        );
+        let frame = Frame::new(self, t0, dt);
         // The contact sub-steps' slot, on this stack (a sub-step is too large to move).
         let mut sub = SubStep::zeroed();
         let mut solvers = step_solvers(&frame, &mut sub, self.regime, self.state, self.slip);

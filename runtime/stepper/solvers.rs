@@ -23,7 +23,7 @@ use super::friction::{Slip, SwitchIn, rolling_substep, slip_in};
 use super::polynomial::SubstepPolynomial;
 use super::report::StepReport;
 use super::search::{TOUCH, curvature, locate_with, no_crossing};
-use super::{FreeTransition, StepperConfig};
+use super::{FreeTransition, Stepper, StepperConfig};
 use crate::analytic::free::FreeSegment;
 use crate::analytic::linear::ContactConstants;
 use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
@@ -66,21 +66,17 @@ pub(super) struct Frame<'a> {
 }
 
 impl<'a> Frame<'a> {
-    pub(super) fn new(
-        params: &'a Params,
-        config: &'a StepperConfig,
-        transition: &'a FreeTransition,
-        t0: f64,
-        dt: f64,
-        phasor: (f64, f64),
-    ) -> Self {
+    /// The frame of a step of `dt` from `t0` (the stepper's time, phasor, parameters,
+    /// configuration and free map).
+    pub(super) fn new(stepper: &'a Stepper, t0: f64, dt: f64) -> Self {
+        let config = &stepper.config;
         Frame {
-            params,
+            params: &stepper.params,
             config,
-            transition,
+            transition: &stepper.transition,
             t0,
             dt,
-            phasor,
+            phasor: stepper.phasor,
             nominal: dt / f64::from(config.contact_substeps),
             cursor: Cell::new(0.0),
             budget: Cell::new(config.max_substeps),
@@ -218,15 +214,7 @@ impl SegmentSolver for FreePieces<'_, '_> {
                 } else {
                     poly.point(rem)
                 };
-                let found = locate_with(
-                    &poly,
-                    (0.0, start),
-                    (rem, end),
-                    Direction::Up,
-                    chunk,
-                    f.config.budget(),
-                );
-                (found, end)
+                (entry_on(&poly, start, (rem, end), chunk, f), end)
             }
             None => {
                 let seg = FreeSegment::with_offset_distance(
@@ -237,15 +225,7 @@ impl SegmentSolver for FreePieces<'_, '_> {
                     state,
                 );
                 let end = seg.point(rem);
-                let found = locate_with(
-                    &seg,
-                    (0.0, start),
-                    (rem, end),
-                    Direction::Up,
-                    chunk,
-                    f.config.budget(),
-                );
-                (found, end)
+                (entry_on(&seg, start, (rem, end), chunk, f), end)
             }
         };
         match f.resolve(found) {
@@ -500,4 +480,23 @@ pub(super) fn carried_slip(solvers: &StepSolvers<'_, '_>, regime: Regime) -> Sli
         Regime::Rolling => solvers.rolling.slip,
         Regime::Free => Slip::NONE,
     }
+}
+
+/// The first contact entry on a free piece `seg` from `start` (local time 0) to `end` at
+/// `rem`, with the step's capped budget.
+fn entry_on<S: Segment>(
+    seg: &S,
+    start: Point,
+    end: (f64, Point),
+    chunk: f64,
+    f: &Frame,
+) -> Search<Point> {
+    locate_with(
+        seg,
+        (0.0, start),
+        end,
+        Direction::Up,
+        chunk,
+        f.config.budget(),
+    )
 }
