@@ -37,6 +37,7 @@
 
 pub mod description;
 pub mod documentation;
+pub mod file;
 pub mod fmi2;
 pub mod fmi2_stubs;
 pub mod fmi3;
