@@ -14,7 +14,8 @@ use rotor_rub_fmu::file::{FileModel, FileUnbalance, MAX_DOFS};
 /// What the reader or the runtime refuses (the CLI's messages, naming the key), or a model of
 /// more than [`MAX_DOFS`] degrees of freedom.
 pub fn read(path: &Path) -> Result<FileModel, String> {
-    let spec = load(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    // The reader's messages name the file already.
+    let spec = load(path)?;
     file_model(&spec).map_err(|e| format!("{}: {e}", path.display()))
 }
 
