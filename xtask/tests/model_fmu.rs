@@ -325,3 +325,16 @@ fn the_model_description_names_the_model_s_dofs() {
     assert!(x2.contains(&format!(r#"guid="{token}""#)));
     assert!(!x2.contains(r#"name="time""#));
 }
+
+#[test]
+fn resource_locations_of_both_fmi_versions_are_read() {
+    use rotor_rub_fmu::file::description::resource_dir;
+    for (given, want) in [
+        ("/tmp/a b/resources/", "/tmp/a b/resources/"),
+        ("file:///tmp/a%20b/resources", "/tmp/a b/resources"),
+        ("file://localhost/tmp/r", "/tmp/r"),
+        ("file:/tmp/r/", "/tmp/r/"),
+    ] {
+        assert_eq!(resource_dir(given), PathBuf::from(want), "{given}");
+    }
+}

@@ -58,12 +58,8 @@ pub fn resource_dir(location: &str) -> PathBuf {
     let path = match location.strip_prefix("file:") {
         Some(rest) => {
             let rest = rest.strip_prefix("//localhost").unwrap_or(rest);
-            let rest = if rest.starts_with("///") {
-                &rest[2..]
-            } else {
-                rest
-            };
-            let rest = rest.strip_prefix("//").map_or(rest, |r| r);
+            // `file:///p` → `/p` (an empty authority).
+            let rest = rest.strip_prefix("//").unwrap_or(rest);
             let mut out = Vec::new();
             let bytes = rest.as_bytes();
             let mut k = 0;

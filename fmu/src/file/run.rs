@@ -312,7 +312,8 @@ impl FileRun {
                 "the communication step h = {h} must be positive and finite (s)"
             ));
         }
-        let steps = (h / self.internal_step).ceil().max(1.0);
+        // A step of whole internal steps within rounding takes that many.
+        let steps = (h / self.internal_step * (1.0 - 1e-12)).ceil().max(1.0);
         if steps > MAX_INTERNAL_STEPS as f64 {
             return Err(format!(
                 "h = {h} s needs {steps} internal steps of at most {} s: at most {MAX_INTERNAL_STEPS} are taken in one step",
