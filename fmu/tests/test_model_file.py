@@ -9,12 +9,14 @@ from __future__ import annotations
 import csv
 import os
 import subprocess
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from fmpy import read_model_description, simulate_fmu
+from fmpy.validation import validate_fmu
 
 from fmu_helpers import FMU_DIR, ROOT
 
@@ -76,6 +78,17 @@ def test_a_model_file_run_matches_the_cli(version: str, tmp_path: Path) -> None:
           f" {contacts} contacts")
     assert contacts >= 5
     assert float(np.max(np.hypot(want["rub_x"], want["rub_y"]))) > clearance
+
+
+@pytest.mark.parametrize("version", ["3.0", "2.0"])
+def test_the_model_description_is_valid(version: str) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no warning either
+        assert validate_fmu(str(FMUS[version])) == []
+        md = read_model_description(str(FMUS[version]), validate=True,
+                                    validate_variable_names=True, validate_model_structure=True)
+    assert md.fmiVersion == version
+    assert md.coSimulation.canGetAndSetFMUstate and not md.coSimulation.canSerializeFMUstate
 
 
 def test_the_description_names_the_dofs_and_a_held_force_is_the_file_s_force(
