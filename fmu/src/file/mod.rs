@@ -12,9 +12,10 @@
 //! FMU's states are the CLI's `simulate --model` states.
 //!
 //! `run.rs` is the instance's model (variables, communication step); `description.rs` its
-//! `modelDescription.xml`.
+//! `modelDescription.xml` and token; `resource.rs` finds and reads the resource.
 
 pub mod description;
+pub mod resource;
 pub mod run;
 
 use rotor_rub::linalg::{RealMatrix, SecondOrder};
