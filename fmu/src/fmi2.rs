@@ -7,12 +7,14 @@
 use core::ffi::{CStr, c_char, c_int, c_void};
 
 use crate::description::units_of_token;
+use crate::file::description::read_resource;
 use crate::instance::{
     Fmi2Logger, Instance, Log, Logger, Phase, slice, slice_mut, status, with_instance,
 };
 use crate::model::Model;
 use crate::msg;
 use crate::step::Stepped;
+use crate::units::Units;
 use crate::variables::Kind;
 
 type Component = *mut c_void;
@@ -47,7 +49,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
     name: *const c_char,
     kind: c_int,
     guid: *const c_char,
-    _resources: *const c_char,
+    resources: *const c_char,
     functions: *const Callbacks,
     _visible: c_int,
     logging_on: c_int,
@@ -69,7 +71,20 @@ pub unsafe extern "C" fn fmi2Instantiate(
         // SAFETY: as above.
         let given = (!guid.is_null()).then(|| unsafe { CStr::from_ptr(guid) });
         let units = given.and_then(|g| units_of_token(g.to_str().ok()?));
-        let refused = if kind != CO_SIMULATION {
+        // Not a planar FMU's token: the FMU built for a model file, if its resource says so.
+        // SAFETY: as above.
+        let location = (!resources.is_null()).then(|| unsafe { CStr::from_ptr(resources) });
+        let file = match (units, given.and_then(|g| g.to_str().ok())) {
+            (None, Some(token)) => read_resource(location.and_then(|l| l.to_str().ok()), token),
+            _ => Ok(None),
+        };
+        let (units, file) = match file {
+            Ok(Some(f)) => (Some(Units::Si), Ok(Some(f))),
+            other => (units, other),
+        };
+        let refused = if let Err(e) = &file {
+            Some(msg!("{e}"))
+        } else if kind != CO_SIMULATION {
             Some(msg!(
                 "this FMU supports co-simulation only (fmuType = {kind})"
             ))
@@ -83,7 +98,11 @@ pub unsafe extern "C" fn fmi2Instantiate(
         };
         match (refused, units) {
             (None, Some(units)) => {
-                Box::into_raw(Box::new(Instance::new(log, units))).cast::<c_void>()
+                let mut instance = Instance::new(log, units);
+                if let Ok(Some(f)) = file {
+                    instance.model = Model::for_file(f);
+                }
+                Box::into_raw(Box::new(instance)).cast::<c_void>()
             }
             (m, _) => {
                 log.log(
@@ -143,7 +162,7 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
             if !start_time.is_finite() {
                 return Err(msg!("start time {start_time} is not finite"));
             }
-            if tolerance_defined != 0 {
+            if tolerance_defined != 0 && i.model.file.is_none() {
                 i.model.set(201, tolerance)?;
             }
             i.model.start_time = start_time;
@@ -202,7 +221,7 @@ pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
     // SAFETY: caller's contract.
     unsafe {
         with_instance(c, |i| {
-            i.model = Model::new(i.model.units);
+            i.model = i.model.reset();
             i.phase = Phase::Instantiated;
             Ok(status::OK)
         })

@@ -8,12 +8,14 @@
 use core::ffi::{CStr, c_char, c_void};
 
 use crate::description::units_of_token;
+use crate::file::description::read_resource;
 use crate::instance::{
     Fmi3Logger, Instance, Log, Logger, Phase, slice, slice_mut, status, with_instance,
 };
 use crate::model::Model;
 use crate::msg;
 use crate::step::Stepped;
+use crate::units::Units;
 use crate::variables::Kind;
 
 type Inst = *mut c_void;
@@ -48,7 +50,7 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
 pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     name: *const c_char,
     token: *const c_char,
-    _resources: *const c_char,
+    resources: *const c_char,
     _visible: bool,
     logging_on: bool,
     event_mode_used: bool,
@@ -70,7 +72,20 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
         // SAFETY: as above.
         let given = (!token.is_null()).then(|| unsafe { CStr::from_ptr(token) });
         let units = given.and_then(|g| units_of_token(g.to_str().ok()?));
-        let refused = if event_mode_used {
+        // Not a planar FMU's token: the FMU built for a model file, if its resource says so.
+        // SAFETY: as above.
+        let location = (!resources.is_null()).then(|| unsafe { CStr::from_ptr(resources) });
+        let file = match (units, given.and_then(|g| g.to_str().ok())) {
+            (None, Some(token)) => read_resource(location.and_then(|l| l.to_str().ok()), token),
+            _ => Ok(None),
+        };
+        let (units, file) = match file {
+            Ok(Some(f)) => (Some(Units::Si), Ok(Some(f))),
+            other => (units, other),
+        };
+        let refused = if let Err(e) = &file {
+            Some(msg!("{e}"))
+        } else if event_mode_used {
             Some(msg!(
                 "event mode is not provided (hasEventMode = false): instantiate with eventModeUsed = false"
             ))
@@ -85,6 +100,9 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
         match (refused, units) {
             (None, Some(units)) => {
                 let mut instance = Instance::new(log, units);
+                if let Ok(Some(f)) = file {
+                    instance.model = Model::for_file(f);
+                }
                 instance.early_return = early_return_allowed;
                 Box::into_raw(Box::new(instance)).cast::<c_void>()
             }
@@ -128,7 +146,8 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
             if !start_time.is_finite() {
                 return Err(msg!("start time {start_time} is not finite"));
             }
-            if tolerance_defined {
+            // The model-file FMU's method runs at its own tolerance.
+            if tolerance_defined && i.model.file.is_none() {
                 i.model.set(201, tolerance)?;
             }
             i.model.start_time = start_time;
@@ -187,7 +206,7 @@ pub unsafe extern "C" fn fmi3Reset(i: Inst) -> Status {
     // SAFETY: caller's contract.
     unsafe {
         with_instance(i, |i| {
-            i.model = Model::new(i.model.units);
+            i.model = i.model.reset();
             i.phase = Phase::Instantiated;
             Ok(status::OK)
         })

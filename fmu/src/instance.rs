@@ -77,6 +77,9 @@ impl Instance {
 
     /// Check that `vr` is a variable of type `kind` (for a get or set of that type).
     pub fn check_kind(&self, vr: u32, kind: Kind) -> Result<(), Message> {
+        if let Some(f) = &self.model.file {
+            return f.check_kind(vr, &[kind]);
+        }
         let var = self.model.variable(vr)?;
         if var.kind == kind {
             Ok(())
@@ -104,6 +107,18 @@ impl Instance {
         // All or nothing: the sets apply in place, and a refused one puts the model back (a
         // copy of the planar stepper's few words, or of the ring's model; never a heap copy).
         let backup = self.model.clone();
+        if let Some(f) = &mut self.model.file {
+            for (&vr, value) in vrs.iter().zip(values) {
+                if let Err(e) = f
+                    .check_kind(vr, kinds)
+                    .and_then(|()| f.set(vr, value).map_err(|e| crate::msg!("{e}")))
+                {
+                    self.model = backup;
+                    return Err(e);
+                }
+            }
+            return Ok(());
+        }
         for (&vr, value) in vrs.iter().zip(values) {
             let applied = self.model.variable(vr).and_then(|var| {
                 if !kinds.contains(&var.kind) {
@@ -127,6 +142,13 @@ impl Instance {
         out: &mut [T],
         convert: impl Fn(f64) -> T,
     ) -> Result<(), Message> {
+        if let Some(f) = &self.model.file {
+            for (&vr, slot) in vrs.iter().zip(out.iter_mut()) {
+                f.check_kind(vr, kinds)?;
+                *slot = convert(f.get(vr).map_err(|e| crate::msg!("{e}"))?);
+            }
+            return Ok(());
+        }
         for (&vr, slot) in vrs.iter().zip(out.iter_mut()) {
             let var = self.model.variable(vr)?;
             if !kinds.contains(&var.kind) {

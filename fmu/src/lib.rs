@@ -19,6 +19,10 @@
 //!   the same table, `documentation.rs` the FMU's `documentation/index.html`; `cargo xtask fmu`
 //!   packs them with the binary into four `.fmu` archives.
 //!
+//! * `file/`: the FMU built for a model file of at most 4 DOFs (`cargo xtask fmu --model FILE`):
+//!   the same binary, the model read from the FMU's resource at instantiation, variables named
+//!   by the model's DOFs, stepped by the matrix stepper.
+//!
 //! The exported function names are FMI's (`fmi2DoStep`, `fmi3DoStep`, …).
 #![allow(non_snake_case)]
 // Errors carry their message in a fixed buffer (`message::Message`, 400 bytes) so that no error
@@ -37,6 +41,7 @@
 
 pub mod description;
 pub mod documentation;
+pub mod file;
 pub mod fmi2;
 pub mod fmi2_stubs;
 pub mod fmi3;

@@ -10,6 +10,19 @@ use crate::instance::{Phase, slice, slice_mut, status, with_instance};
 use crate::model::Model;
 use crate::{msg, state};
 
+/// The model-file FMU saves and restores its state in memory only (canSerializeFMUstate =
+/// false in its model description): its bytes would be its whole stepper, not the planar
+/// FMU's fixed-size form.
+fn no_file_serialization(model: &Model) -> Result<(), crate::message::Message> {
+    if model.file.is_some() {
+        Err(msg!(
+            "the FMU built for a model file does not serialize its state (canSerializeFMUstate = false): use get/set FMU state"
+        ))
+    } else {
+        Ok(())
+    }
+}
+
 macro_rules! saved_state {
     ($get:ident, $set:ident, $free:ident, $size:ident, $serialize:ident, $deserialize:ident) => {
         /// Save the model's state: a new state object, or the given one overwritten.
@@ -44,7 +57,10 @@ macro_rules! saved_state {
                         .cast::<Model>()
                         .as_ref()
                         .ok_or_else(|| msg!("null state"))?;
-                    if model.units != i.model.units {
+                    if model.units != i.model.units
+                        || model.file.as_ref().map(|f| &f.file)
+                            != i.model.file.as_ref().map(|f| &f.file)
+                    {
                         return Err(msg!(
                             "a state of the {:?} FMU cannot be set on the {:?} one",
                             model.units,
@@ -93,7 +109,8 @@ macro_rules! saved_state {
         ) -> i32 {
             // SAFETY: caller's contract.
             unsafe {
-                with_instance(i, |_| {
+                with_instance(i, |i| {
+                    no_file_serialization(&i.model)?;
                     *size.as_mut().ok_or_else(|| msg!("null size pointer"))? = state::BYTES;
                     Ok(status::OK)
                 })
@@ -119,6 +136,7 @@ macro_rules! saved_state {
                         .cast::<Model>()
                         .as_ref()
                         .ok_or_else(|| msg!("null state"))?;
+                    no_file_serialization(model)?;
                     if size < state::BYTES {
                         return Err(msg!(
                             "buffer of {size} bytes is too small: {} needed",
@@ -147,6 +165,7 @@ macro_rules! saved_state {
             // SAFETY: caller's contract.
             unsafe {
                 with_instance(i, |i| {
+                    no_file_serialization(&i.model)?;
                     if size != state::BYTES {
                         return Err(msg!(
                             "serialized FMU state has {size} bytes, expected {}",

@@ -11,6 +11,8 @@ use rotor_rub::stepper::RingState;
 use rotor_rub::stepper::{AnyStepper, OnCap, StepperConfig};
 use rotor_rub::{Parameter, Problem, Regime, State, field};
 
+use crate::file::FileModel;
+use crate::file::run::FileRun;
 use crate::message::Message;
 use crate::msg;
 use crate::units::{Dimension, Scales, Units};
@@ -49,6 +51,9 @@ pub struct Model {
     pub contact_count: u64,
     /// The next internal step length in model time (step control).
     pub next_step: f64,
+    /// The model-file FMU's model (`cargo xtask fmu --model`): when present, every call goes
+    /// to it (`crate::file`) and the fields above are unused.
+    pub file: Option<Box<FileRun>>,
 }
 
 impl Model {
@@ -78,6 +83,23 @@ impl Model {
             pending: false,
             contact_count: 0,
             next_step: variables::INTERNAL_STEP,
+            file: None,
+        }
+    }
+
+    /// The model of the FMU built for a model file (SI), every value at its start.
+    pub fn for_file(file: FileModel) -> Model {
+        Model {
+            file: Some(Box::new(FileRun::new(file))),
+            ..Model::new(Units::Si)
+        }
+    }
+
+    /// A fresh model of the same FMU (fmiReset): the model file's, or the planar one's.
+    pub fn reset(&self) -> Model {
+        match &self.file {
+            Some(f) => Model::for_file(f.file.clone()),
+            None => Model::new(self.units),
         }
     }
 
@@ -142,6 +164,9 @@ impl Model {
 
     /// The FMU's time in the importer's units.
     pub fn time(&self) -> f64 {
+        if let Some(f) = &self.file {
+            return f.time();
+        }
         match &self.stepper {
             Some(s) => self.scales().to_importer(Dimension::Time, s.time()),
             None => self.start_time,
@@ -151,6 +176,10 @@ impl Model {
     /// Build the stepper at the start time (end of initialization): the scales, the internal
     /// step and the whole parameter set are validated here, in the importer's units.
     pub fn initialize(&mut self) -> Result<(), Message> {
+        if let Some(f) = &mut self.file {
+            f.start_time = self.start_time;
+            return f.initialize().map_err(|e| msg!("{e}"));
+        }
         self.scales().check().map_err(|(name, value, (lo, hi))| {
             msg!("{name} = {value} is out of range: it must be in [{lo}, {hi}]")
         })?;
@@ -192,6 +221,9 @@ impl Model {
     /// to 2⁵³). A parameter reads as last set (a tunable one takes effect at the next step);
     /// the phase reads as in force (re-based when the speed changes).
     pub fn get(&self, vr: u32) -> Result<f64, Message> {
+        if let Some(f) = &self.file {
+            return f.get(vr).map_err(|e| msg!("{e}"));
+        }
         let var = self.variable(vr)?;
         Ok(match var.target {
             Target::Table(Parameter::Phase) => self

@@ -23,6 +23,9 @@ impl Model {
     /// Set variable `vr` to `value` (importer units), checked against its range and causality
     /// (see the module docs for when it takes effect); on error nothing changes.
     pub fn set(&mut self, vr: u32, value: f64) -> Result<(), Message> {
+        if let Some(f) = &mut self.file {
+            return f.set(vr, value).map_err(|e| msg!("{e}"));
+        }
         let var = self.variable(vr)?;
         let initialized = self.stepper.is_some();
         match var.role {
