@@ -59,7 +59,9 @@ def test_the_binary_needs_glibc_2_17_at_most_and_is_stripped(name: str, data: by
     assert not [s for s in sections if s.startswith(".debug") or s.startswith(".zdebug")], \
         "debug information left in the binary"
     assert ".symtab" not in sections, "not stripped: a symbol table is left"
-    assert len(data) < 2_000_000
+    # 2.08 MB stripped since the binary also carries the ring's and a model file's matrix
+    # stepper (issues 28, 29), under 2 MB before. The bound catches debug info or a std bloat.
+    assert len(data) < 3_000_000, f"{len(data) / 1e6:.2f} MB"
     exported = {s.name for s in elf.get_section_by_name(".dynsym").iter_symbols()
                 if s["st_shndx"] != "SHN_UNDEF"}
     missing = [f for f in REQUIRED if f not in exported]
