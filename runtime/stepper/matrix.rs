@@ -229,18 +229,15 @@ where
         // step restarts the method at the step's start instead.
         let start = self.propagator.state();
         let mut events = MatrixEvents::default();
-        let mut switches = 0u32;
-        let mut stopped = false;
-        loop {
+        let stopped = loop {
             match self.propagator.advance(target) {
-                Ok(None) => break,
+                Ok(None) => break false,
                 Ok(Some(event)) => {
                     events.push(event);
-                    switches += 1;
                     if stop_at_switch {
-                        stopped = true;
-                        break;
+                        break true;
                     }
+                    let switches = u32::try_from(events.total()).unwrap_or(u32::MAX);
                     if switches >= self.config.max_switches && self.propagator.time() < target {
                         self.restart(time, start);
                         return Err(StepperError::BudgetExceeded {
@@ -254,7 +251,7 @@ where
                     return Err(e.into());
                 }
             }
-        }
+        };
         if stopped {
             // Re-anchored at the switch: the next step of `dt` ends at switch + dt.
             self.anchor_time = self.propagator.time();

@@ -143,29 +143,15 @@ pub fn model_description(version: Version, units: Units) -> String {
     let token = guid(units);
     let description = escape(summary(units));
     let tool = format!("rotor-rub {} (cargo xtask fmu)", env!("CARGO_PKG_VERSION"));
-    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
-    match version {
-        Version::Fmi2 => {
-            let _ = writeln!(
-                x,
-                r#"<fmiModelDescription fmiVersion="2.0" modelName="{name}" guid="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat" numberOfEventIndicators="0">"#
-            );
-            let _ = writeln!(
-                x,
-                r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true" canNotUseMemoryManagementFunctions="true"/>"#
-            );
-        }
-        Version::Fmi3 => {
-            let _ = writeln!(
-                x,
-                r#"<fmiModelDescription fmiVersion="3.0" modelName="{name}" instantiationToken="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat">"#
-            );
-            let _ = writeln!(
-                x,
-                r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true" canGetAndSetFMUState="true" canSerializeFMUState="true" canReturnEarlyAfterIntermediateUpdate="false" hasEventMode="false" mightReturnEarlyFromDoStep="true"/>"#
-            );
-        }
-    }
+    header(
+        &mut x,
+        version,
+        [name, &token, &description, &tool],
+        Capabilities {
+            serialize: true,
+            early_return: true,
+        },
+    );
     unit_definitions(&mut x, units);
     let _ = writeln!(x, r#"  <LogCategories>"#);
     for (category, _, text) in CATEGORIES {
@@ -194,4 +180,46 @@ pub fn model_description(version: Version, units: Units) -> String {
     model_structure(&mut x, version, &vars);
     let _ = writeln!(x, r#"</fmiModelDescription>"#);
     x
+}
+
+/// What a model description's CoSimulation element offers beyond the common set.
+pub(crate) struct Capabilities {
+    /// canSerializeFMUstate / canSerializeFMUState.
+    pub serialize: bool,
+    /// FMI 3's mightReturnEarlyFromDoStep.
+    pub early_return: bool,
+}
+
+/// The XML declaration, the fmiModelDescription element's opening tag and the CoSimulation
+/// element of either FMI version (the planar/ring FMU's and a model file's).
+pub(crate) fn header(
+    x: &mut String,
+    version: Version,
+    [name, token, description, tool]: [&str; 4],
+    offers: Capabilities,
+) {
+    let (serialize, early) = (offers.serialize, offers.early_return);
+    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    match version {
+        Version::Fmi2 => {
+            let _ = writeln!(
+                x,
+                r#"<fmiModelDescription fmiVersion="2.0" modelName="{name}" guid="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat" numberOfEventIndicators="0">"#
+            );
+            let _ = writeln!(
+                x,
+                r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true" canGetAndSetFMUstate="true" canSerializeFMUstate="{serialize}" canNotUseMemoryManagementFunctions="true"/>"#
+            );
+        }
+        Version::Fmi3 => {
+            let _ = writeln!(
+                x,
+                r#"<fmiModelDescription fmiVersion="3.0" modelName="{name}" instantiationToken="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat">"#
+            );
+            let _ = writeln!(
+                x,
+                r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true" canGetAndSetFMUState="true" canSerializeFMUState="{serialize}" canReturnEarlyAfterIntermediateUpdate="false" hasEventMode="false" mightReturnEarlyFromDoStep="{early}"/>"#
+            );
+        }
+    }
 }

@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use super::FileModel;
 use super::run::{FORCE_BASE, FileKind, FileVariable, INTERNAL_STEP, POSITION_BASE, VELOCITY_BASE};
-use crate::description::{MODEL_IDENTIFIER, Version, escape};
+use crate::description::{Capabilities, Version, escape, header};
 
 /// The instantiation token (FMI 3.0) and GUID (FMI 2.0) of the FMU built for `resource` (the
 /// resource's text): FNV-1a of the crate version and the text, as `{xxxxxxxx-…}` with a
@@ -156,29 +156,15 @@ pub fn file_model_description(version: Version, file: &FileModel, resource: &str
         "rotor-rub {} (cargo xtask fmu --model)",
         env!("CARGO_PKG_VERSION")
     );
-    let _ = writeln!(x, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
-    match version {
-        Version::Fmi2 => {
-            let _ = writeln!(
-                x,
-                r#"<fmiModelDescription fmiVersion="2.0" modelName="{name}" guid="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat" numberOfEventIndicators="0">"#
-            );
-            let _ = writeln!(
-                x,
-                r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true" canGetAndSetFMUstate="true" canSerializeFMUstate="false" canNotUseMemoryManagementFunctions="true"/>"#
-            );
-        }
-        Version::Fmi3 => {
-            let _ = writeln!(
-                x,
-                r#"<fmiModelDescription fmiVersion="3.0" modelName="{name}" instantiationToken="{token}" description="{description}" generationTool="{tool}" variableNamingConvention="flat">"#
-            );
-            let _ = writeln!(
-                x,
-                r#"  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true" canGetAndSetFMUState="true" canSerializeFMUState="false" canReturnEarlyAfterIntermediateUpdate="false" hasEventMode="false" mightReturnEarlyFromDoStep="false"/>"#
-            );
-        }
-    }
+    header(
+        &mut x,
+        version,
+        [&name, &token, &description, &tool],
+        Capabilities {
+            serialize: false,
+            early_return: false,
+        },
+    );
     let _ = writeln!(x, r#"  <UnitDefinitions>"#);
     for (unit, base) in [
         ("s", r#"s="1""#),
