@@ -26,6 +26,20 @@ pub fn phasor(model: &ModelParams, t: f64) -> Phasor {
     Phasor { ct, st }
 }
 
+/// `phasor`, the forcing direction at some time, turned by the phase the forcing advances in a
+/// further time `s` at constant speed (η·s): the direction at the later time, as [`phasor`]
+/// gives it to rounding. For a short `s` the angle needs no argument reduction, so this is the
+/// cheaper of the two inside a step or a sub-step.
+#[inline]
+pub fn phasor_after(model: &ModelParams, phasor: &Phasor, s: f64) -> Phasor {
+    let (sd, cd) = math::sin_cos(model.speed_ratio * s);
+    let (c0, s0) = (phasor.ct, phasor.st);
+    Phasor {
+        ct: c0 * cd - s0 * sd,
+        st: s0 * cd + c0 * sd,
+    }
+}
+
 /// Which field acts: a regime, and in slipping contact the slip direction σ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Field {

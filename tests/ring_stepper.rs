@@ -400,3 +400,80 @@ fn the_slip_direction_follows_the_switches() {
         "{reversals} reversals, {seen:?}"
     );
 }
+
+/// Words restore the side: right after each `reverse` (w = 0 to rounding, its sign no guide)
+/// the stepper restored from its words slips in the direction the original does, and both step
+/// on through the same switches. A fresh start at the same time and state, which decides the
+/// side anew, picks another one there (the trap). Corrupt side words are typed errors.
+#[test]
+fn words_restore_the_slip_direction() {
+    let problem = case("reversal").problem();
+    let config = MatrixStepperConfig::with_dt(1e-2);
+    let mut s = RingStepper::new(&problem, config).expect("starts");
+    let (mut reversals, mut afresh_differs) = (0, 0);
+    for _ in 0..3000 {
+        let r = s.step_to_switch(1e-2).expect("a step");
+        let Some(e) = r.events.iter().next() else {
+            continue;
+        };
+        if e.kind != rotor_rub::EventKind::Reverse {
+            continue;
+        }
+        reversals += 1;
+        let words = s.to_words();
+        let mut restored = RingStepper::from_words(&words).expect("restores");
+        assert_eq!(restored.regime(), s.regime());
+        assert_eq!(
+            restored.slip_direction(),
+            s.slip_direction(),
+            "σ after the reversal at {}",
+            e.time
+        );
+        let model = Box::new(ring_model(&problem.params).expect("a ring"));
+        let options = rotor_rub::method::Options::with_method(Method::Taylor);
+        let state = rotor_rub::matrix::MatrixState::full(s.full_state());
+        let afresh = MatrixPropagator::new(&*model, s.time(), state, &options).expect("starts");
+        if afresh.regime() != s.regime() || afresh.slip() != s.slip_direction() {
+            afresh_differs += 1;
+        }
+        let mut original = s.snapshot();
+        for _ in 0..20 {
+            let a = original.step_to_switch(1e-2).expect("a step");
+            let b = restored.step_to_switch(1e-2).expect("a step");
+            let kinds = |r: &rotor_rub::stepper::matrix::MatrixStepReport<8>| {
+                r.events.iter().map(|e| e.kind).collect::<Vec<_>>()
+            };
+            assert_eq!(kinds(&a), kinds(&b), "the same switches after {}", e.time);
+            assert!((a.time - b.time).abs() < 1e-8, "{} vs {}", a.time, b.time);
+        }
+    }
+    println!("{reversals} reversals; a fresh start would pick another side at {afresh_differs}");
+    assert!(reversals > 0, "the case reverses");
+    assert!(
+        afresh_differs > 0,
+        "the trap the words avoid: deciding the side afresh after a reversal"
+    );
+
+    let mut bad = s.to_words();
+    let at = bad
+        .iter()
+        .rposition(|&w| w != 0)
+        .expect("the marker is the last word written");
+    bad[at - 2] = 7;
+    assert!(matches!(
+        RingStepper::from_words(&bad),
+        Err(StepperError::InvalidConfig {
+            what: "ring stepper regime",
+            ..
+        })
+    ));
+    let mut bad = s.to_words();
+    bad[at - 1] = 0.5f64.to_bits();
+    assert!(matches!(
+        RingStepper::from_words(&bad),
+        Err(StepperError::InvalidConfig {
+            what: "ring stepper slip direction",
+            ..
+        })
+    ));
+}

@@ -90,6 +90,36 @@ impl<Y: System, S: Solvers<Y::State>> Piecewise<S, Y> {
         })
     }
 
+    /// Start `system` on a side already known: at `at.time` and `at.state` in `at.regime` with
+    /// slip direction `at.slip` (a run continued from its saved position, where deciding the
+    /// side afresh could read σ from a slip velocity that is 0 to rounding right after a
+    /// `reverse`). `build` as for [`Piecewise::start`]; the side is the caller's to get right.
+    ///
+    /// # Errors
+    /// As [`Piecewise::start`].
+    #[inline(always)]
+    pub fn start_on(
+        system: Y,
+        at: SegmentStart<Y::State>,
+        budget: Option<StepBudget>,
+        build: impl FnOnce(SegmentStart<Y::State>) -> Result<S, PropagationError>,
+    ) -> Result<Self, PropagationError> {
+        if !system.within_bounds(&at.state) {
+            return Err(system.diverged(at.time, &at.state));
+        }
+        let solvers = build(at)?;
+        Ok(Piecewise {
+            solvers,
+            system,
+            budget,
+            time: at.time,
+            state: at.state,
+            regime: at.regime,
+            slip: at.slip,
+            failure: None,
+        })
+    }
+
     /// A propagation already under way: at `(time, state)` in `regime` with slip direction
     /// `slip`, the solvers' solver of `regime` already started there (a fixed-step caller that
     /// keeps the position between its steps and runs the driver over each, `crate::stepper`).

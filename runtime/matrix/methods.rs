@@ -5,7 +5,7 @@
 //! | method | free flight | contact, rolling |
 //! |---|---|---|
 //! | `dop853`, `rk45` | the same integrator on the whole system ([`NumericalSolver`]) | same |
-//! | `hybrid` | exact ([`FreeFlight`]) | DOP853 ([`NumericalSolver`]) |
+//! | `hybrid` | exact ([`FreeFlight`]) | DOP853, dense output deferred ([`Dop853Contact`]) |
 //! | `taylor` | exact | Taylor series of the generated station law ([`TaylorContact`]) |
 //! | `analytic` | exact | the Taylor segment at the analytic method's tolerance |
 //!
@@ -19,6 +19,7 @@
 
 use core::ops::Deref;
 
+use super::contact::Dop853Contact;
 use super::error::MatrixError;
 use super::free::ExactFree;
 use super::model::MatrixModel;
@@ -27,7 +28,7 @@ use super::numerical::NumericalFree;
 use super::numerical::NumericalSolver;
 use super::state::MatrixState;
 use super::taylor::TaylorContact;
-use crate::driver::{Located, Piecewise, SegmentSolver, Solvers, System};
+use crate::driver::{Located, Piecewise, SegmentSolver, SegmentStart, Solvers, System};
 use crate::method::{ContactScheme, Method, Options};
 use crate::propagate::{Event, Propagate, PropagationError, Regime};
 use crate::reference::{Dop853, REFERENCE_BUDGET, Rk45, Scheme};
@@ -68,11 +69,37 @@ impl<St, F: SegmentSolver<St>, C: SegmentSolver<St>> Solvers<St> for Split<F, C>
 pub type NumericalPropagator<S, M, const CAP: usize> = Piecewise<NumericalSolver<S, M, CAP>, M>;
 
 /// `hybrid`: free flight by `F`, contact and rolling by DOP853.
-pub type HybridPropagator<F, M, const CAP: usize> =
-    Piecewise<Split<F, NumericalSolver<Dop853, M, CAP>>, M>;
+pub type HybridPropagator<F, M, const CAP: usize> = Piecewise<Split<F, Dop853Contact<M, CAP>>, M>;
 
 /// `taylor` and `analytic`: free flight by `F`, contact and rolling by Taylor series.
 pub type TaylorPropagator<F, M, const CAP: usize> = Piecewise<Split<F, TaylorContact<M, CAP>>, M>;
+
+/// Where a method starts: at a time and state, on the side the friction rules decide there
+/// ([`Piecewise::start`]), or on a side already known ([`Piecewise::start_on`]).
+#[derive(Clone, Copy)]
+enum Begin<const CAP: usize> {
+    Decide(f64, MatrixState<CAP>),
+    On(SegmentStart<MatrixState<CAP>>),
+}
+
+impl<const CAP: usize> Begin<CAP> {
+    /// The driver started here with the solvers `build` makes.
+    fn piecewise<S, M: System<State = MatrixState<CAP>>>(
+        self,
+        model: M,
+        build: impl FnOnce(SegmentStart<MatrixState<CAP>>) -> Result<S, PropagationError>,
+    ) -> Result<Piecewise<S, M>, PropagationError>
+    where
+        S: Solvers<MatrixState<CAP>>,
+    {
+        match self {
+            Begin::Decide(time, start) => {
+                Piecewise::start(model, time, start, Some(REFERENCE_BUDGET), build)
+            }
+            Begin::On(at) => Piecewise::start_on(model, at, Some(REFERENCE_BUDGET), build),
+        }
+    }
+}
 
 /// Start a whole-system numerical method on `model` at `(time, start)` with rtol = atol = `tol`
 /// (unchecked: the registry's range is the caller's).
@@ -89,15 +116,27 @@ where
     S: Scheme<CAP>,
     M: Deref<Target = MatrixModel<CAP>> + Clone,
 {
+    numerical_from(model, Begin::Decide(time, start), tol)
+}
+
+fn numerical_from<S, M, const CAP: usize>(
+    model: M,
+    begin: Begin<CAP>,
+    tol: f64,
+) -> Result<NumericalPropagator<S, M, CAP>, PropagationError>
+where
+    S: Scheme<CAP>,
+    M: Deref<Target = MatrixModel<CAP>> + Clone,
+{
     let solver_model = model.clone();
-    Piecewise::start(model, time, start, Some(REFERENCE_BUDGET), |at| {
+    begin.piecewise(model, |at| {
         let mut solver = NumericalSolver::new(solver_model, tol);
         solver.start(at)?;
         Ok(solver)
     })
 }
 
-/// Start `hybrid` (contact: [`NumericalSolver`], DOP853) or `taylor` / `analytic` (contact:
+/// Start `hybrid` (contact: [`Dop853Contact`]) or `taylor` / `analytic` (contact:
 /// [`TaylorContact`]) on `model` with free-flight solver `free` and the contact solver
 /// `contact` (neither started: the one of the start's regime is started here).
 ///
@@ -105,8 +144,8 @@ where
 /// As [`Piecewise::start`].
 pub fn split<F, C, M, const CAP: usize>(
     model: M,
-    mut free: F,
-    mut contact: C,
+    free: F,
+    contact: C,
     time: f64,
     start: MatrixState<CAP>,
 ) -> Result<Piecewise<Split<F, C>, M>, PropagationError>
@@ -115,7 +154,21 @@ where
     C: SegmentSolver<MatrixState<CAP>>,
     M: Deref<Target = MatrixModel<CAP>>,
 {
-    Piecewise::start(model, time, start, Some(REFERENCE_BUDGET), |at| {
+    split_from(model, free, contact, Begin::Decide(time, start))
+}
+
+fn split_from<F, C, M, const CAP: usize>(
+    model: M,
+    mut free: F,
+    mut contact: C,
+    begin: Begin<CAP>,
+) -> Result<Piecewise<Split<F, C>, M>, PropagationError>
+where
+    F: SegmentSolver<MatrixState<CAP>>,
+    C: SegmentSolver<MatrixState<CAP>>,
+    M: Deref<Target = MatrixModel<CAP>>,
+{
+    begin.piecewise(model, |at| {
         match at.regime {
             Regime::Free => free.start(at)?,
             Regime::Contact | Regime::Rolling => contact.start(at)?,
@@ -168,6 +221,26 @@ where
         start: MatrixState<CAP>,
         options: &Options,
     ) -> Result<Self, PropagationError> {
+        Self::begin(model, Begin::Decide(time, start), options)
+    }
+
+    /// As [`MatrixPropagator::new`], continuing a run at `at` on the side it was on: in
+    /// `at.regime` with slip direction `at.slip` (what [`Propagate::regime`] and
+    /// [`MatrixPropagator::slip`] reported there), not the side the start rules would decide
+    /// afresh — right after a `reverse` the slip velocity is 0 to rounding and its sign says
+    /// nothing. A side the state is not on is the caller's error.
+    ///
+    /// # Errors
+    /// As [`MatrixPropagator::new`].
+    pub fn resume(
+        model: M,
+        at: SegmentStart<MatrixState<CAP>>,
+        options: &Options,
+    ) -> Result<Self, PropagationError> {
+        Self::begin(model, Begin::On(at), options)
+    }
+
+    fn begin(model: M, begin: Begin<CAP>, options: &Options) -> Result<Self, PropagationError> {
         options.validate()?;
         if options.method == Method::Analytic {
             if options.contact_scheme != ContactScheme::Exprb43 {
@@ -185,20 +258,24 @@ where
                 .into());
             }
         }
-        check_start(&model, time, &start)?;
+        let (time, start) = match &begin {
+            Begin::Decide(time, start) => (*time, start),
+            Begin::On(at) => (at.time, &at.state),
+        };
+        check_start(&model, time, start)?;
         let tol = options.tolerance();
         let inner = match options.method {
-            Method::Dop853 => Inner::Dop853(numerical(model, time, start, tol)?),
-            Method::Rk45 => Inner::Rk45(numerical(model, time, start, tol)?),
+            Method::Dop853 => Inner::Dop853(numerical_from(model, begin, tol)?),
+            Method::Rk45 => Inner::Rk45(numerical_from(model, begin, tol)?),
             Method::Hybrid => {
                 let free = FreeFlight::new(model.clone())?;
-                let contact = NumericalSolver::new(model.clone(), tol);
-                Inner::Hybrid(split(model, free, contact, time, start)?)
+                let contact = Dop853Contact::new(model.clone(), tol);
+                Inner::Hybrid(split_from(model, free, contact, begin)?)
             }
             Method::Taylor | Method::Analytic => {
                 let free = FreeFlight::new(model.clone())?;
                 let contact = TaylorContact::new(model.clone(), tol);
-                Inner::Taylor(split(model, free, contact, time, start)?)
+                Inner::Taylor(split_from(model, free, contact, begin)?)
             }
         };
         Ok(MatrixPropagator {

@@ -14,6 +14,8 @@
 //! - `free/`: exact free flight and its contact search ([`ExactFree`]).
 //! - `error.rs`: [`MatrixError`].
 //! - `switches.rs`: the switch functions with their rates ([`MatrixSwitches`]).
+//! - `contact.rs`: `hybrid`'s contact and rolling by DOP853 with deferred dense output
+//!   ([`Dop853Contact`]).
 //! - `numerical.rs`: DOP853 and Dormand–Prince 5(4) on the whole system, every regime
 //!   ([`NumericalSolver`]); the stand-in free flight ([`NumericalFree`]).
 //! - `series.rs`, `taylor.rs`: Taylor series of the contact regimes, the station's law
@@ -21,6 +23,7 @@
 //! - `methods.rs`: every method, and [`MatrixPropagator`] dispatching them by
 //!   [`crate::Method`].
 
+mod contact;
 mod error;
 mod field;
 pub mod free;
@@ -35,6 +38,7 @@ mod switches;
 mod system;
 mod taylor;
 
+pub use contact::Dop853Contact;
 pub use error::MatrixError;
 pub use field::StationMotion;
 pub use free::{ExactFree, FreeWork};

@@ -67,10 +67,25 @@ impl<const CAP: usize> OdeSystem<CAP> for MatrixField<'_, CAP> {
 }
 
 /// The largest step: a quarter of the shorter of the forcing period and the period of the
-/// model's fastest free mode (its frequency bounded from |λ|² ≤ c|λ| + k, c and k the ∞-norms
-/// of M⁻¹(C + ηG) and M⁻¹K, the lower blocks of A), so that the switching function is sampled
-/// at least 4·[`SUBDIVISIONS`] times per period even at loose tolerances.
+/// model's fastest free mode ([`fastest_rate`] of the free field), so that the switching
+/// function is sampled at least 4·[`SUBDIVISIONS`] times per period even at loose tolerances.
 pub fn max_step<const CAP: usize>(model: &MatrixModel<CAP>) -> f64 {
+    let mut period = core::f64::consts::TAU / model.speed_ratio();
+    let fastest = fastest_rate(model, 0.0);
+    if fastest > 0.0 {
+        period = period.min(core::f64::consts::TAU / fastest);
+    }
+    if period > 0.0 && period.is_finite() {
+        0.25 * period
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// A bound on the fastest mode's frequency of a field whose stiffness is the model's plus
+/// `extra` (an ∞-norm added to the stiffness rows): from |λ|² ≤ c|λ| + k, c and k the ∞-norms
+/// of M⁻¹(C + ηG) and M⁻¹K (+ `extra`), the lower blocks of A.
+pub(crate) fn fastest_rate<const CAP: usize>(model: &MatrixModel<CAP>, extra: f64) -> f64 {
     let n = model.dofs();
     let a = model.first_order();
     let (mut c, mut k) = (0.0f64, 0.0f64);
@@ -81,16 +96,8 @@ pub fn max_step<const CAP: usize>(model: &MatrixModel<CAP>) -> f64 {
         k = k.max(stiffness);
         c = c.max(damping);
     }
-    let fastest = 0.5 * (c + math::sqrt(c * c + 4.0 * k));
-    let mut period = core::f64::consts::TAU / model.speed_ratio();
-    if fastest > 0.0 {
-        period = period.min(core::f64::consts::TAU / fastest);
-    }
-    if period > 0.0 && period.is_finite() {
-        0.25 * period
-    } else {
-        f64::INFINITY
-    }
+    let k = k + extra;
+    0.5 * (c + math::sqrt(c * c + 4.0 * k))
 }
 
 /// A switch found in a step: time, state, kind.
@@ -188,6 +195,7 @@ where
         let integrator = &mut self.integrator;
         let found = first_switch(
             &switches,
+            SUBDIVISIONS,
             &step.dense,
             (&step.y0, &step.y1),
             |t| integrator.redo(&sys, &step, t),
@@ -262,12 +270,15 @@ impl<M: Deref<Target = MatrixModel<CAP>>, const CAP: usize> SegmentSolver<Matrix
     }
 }
 
-/// The first switch of `switches` in the step `(t0, y0) → (t1, y1)` with dense output `dense`:
-/// the earliest crossing of any switch function on the dense output, put on the step solution
+/// The first switch of `switches` in the step `(t0, y0) → (t1, y1)` with dense output `dense`,
+/// examined in `subdivisions` sub-intervals (with one, the dense output is evaluated only when
+/// the end states show a crossing or a minimum): the earliest crossing of any switch function
+/// on the dense output, put on the step solution
 /// (`redo` recomputes the state at a time by an explicit step from the step start, `rhs` is the
 /// field) and classified; touches of w = 0 are looked past.
 pub(crate) fn first_switch<const CAP: usize, D: Interpolant<CAP>>(
     switches: &MatrixSwitches<'_, CAP>,
+    subdivisions: usize,
     dense: &D,
     (y0, y1): (&[f64; CAP], &[f64; CAP]),
     mut redo: impl FnMut(f64) -> [f64; CAP],
@@ -281,7 +292,7 @@ pub(crate) fn first_switch<const CAP: usize, D: Interpolant<CAP>>(
         let mut first: Option<(f64, Function)> = None;
         for f in functions.iter().flatten() {
             let found = first_crossing_subdivided(
-                SUBDIVISIONS,
+                subdivisions,
                 &window,
                 &y_from,
                 y1,

@@ -54,6 +54,7 @@ pub use propagator::{
 pub use rk45::{Rk45, Rk45Dense};
 pub(crate) use scheme::After;
 pub use scheme::{Attempt, Controller, Interpolant, Scheme, StepStart, Tolerance};
+pub(crate) use switch::LazyDense;
 pub use switch::{Found, Function, Switches, switch_in_deferred_step, switch_in_step};
 pub use system::{PhasorRotorSystem, PreparedRotorSystem, RotorSystem, inside_measure};
 

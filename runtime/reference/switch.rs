@@ -305,11 +305,28 @@ fn on_step_solution<const N: usize>(
     polish_switch(t0, t1, max_shift, (t, y), redo, rhs, measure)
 }
 
-/// The dense output of a [`Dop853Step`], built on first use.
-struct LazyDense<'a, F: ?Sized, const N: usize> {
+/// The dense output of a [`Dop853Step`], built on first use (`into_inner` hands it on when it
+/// was).
+pub(crate) struct LazyDense<'a, F: ?Sized, const N: usize> {
     sys: &'a F,
     step: &'a Dop853Step<N>,
     dense: OnceCell<Dop853Dense<N>>,
+}
+
+impl<'a, F: ?Sized, const N: usize> LazyDense<'a, F, N> {
+    /// The dense output of `step` (taken on `sys`), not built yet.
+    pub(crate) fn new(sys: &'a F, step: &'a Dop853Step<N>) -> Self {
+        LazyDense {
+            sys,
+            step,
+            dense: OnceCell::new(),
+        }
+    }
+
+    /// The dense output if it was built.
+    pub(crate) fn into_inner(self) -> Option<Dop853Dense<N>> {
+        self.dense.into_inner()
+    }
 }
 
 impl<F: OdeSystem<N> + ?Sized, const N: usize> Interpolant<N> for LazyDense<'_, F, N> {
@@ -341,11 +358,7 @@ pub fn switch_in_deferred_step<F, const N: usize>(
 where
     F: OdeSystem<N> + ?Sized,
 {
-    let lazy = LazyDense {
-        sys,
-        step,
-        dense: OnceCell::new(),
-    };
+    let lazy = LazyDense::new(sys, step);
     let f0 = step.f0();
     let found = first_switch(
         switches,
@@ -355,7 +368,7 @@ where
         |t| integrator.redo_from(sys, step.t0, &step.y0, &f0, t),
         |t, y| sys.rhs(t, y),
     );
-    if let Some(d) = lazy.dense.into_inner() {
+    if let Some(d) = lazy.into_inner() {
         *dense = Some(d);
     }
     found

@@ -42,6 +42,7 @@ use core::ops::Deref;
 
 use super::MAX_STEP;
 use super::report::{EventList, StepperError};
+use crate::driver::SegmentStart;
 use crate::matrix::{MatrixModel, MatrixPropagator, MatrixState};
 use crate::method::{Method, Options};
 use crate::propagate::{Event, EventKind, Propagate, PropagationError, Regime};
@@ -180,14 +181,32 @@ where
     ) -> Result<Self, StepperError> {
         config.validate()?;
         let propagator = MatrixPropagator::new(model.clone(), time, start, &config.options())?;
-        Ok(MatrixStepper {
+        Ok(Self::with(model, config, propagator))
+    }
+
+    /// As [`MatrixStepper::new`], continuing a run at `at` on the side it was on
+    /// ([`MatrixPropagator::resume`]: the regime and slip direction given, not decided afresh;
+    /// a stepper's saved words).
+    pub fn resume(
+        model: M,
+        at: SegmentStart<MatrixState<CAP>>,
+        config: MatrixStepperConfig,
+    ) -> Result<Self, StepperError> {
+        config.validate()?;
+        let propagator = MatrixPropagator::resume(model.clone(), at, &config.options())?;
+        Ok(Self::with(model, config, propagator))
+    }
+
+    fn with(model: M, config: MatrixStepperConfig, propagator: MatrixPropagator<M, CAP>) -> Self {
+        let time = propagator.time();
+        MatrixStepper {
             model,
             config,
             propagator,
             dt: config.dt,
             anchor_time: time,
             anchor_steps: 0,
-        })
+        }
     }
 
     /// Advance exactly `dt` (finite, in (0, [`MAX_STEP`]]): the end state and regime and the
@@ -226,8 +245,13 @@ where
         };
         let target = (anchor_time + anchor_steps as f64 * dt).max(time);
         // No copy of the propagator per step (it would be 60–75 % of a step's cost): a failed
-        // step restarts the method at the step's start instead.
-        let start = self.propagator.state();
+        // step restarts the method at the step's start, on the side it was on, instead.
+        let start = SegmentStart {
+            regime: self.propagator.regime(),
+            slip: self.propagator.slip(),
+            time,
+            state: self.propagator.state(),
+        };
         let mut events = MatrixEvents::default();
         let stopped = loop {
             match self.propagator.advance(target) {
@@ -239,7 +263,7 @@ where
                     }
                     let switches = u32::try_from(events.total()).unwrap_or(u32::MAX);
                     if switches >= self.config.max_switches && self.propagator.time() < target {
-                        self.restart(time, start);
+                        self.restart(start);
                         return Err(StepperError::BudgetExceeded {
                             time,
                             substeps: switches,
@@ -247,7 +271,7 @@ where
                     }
                 }
                 Err(e) => {
-                    self.restart(time, start);
+                    self.restart(start);
                     return Err(e.into());
                 }
             }
@@ -269,14 +293,12 @@ where
         })
     }
 
-    /// Back to `(time, start)` after a failed step: the method restarted there (its regime
-    /// decided afresh, as at any start; the time anchor was not moved). A start the method
-    /// refuses (it was the method's own state: not expected) leaves the propagator as it is.
+    /// Back to `start` after a failed step: the method restarted there on the side it was on
+    /// ([`MatrixPropagator::resume`]; the time anchor was not moved). A start the method
+    /// refuses (it was the method's own position: not expected) leaves the propagator as it is.
     #[cold]
-    fn restart(&mut self, time: f64, start: MatrixState<CAP>) {
-        if let Ok(p) =
-            MatrixPropagator::new(self.model.clone(), time, start, &self.config.options())
-        {
+    fn restart(&mut self, start: SegmentStart<MatrixState<CAP>>) {
+        if let Ok(p) = MatrixPropagator::resume(self.model.clone(), start, &self.config.options()) {
             self.propagator = p;
         }
     }

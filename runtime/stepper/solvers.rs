@@ -29,9 +29,10 @@ use crate::analytic::linear::ContactConstants;
 use crate::analytic::schemes::{SubStep, exprb2_with, exprb43_with};
 use crate::analytic::segment::{Point, Segment};
 use crate::analytic::switch::{Budget, Direction, Search};
+use crate::coefficients::Phasor;
 use crate::driver::{ByRegime, Located, SegmentSolver, within_bounds};
+use crate::field;
 use crate::geometry;
-use crate::math;
 use crate::params::{Params, State};
 use crate::propagate::{Event, EventKind, PropagationError, Regime};
 use crate::registration::ContactScheme;
@@ -198,11 +199,9 @@ impl SegmentSolver for FreePieces<'_, '_> {
         let phasor = if s == 0.0 {
             f.phasor
         } else {
-            // Turned by η·s (a small angle: no argument reduction), as `field::phasor` to
-            // rounding.
-            let (sd, cd) = math::sin_cos(f.params.speed_ratio * s);
-            let (c0, s0) = f.phasor;
-            (c0 * cd - s0 * sd, s0 * cd + c0 * sd)
+            let (ct, st) = f.phasor;
+            let turned = field::phasor_after(model, &Phasor { ct, st }, s);
+            (turned.ct, turned.st)
         };
         // The piece as its Taylor polynomial (`polynomial.rs`: the free closed form to far
         // below rounding, cheaper to evaluate); a piece from the step start ends where the
