@@ -68,7 +68,9 @@ def orbit(
 ) -> "Axes":
     """The orbit of ``run`` (its samples), the clearance circle of radius 1 around the stator
     centre (``offset``, default the run's problem's ``offset_x``, ``offset_y``), and its switches
-    marked by kind. ``from_time`` drops what comes before (a transient)."""
+    marked by kind. ``from_time`` drops what comes before (a transient). With a stator ring of
+    mass, the ring centre's orbit too, and the rotor's motion relative to the ring, the one
+    that meets the clearance circle at the contacts."""
     ax = _axes(ax)
     if offset is None:
         offset = run.problem.offset
@@ -83,9 +85,14 @@ def orbit(
             ls="--", label="clearance")
     if state.shape[1] == 8:
         # A stator ring with mass (stator_mass_ratio > 0): its centre (xs, ys) beside the
-        # rotor's orbit, around the stator centre it rests at.
+        # rotor's orbit, around the stator centre it rests at; and the rotor relative to the
+        # ring (x − xs, y − ys), which touches where it meets the clearance circle (the circle
+        # is the contact boundary for the relative motion, not for the rotor's own orbit when
+        # the ring moves).
         ax.plot(offset[0] + state[:, 4], offset[1] + state[:, 5], lw=0.8, color="tab:orange",
                 label="ring centre")
+        ax.plot(state[:, 0] - state[:, 4], state[:, 1] - state[:, 5], lw=0.6,
+                color="tab:green", ls=":", label="rotor − ring (contact on the circle)")
     if events and len(run.events):
         ev_keep = (np.ones(len(run.events), dtype=bool) if from_time is None
                    else run.events.time >= from_time)

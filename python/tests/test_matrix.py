@@ -460,7 +460,17 @@ def test_the_orbit_plot_draws_the_ring(tmp_path):
 
     run = rr.simulate(stator_mass_ratio=1.0, periods=5, samples=201, method="hybrid")
     ax = plot.orbit(run)
-    labels = [line.get_label() for line in ax.get_lines()]
-    assert "ring centre" in labels
+    lines = {line.get_label(): line for line in ax.get_lines()}
+    assert "ring centre" in lines
+    # The relative orbit is the one the clearance circle bounds: at every contact start it is
+    # on the circle (|x − xs − ε̂| = 1), where the rotor's own orbit is not once the ring moves.
+    relative = lines["rotor − ring (contact on the circle)"].get_xydata()
+    s = run.samples.state
+    assert np.allclose(relative, np.column_stack([s[:, 0] - s[:, 4], s[:, 1] - s[:, 5]]))
+    enters = run.events.state[run.events.kind == "enter"]
+    assert len(enters) > 0
+    ox, oy = run.problem.offset
+    rel = np.hypot(enters[:, 0] - enters[:, 4] - ox, enters[:, 1] - enters[:, 5] - oy)
+    assert np.allclose(rel, 1.0, atol=1e-9)
     ax.figure.savefig(tmp_path / "ring_orbit.png")
     plt.close(ax.figure)

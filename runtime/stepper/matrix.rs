@@ -22,7 +22,8 @@
 //! search chunk). A step that would need more switches is refused with
 //! [`StepperError::BudgetExceeded`], a stretch that would need more integration steps with
 //! [`crate::PropagationError::StepSizeUnderflow`]; in both cases, and on any other error, the
-//! stepper goes back to the step's start time and state, its method restarted there (a new
+//! stepper goes back to the step's start time and state, its method restarted there on the
+//! side it was on (the regime and slip direction kept, [`MatrixPropagator::resume`]; a new
 //! free-flight decomposition, paid on failure only: copying the propagator before every step
 //! instead would be 60–75 % of a step's cost; stepping on agrees with an uninterrupted run
 //! within the method's tolerance). There is no degraded mode: a shorter step gets through.
