@@ -5,7 +5,8 @@
 //! storage, no heap), not of the runtime's types; the stator ring with mass is its n = 4
 //! instance ([`ring_model`]).
 //!
-//! - `model.rs`: the statement, checked ([`MatrixModel`], [`Station`], [`Unbalance`]).
+//! - `model.rs`: the statement, checked ([`MatrixModel`], [`Station`], [`Unbalance`]);
+//!   `checks.rs`: its checks.
 //! - `state.rs`: y = (q, q') ([`MatrixState`]).
 //! - `linear.rs`: A's lower rows by their nonzero entries (the fields' linear part).
 //! - `field.rs`: the regime fields and the station's quantities (generated station law).
@@ -23,6 +24,7 @@
 //! - `methods.rs`: every method, and [`MatrixPropagator`] dispatching them by
 //!   [`crate::Method`].
 
+mod checks;
 mod contact;
 mod error;
 mod field;
