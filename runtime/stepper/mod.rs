@@ -328,6 +328,34 @@ impl Stepper {
         self.transition.dt()
     }
 
+    /// The contact sub-steps a step of [`Stepper::precomputed_dt`] takes in contact: the
+    /// configured `contact_substeps`, or more on a stator too stiff for them, so that every
+    /// contact and rolling sub-step is at most [`polynomial::MAX_RATE_STEP`]/ρ_c long (ρ_c the
+    /// contact mode's rate bound, [`Stepper::contact_rate`]). When it exceeds `max_substeps`,
+    /// steps in contact are capped ([`StepReport::capped`], or [`StepperError::BudgetExceeded`]
+    /// with [`OnCap::Fail`]): take a shorter step, at most [`Stepper::largest_resolved_dt`].
+    pub fn contact_substeps(&self) -> u32 {
+        self.config
+            .contact_substeps
+            .max(self.transition.resolving_substeps())
+    }
+
+    /// ρ_c = ν + √(ν² + S), S the generated bound of the linearized contact stiffness ‖Kl‖₂
+    /// over every contact position, friction included (`max_contact_stiffness`): the fastest
+    /// rate of the contact mode (1/time), about √(1 + K̂) without friction.
+    pub fn contact_rate(&self) -> f64 {
+        self.transition.contact_rate()
+    }
+
+    /// The longest step whose contact sub-steps fit the configured `max_substeps`:
+    /// `max_substeps`·[`polynomial::MAX_RATE_STEP`]/ρ_c, at most [`MAX_STEP`] (a step in
+    /// contact of at most this length is never capped for the contact mode's sake; several
+    /// switches in one step can still use up the cap).
+    pub fn largest_resolved_dt(&self) -> f64 {
+        let rate = self.transition.contact_rate();
+        (f64::from(self.config.max_substeps) * polynomial::MAX_RATE_STEP / rate).min(MAX_STEP)
+    }
+
     /// The fast path: one affine map and the switch bound; `None` when the bound cannot prove
     /// the step contact-free.
     #[inline]

@@ -105,9 +105,10 @@ impl ContactResolution {
     }
 }
 
-/// ⌈rate·dt / [`MAX_RATE_STEP`]⌉ clamped to [1, [`MAX_SUBSTEPS`]] (the cast saturates).
+/// ⌈rate·dt / [`MAX_RATE_STEP`] − 1e-9⌉ clamped to [1, [`MAX_SUBSTEPS`]] (the cast saturates;
+/// the slack keeps a dt of exactly k·[`MAX_RATE_STEP`]/rate at k sub-steps despite rounding).
 fn substeps_for(rate: f64, dt: f64) -> u32 {
-    let q = rate * dt / MAX_RATE_STEP;
+    let q = rate * dt / MAX_RATE_STEP - 1e-9;
     let k = q as u32;
     let k = if f64::from(k) < q {
         k.saturating_add(1)
