@@ -19,14 +19,17 @@
 //!   method's kernel (`analytic::switch`) with the stepper's hard caps — on the piece's Taylor
 //!   polynomial ([`polynomial`]: the free closed form to below rounding, a Horner sum per
 //!   evaluation); a piece from the step start ends at the free map's state.
-//! * **Contact**: `contact_substeps` sub-steps of exprb43 (or exprb2) per `dt`, each
-//!   re-linearized at its start; a contact exit is proved absent by the same two-parabola test
+//! * **Contact**: `contact_substeps` sub-steps of exprb43 (or exprb2) per `dt`, or more on a
+//!   stiff stator: each at most `polynomial::MAX_RATE_STEP`/ρ_c = 0.5/ρ_c long, ρ_c the contact
+//!   mode's rate bound from the generated `max_contact_stiffness` ([`Stepper::contact_substeps`];
+//!   one sub-step per step on the presets up to dt = 1e-2; longer sub-steps gave wrong switches
+//!   without a flag, `tests/stepper_coarse.rs`), each re-linearized at its start; a contact exit is proved absent by the same two-parabola test
 //!   on the sub-step's closed form (`LinearSegment::bounds`, tightened by [`curvature`]), else
 //!   located with [`locate`] on the sub-step's continuous extension taken as its Taylor
 //!   polynomial ([`polynomial::SubstepPolynomial`], six to eight terms at dt = 1e-3; the closed
 //!   form when ρ·h > [`polynomial::MAX_RATE_STEP`]). A step that enters
 //!   contact mid-way fills the rest
-//!   with equal sub-steps of at most dt / `contact_substeps`; one that leaves contact continues
+//!   with equal sub-steps of that length at most; one that leaves contact continues
 //!   in exact free flight.
 //!
 //! * **Friction** (`docs/MODEL.md` §10, [`friction`]): a slipping contact sub-step is the

@@ -57,7 +57,7 @@ pub struct FreeTransition {
     constants: FreeConstants,
     /// The basis (EC, ES) at dt, kept with Φ by [`Self::set_params`].
     basis_at_dt: FreeBasis,
-    /// The contact sub-steps one step of `dt` needs ([`ContactResolution`]).
+    /// The contact sub-steps one step of `dt` needs (`ContactResolution`).
     contact: ContactResolution,
 }
 
@@ -223,7 +223,7 @@ impl FreeTransition {
         self.dt
     }
 
-    /// The contact mode's rate bound ρ_c (see [`ContactResolution`]).
+    /// The contact mode's rate bound ρ_c (see `ContactResolution`).
     pub fn contact_rate(&self) -> f64 {
         self.contact.rate
     }
