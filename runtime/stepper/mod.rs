@@ -23,8 +23,9 @@
 //!   stiff stator: each at most `polynomial::MAX_RATE_STEP`/ρ_c = 0.5/ρ_c long, ρ_c the contact
 //!   mode's rate bound from the generated `max_contact_stiffness` ([`Stepper::contact_substeps`];
 //!   one sub-step per step on the presets up to dt = 1e-2; longer sub-steps gave wrong switches
-//!   without a flag, `tests/stepper_coarse.rs`), each re-linearized at its start; a contact exit is proved absent by the same two-parabola test
-//!   on the sub-step's closed form (`LinearSegment::bounds`, tightened by [`curvature`]), else
+//!   without a flag, `tests/stepper_coarse.rs`), each re-linearized at its start; a contact
+//!   exit is proved absent by the same two-parabola test on the sub-step's closed form
+//!   (`LinearSegment::bounds`, tightened by [`curvature`]), else
 //!   located with [`locate`] on the sub-step's continuous extension taken as its Taylor
 //!   polynomial ([`polynomial::SubstepPolynomial`], six to eight terms at dt = 1e-3; the closed
 //!   form when ρ·h > [`polynomial::MAX_RATE_STEP`]). A step that enters
@@ -53,9 +54,10 @@
 //! `cargo bench --bench stepper`). Caps are reported, never silent:
 //! * [`StepReport::capped`] (sub-step cap): the last contact sub-step covers the rest of the
 //!   step, so its local error grows like h⁵ for exprb43 (h³ for exprb2) with h up to dt
-//!   instead of dt / `contact_substeps`; if the cap was exhausted before the step end, a switch
-//!   in the final piece is not located and the end regime is read from the end state, as with
-//!   a plain fixed-step integrator (the error is then first order in the missed span).
+//!   instead of dt / [`Stepper::contact_substeps`]; if the cap was exhausted before the step
+//!   end, a switch in the final piece is not located and the end regime is read from the end
+//!   state, as with a plain fixed-step integrator (the error is then first order in the missed
+//!   span).
 //! * [`StepReport::search_capped`] (search cap): a grazing contact shallower than the search
 //!   could resolve may be missing, or a switch time is known only to its last bracket.
 //! * With [`OnCap::Fail`] either cap refuses the step instead: [`StepperError::BudgetExceeded`],

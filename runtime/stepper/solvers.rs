@@ -7,8 +7,9 @@
 //! * [`FreePieces`]: the exact free piece from s to the step end, searched for the next contact
 //!   with the capped kernel (`search::locate_with`);
 //! * [`Substeps`] of [`Contact`]: equal contact sub-steps of exprb43/exprb2 of at most dt /
-//!   `contact_substeps` over the rest of the step, each searched for the exit and (slipping) the
-//!   slip velocity's zero; the budget's last sub-step covers the rest without a search;
+//!   `Stepper::contact_substeps()` over the rest of the step, each searched for the exit and
+//!   (slipping) the slip velocity's zero; the budget's last sub-step covers the rest without a
+//!   search;
 //! * [`Substeps`] of [`Rolling`]: rolling sub-steps, one explicit DOP853 step each
 //!   (`friction.rs`).
 //!
