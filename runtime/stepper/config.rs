@@ -12,10 +12,14 @@ pub struct StepperConfig {
     pub dt: f64,
     /// The contact scheme: exprb43 (fourth order, default) or exprb2 (second order, cheaper).
     pub scheme: ContactScheme,
-    /// Contact sub-steps per `dt` (≥ 1): contact sub-steps are at most dt / `contact_substeps`.
+    /// Contact sub-steps per `dt` (≥ 1): contact sub-steps are at most dt / `contact_substeps`,
+    /// and at most 0.5/ρ_c on a stiff stator (more sub-steps then:
+    /// [`super::Stepper::contact_substeps`]).
     pub contact_substeps: u32,
     /// Cap on contact sub-steps in one `step` call (≥ `contact_substeps`): bounds the work of a
-    /// step with several switches. See [`super::StepReport::capped`].
+    /// step with several switches, or of a step in contact on a stator stiffer than the cap
+    /// allows at this `dt` ([`super::Stepper::largest_resolved_dt`]). See
+    /// [`super::StepReport::capped`].
     pub max_substeps: u32,
     /// What a step does when a cap is reached: [`OnCap::Degrade`] (the default) finishes the
     /// step less accurately and flags it; [`OnCap::Fail`] returns

@@ -3,10 +3,11 @@
 //! (capped budget), and rolling sub-steps.
 //!
 //! # Rolling sub-steps and their work
-//! Rolling has no closed form: each rolling sub-step (at most dt / `contact_substeps`, counted
-//! against `max_substeps` like a contact sub-step) is one explicit DOP853 step of the rolling
-//! field (12 evaluations). Its switches (z = 1 and μN − |λ|) are looked for as the numerical
-//! methods do on a step ([`first_crossing_subdivided`] over one interval: both ends, and an
+//! Rolling has no closed form: each rolling sub-step (at most dt /
+//! `Stepper::contact_substeps()`, counted against `max_substeps` like a contact sub-step) is one
+//! explicit DOP853 step of the rolling field (12 evaluations). Its switches (z = 1 and μN − |λ|)
+//! are looked for as the numerical methods do on a step ([`first_crossing_subdivided`] over one
+//! interval: both ends, and an
 //! interior minimum where the slope turns from − to +), the states inside the sub-step taken by
 //! explicit steps of exactly the needed length from its start (no interpolation); the crossing is
 //! refined by the safeguarded Illinois iteration of the reference methods (at most 400

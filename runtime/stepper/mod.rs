@@ -19,14 +19,18 @@
 //!   method's kernel (`analytic::switch`) with the stepper's hard caps — on the piece's Taylor
 //!   polynomial ([`polynomial`]: the free closed form to below rounding, a Horner sum per
 //!   evaluation); a piece from the step start ends at the free map's state.
-//! * **Contact**: `contact_substeps` sub-steps of exprb43 (or exprb2) per `dt`, each
-//!   re-linearized at its start; a contact exit is proved absent by the same two-parabola test
-//!   on the sub-step's closed form (`LinearSegment::bounds`, tightened by [`curvature`]), else
+//! * **Contact**: `contact_substeps` sub-steps of exprb43 (or exprb2) per `dt`, or more on a
+//!   stiff stator: each at most `polynomial::MAX_RATE_STEP`/ρ_c = 0.5/ρ_c long, ρ_c the contact
+//!   mode's rate bound from the generated `max_contact_stiffness` ([`Stepper::contact_substeps`];
+//!   one sub-step per step on the presets up to dt = 1e-2; longer sub-steps gave wrong switches
+//!   without a flag, `tests/stepper_coarse.rs`), each re-linearized at its start; a contact
+//!   exit is proved absent by the same two-parabola test on the sub-step's closed form
+//!   (`LinearSegment::bounds`, tightened by [`curvature`]), else
 //!   located with [`locate`] on the sub-step's continuous extension taken as its Taylor
 //!   polynomial ([`polynomial::SubstepPolynomial`], six to eight terms at dt = 1e-3; the closed
 //!   form when ρ·h > [`polynomial::MAX_RATE_STEP`]). A step that enters
 //!   contact mid-way fills the rest
-//!   with equal sub-steps of at most dt / `contact_substeps`; one that leaves contact continues
+//!   with equal sub-steps of that length at most; one that leaves contact continues
 //!   in exact free flight.
 //!
 //! * **Friction** (`docs/MODEL.md` §10, [`friction`]): a slipping contact sub-step is the
@@ -50,9 +54,10 @@
 //! `cargo bench --bench stepper`). Caps are reported, never silent:
 //! * [`StepReport::capped`] (sub-step cap): the last contact sub-step covers the rest of the
 //!   step, so its local error grows like h⁵ for exprb43 (h³ for exprb2) with h up to dt
-//!   instead of dt / `contact_substeps`; if the cap was exhausted before the step end, a switch
-//!   in the final piece is not located and the end regime is read from the end state, as with
-//!   a plain fixed-step integrator (the error is then first order in the missed span).
+//!   instead of dt / [`Stepper::contact_substeps`]; if the cap was exhausted before the step
+//!   end, a switch in the final piece is not located and the end regime is read from the end
+//!   state, as with a plain fixed-step integrator (the error is then first order in the missed
+//!   span).
 //! * [`StepReport::search_capped`] (search cap): a grazing contact shallower than the search
 //!   could resolve may be missing, or a switch time is known only to its last bracket.
 //! * With [`OnCap::Fail`] either cap refuses the step instead: [`StepperError::BudgetExceeded`],
@@ -326,6 +331,34 @@ impl Stepper {
     /// The step length Φ is currently precomputed for (the last `dt` stepped, or the config's).
     pub fn precomputed_dt(&self) -> f64 {
         self.transition.dt()
+    }
+
+    /// The contact sub-steps a step of [`Stepper::precomputed_dt`] takes in contact: the
+    /// configured `contact_substeps`, or more on a stator too stiff for them, so that every
+    /// contact and rolling sub-step is at most [`polynomial::MAX_RATE_STEP`]/ρ_c long (ρ_c the
+    /// contact mode's rate bound, [`Stepper::contact_rate`]). When it exceeds `max_substeps`,
+    /// steps in contact are capped ([`StepReport::capped`], or [`StepperError::BudgetExceeded`]
+    /// with [`OnCap::Fail`]): take a shorter step, at most [`Stepper::largest_resolved_dt`].
+    pub fn contact_substeps(&self) -> u32 {
+        self.config
+            .contact_substeps
+            .max(self.transition.resolving_substeps())
+    }
+
+    /// ρ_c = ν + √(ν² + S), S the generated bound of the linearized contact stiffness ‖Kl‖₂
+    /// over every contact position, friction included (`max_contact_stiffness`): the fastest
+    /// rate of the contact mode (1/time), about √(1 + K̂) without friction.
+    pub fn contact_rate(&self) -> f64 {
+        self.transition.contact_rate()
+    }
+
+    /// The longest step whose contact sub-steps fit the configured `max_substeps`:
+    /// `max_substeps`·[`polynomial::MAX_RATE_STEP`]/ρ_c, at most [`MAX_STEP`] (a step in
+    /// contact of at most this length is never capped for the contact mode's sake; several
+    /// switches in one step can still use up the cap).
+    pub fn largest_resolved_dt(&self) -> f64 {
+        let rate = self.transition.contact_rate();
+        (f64::from(self.config.max_substeps) * polynomial::MAX_RATE_STEP / rate).min(MAX_STEP)
     }
 
     /// The fast path: one affine map and the switch bound; `None` when the bound cannot prove

@@ -115,9 +115,9 @@ pub struct StepReport {
     /// Contact sub-steps taken in this step (0 for a pure free step).
     pub substeps: u32,
     /// Whether the per-step cap on contact sub-steps was hit: the last contact sub-step then
-    /// covered the rest of the step (longer than dt / `contact_substeps`, so less accurate),
-    /// and if the cap was exhausted before the step end, switches in that last piece were not
-    /// located (the end regime was then taken from the end state).
+    /// covered the rest of the step (longer than dt / [`super::Stepper::contact_substeps`], so
+    /// less accurate), and if the cap was exhausted before the step end, switches in that last
+    /// piece were not located (the end regime was then taken from the end state).
     pub capped: bool,
     /// Whether a switch search hit its cap ([`super::MAX_SEARCH_EVALUATIONS`] evaluations or
     /// [`super::MAX_REFINE_ITERATIONS`] refinements): a grazing contact shallower than the

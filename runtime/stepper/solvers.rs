@@ -7,8 +7,9 @@
 //! * [`FreePieces`]: the exact free piece from s to the step end, searched for the next contact
 //!   with the capped kernel (`search::locate_with`);
 //! * [`Substeps`] of [`Contact`]: equal contact sub-steps of exprb43/exprb2 of at most dt /
-//!   `contact_substeps` over the rest of the step, each searched for the exit and (slipping) the
-//!   slip velocity's zero; the budget's last sub-step covers the rest without a search;
+//!   `Stepper::contact_substeps()` over the rest of the step, each searched for the exit and
+//!   (slipping) the slip velocity's zero; the budget's last sub-step covers the rest without a
+//!   search;
 //! * [`Substeps`] of [`Rolling`]: rolling sub-steps, one explicit DOP853 step each
 //!   (`friction.rs`).
 //!
@@ -78,7 +79,14 @@ impl<'a> Frame<'a> {
             t0,
             dt,
             phasor: stepper.phasor,
-            nominal: dt / f64::from(config.contact_substeps),
+            // At least the sub-steps the contact mode needs at this dt (`ContactResolution`):
+            // the configured count unless the stator is too stiff for it.
+            nominal: dt
+                / f64::from(
+                    config
+                        .contact_substeps
+                        .max(stepper.transition.resolving_substeps()),
+                ),
             cursor: Cell::new(0.0),
             budget: Cell::new(config.max_substeps),
             substeps: Cell::new(0),
