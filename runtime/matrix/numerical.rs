@@ -67,7 +67,7 @@ impl<const CAP: usize> OdeSystem<CAP> for MatrixField<'_, CAP> {
 }
 
 /// The largest step: a quarter of the shorter of the forcing period and the period of the
-/// model's fastest free mode ([`fastest_rate`] of the free field), so that the switching
+/// model's fastest free mode (`fastest_rate` of the free field), so that the switching
 /// function is sampled at least 4·[`SUBDIVISIONS`] times per period even at loose tolerances.
 pub fn max_step<const CAP: usize>(model: &MatrixModel<CAP>) -> f64 {
     let mut period = core::f64::consts::TAU / model.speed_ratio();
