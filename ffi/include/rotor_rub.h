@@ -534,6 +534,23 @@ int32_t rotor_rub_parameter_get(const struct RotorRubParams *params,
                                 int32_t index,
                                 double *value);
 
+// The contact sub-steps the stepper takes per step of its `dt` for the parameters in force
+// (the configured `contact_substeps`, or more where the stator's contact mode needs them: each
+// sub-step at most 0.5/ρ_c, ρ_c the contact mode's rate bound), and the longest step whose
+// sub-steps fit `max_substeps` (a longer step through contact is flagged `capped`, or refused
+// under `on_cap` = FAIL). For the ring with mass (`stator_mass_ratio` > 0), whose methods
+// choose their own steps: `substeps` = 0 and `largest_resolved_dt` = +infinity.
+//
+// Returns `ROTOR_RUB_OK`; `ROTOR_RUB_ERR_NULL` if `stepper` is null;
+// `ROTOR_RUB_ERR_MISALIGNED`; `ROTOR_RUB_ERR_NOT_INITIALIZED`.
+//
+// # Safety
+// `stepper` is null or valid initialised stepper memory; `substeps` and
+// `largest_resolved_dt` null (skipped) or valid for writes.
+int32_t rotor_rub_stepper_contact_resolution(const struct RotorRubStepper *stepper,
+                                             uint32_t *substeps,
+                                             double *largest_resolved_dt);
+
 // Read the stator ring's state at the current time (`rotor_rub_stepper_state` gives the
 // time, the rotor's state and the regime); all 0 when `stator_mass_ratio` = 0. `is_ring`
 // (optional: null skips it) receives 1 when the stepper runs the ring with mass, 0 for the

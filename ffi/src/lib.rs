@@ -39,11 +39,13 @@
 mod inputs;
 mod parameters;
 mod raw;
+mod resolution;
 mod ring;
 mod types;
 
 pub use inputs::*;
 pub use parameters::*;
+pub use resolution::*;
 pub use ring::*;
 pub use types::*;
 

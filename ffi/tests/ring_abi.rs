@@ -196,3 +196,69 @@ fn bad_values_give_error_codes_and_change_nothing() {
         assert_eq!((ring, is_ring), (RotorRubRingState::default(), 0));
     }
 }
+
+/// `rotor_rub_stepper_contact_resolution`: the planar stepper's contact sub-steps and longest
+/// resolved step as the Rust stepper gives them (1 on the paper preset at dt = 1e-2; more on a
+/// stator 30× dry whip's stiffness), 0 and +infinity for the ring; a null stepper is refused.
+#[test]
+fn the_contact_resolution_is_the_rust_steppers() {
+    let mut stiff = Preset::DryWhip.problem();
+    stiff.params.k_xx = 1e4;
+    stiff.params.k_yy = 1e4;
+    for (problem, expect_ring) in [
+        (Preset::Paper.problem(), false),
+        (stiff, false),
+        (ring_problem(), true),
+    ] {
+        let params = RotorRubParams::from(problem.params);
+        let initial = RotorRubState::from(problem.initial);
+        let mut config = RotorRubConfig {
+            dt: 0.0,
+            scheme: -1,
+            contact_substeps: 0,
+            max_substeps: 0,
+            on_cap: 9,
+            switch_start: 9,
+        };
+        // SAFETY: valid pointer.
+        assert_eq!(
+            unsafe { rotor_rub_config_default(&mut config) },
+            ROTOR_RUB_OK
+        );
+        config.dt = 1e-2;
+        let mut stepper = memory();
+        let s: *mut RotorRubStepper = &mut *stepper;
+        let (mut substeps, mut largest) = (u32::MAX, f64::NAN);
+        // SAFETY: valid pointers; `s` is valid stepper memory.
+        unsafe {
+            assert_eq!(
+                rotor_rub_stepper_init(s, &params, &initial, 0.0, &config),
+                ROTOR_RUB_OK
+            );
+            assert_eq!(
+                rotor_rub_stepper_contact_resolution(s, &mut substeps, &mut largest),
+                ROTOR_RUB_OK
+            );
+        }
+        if expect_ring {
+            assert_eq!((substeps, largest), (0, f64::INFINITY));
+        } else {
+            let rust = rotor_rub::Stepper::new(&problem, rotor_rub::StepperConfig::with_dt(1e-2))
+                .expect("starts");
+            assert_eq!(
+                (substeps, largest),
+                (rust.contact_substeps(), rust.largest_resolved_dt())
+            );
+            assert_eq!(substeps > 1, problem.params.k_xx > 1e3, "{substeps}");
+        }
+    }
+    // SAFETY: null stepper: refused before any read; null outputs are skipped.
+    let code = unsafe {
+        rotor_rub_stepper_contact_resolution(
+            std::ptr::null(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        )
+    };
+    assert_eq!(code, ROTOR_RUB_ERR_NULL);
+}

@@ -294,6 +294,20 @@ impl PyStepper {
         self.inner.config().dt
     }
 
+    /// Contact sub-steps per step of `dt`: the configured count, or more where the stator's
+    /// contact mode needs them (each sub-step at most 0.5/ρ_c; see `largest_resolved_dt`).
+    #[getter]
+    fn contact_substeps(&self) -> u32 {
+        self.inner.contact_substeps()
+    }
+
+    /// The longest step whose contact sub-steps fit `max_substeps` for the parameters in force
+    /// (a longer step in contact is flagged `capped`, or refused with on_cap="fail").
+    #[getter]
+    fn largest_resolved_dt(&self) -> f64 {
+        self.inner.largest_resolved_dt()
+    }
+
     /// What the Python layer's results carry about this stepper: every parameter (the current
     /// model parameters, the start values it began from), "stepper", its scheme and step.
     fn _problem<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {

@@ -137,3 +137,21 @@ def test_start_values_are_fixed_once_stepped() -> None:
         restored.set_params(x0=0.0)
     fresh.set_params(damping_ratio=0.1)  # a model parameter still changes
     assert fresh.state.params["damping_ratio"] == 0.1
+
+
+def test_a_stiff_stator_is_sub_stepped_as_dop853_finds_it() -> None:
+    """A stator 30× stiffer than dry-whip's at dt = 1e-2: the stepper takes the contact
+    sub-steps the contact mode needs (more than the configured 1) and finds DOP853's switches;
+    `largest_resolved_dt` tells how long a step the configured cap resolves."""
+    stiff = {"k_xx": 1e4, "k_yy": 1e4}
+    stepper = rr.Stepper(preset="dry-whip", dt=1e-2, **stiff)
+    k = stepper.contact_substeps
+    assert k > 1
+    # Each of the k sub-steps is at most 0.5/ρ_c, so the default cap of 8 resolves 8·dt/k.
+    assert 8 * 1e-2 / k <= stepper.largest_resolved_dt < 8 * 1e-2 / (k - 1)
+    assert rr.Stepper(preset="dry-whip", dt=1e-2).contact_substeps == 1
+    out = stepper.run(2000)
+    reference = rr.simulate(preset="dry-whip", method="dop853", tol=1e-12,
+                            t_end=float(out.samples.time[-1]), samples=0, **stiff)
+    assert list(out.events.kind) == list(reference.events.kind)
+    assert np.max(np.abs(out.events.time - reference.events.time)) < 1e-6

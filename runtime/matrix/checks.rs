@@ -7,7 +7,11 @@ use super::error::MatrixError;
 use super::model::Station;
 use crate::params::{Parameter, Range};
 
-pub(super) fn check_finite(what: &'static str, index: usize, value: f64) -> Result<(), MatrixError> {
+pub(super) fn check_finite(
+    what: &'static str,
+    index: usize,
+    value: f64,
+) -> Result<(), MatrixError> {
     if value.is_finite() {
         Ok(())
     } else {
@@ -15,7 +19,11 @@ pub(super) fn check_finite(what: &'static str, index: usize, value: f64) -> Resu
     }
 }
 
-pub(super) fn check_scalar(what: &'static str, value: f64, valid: Range) -> Result<(), MatrixError> {
+pub(super) fn check_scalar(
+    what: &'static str,
+    value: f64,
+    valid: Range,
+) -> Result<(), MatrixError> {
     check_finite(what, 0, value)?;
     if valid.contains(value) {
         Ok(())
@@ -83,7 +91,10 @@ pub(super) fn check_station(s: &Station, n: usize) -> Result<(), MatrixError> {
 }
 
 /// The input force vector of an n-DOF model (`input` empty: none) in CAP storage.
-pub(super) fn input_forces<const CAP: usize>(input: &[f64], n: usize) -> Result<[f64; CAP], MatrixError> {
+pub(super) fn input_forces<const CAP: usize>(
+    input: &[f64],
+    n: usize,
+) -> Result<[f64; CAP], MatrixError> {
     let mut forces = [0.0; CAP];
     if input.is_empty() {
         return Ok(forces);

@@ -144,6 +144,18 @@ impl AnyStepper {
         }
     }
 
+    /// How the planar stepper resolves contact for the parameters in force: its contact
+    /// sub-steps per step of `dt` ([`Stepper::contact_substeps`]) and the longest step the
+    /// configured cap resolves ([`Stepper::largest_resolved_dt`]). `None` for the ring with
+    /// mass, whose adaptive methods choose their own steps inside a step (its work per step is
+    /// bounded by `max_switches` and the step budget instead).
+    pub fn contact_resolution(&self) -> Option<(u32, f64)> {
+        match self {
+            AnyStepper::Planar(s) => Some((s.contact_substeps(), s.largest_resolved_dt())),
+            AnyStepper::Ring(_) => None,
+        }
+    }
+
     /// The parameters in force.
     pub fn params(&self) -> &Params {
         match self {
