@@ -185,7 +185,13 @@ fn exp_pair(
         let mu = (a + b).scale(0.5 * s);
         let y0 = (cosh + sinh) * x0 + (u * sinhc).scale(s) * x1;
         let y1 = (cosh - sinh) * x1;
-        (scale_by_exp(y0, mu), scale_by_exp(y1, mu))
+        if mu.re > 700.0 {
+            (scale_by_exp(y0, mu), scale_by_exp(y1, mu))
+        } else {
+            // One complex exponential for both entries (what `scale_by_exp` multiplies by).
+            let e = mu.exp();
+            (y0 * e, y1 * e)
+        }
     } else {
         let ea = scale_by_exp(Complex::ONE, a.scale(s));
         let eb = scale_by_exp(Complex::ONE, b.scale(s));

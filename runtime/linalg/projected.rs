@@ -88,7 +88,8 @@ impl ProjectedBound {
 
 /// The projection W = B S of a fixed 2 × m matrix B, and one state's modal data: evaluates
 /// d(s) = B e^{As} y0 and its bounds with the [`ModalExponential`] it was made from (passed to
-/// each call, so this stays small plain data: 2·16·CAP + 16·CAP + 32·CAP + 32·CAP bytes).
+/// each call, so this stays small plain data: 2·16·CAP + 16·CAP + 32·CAP + 24·CAP + 40·CAP
+/// bytes).
 #[derive(Clone, Debug)]
 pub struct ProjectedMotion<const CAP: usize> {
     m: usize,
@@ -104,6 +105,69 @@ pub struct ProjectedMotion<const CAP: usize> {
     /// Per block: 2 for the first of a conjugate pair, 0 for its partner (never evaluated nor
     /// bounded), 1 otherwise (`conjugate.rs`): d is real, so a pair's parts are conjugate.
     weights: BlockWeights<CAP>,
+    /// The magnitudes of W and J the bound coefficients are made of: per model, not per state.
+    magnitudes: Magnitudes<CAP>,
+}
+
+/// |W| and the near-diagonal |J| of a projection, computed once (they are the same for every
+/// state; each costs a `hypot`): the same values [`ProjectedMotion::set_state`] would compute.
+#[derive(Clone, Debug)]
+struct Magnitudes<const CAP: usize> {
+    /// |W| entrywise, rows x and y.
+    w_abs: [[f64; CAP]; 2],
+    /// ‖(|W_xp|, |W_yp|)‖₂ per position p (a 1 × 1 block's projection norm).
+    w_norm: [f64; CAP],
+    /// |J_pp| per position.
+    j_diag: [f64; CAP],
+    /// |J_{p,p+1}| per position (0 past the last).
+    j_next: [f64; CAP],
+}
+
+impl<const CAP: usize> Magnitudes<CAP> {
+    fn of(modal: &ModalExponential<CAP>, w: &[[Complex; CAP]; 2]) -> Self {
+        let mut mag = Magnitudes {
+            w_abs: [[0.0; CAP]; 2],
+            w_norm: [0.0; CAP],
+            j_diag: [0.0; CAP],
+            j_next: [0.0; CAP],
+        };
+        for (abs, row) in mag.w_abs.iter_mut().zip(w) {
+            for (a, z) in abs.iter_mut().zip(row) {
+                *a = z.abs();
+            }
+        }
+        let [ax, ay] = &mag.w_abs;
+        for (p, n) in mag.w_norm.iter_mut().enumerate().take(modal.dim()) {
+            *n = math::hypot(
+                ax.get(p).copied().unwrap_or(0.0),
+                ay.get(p).copied().unwrap_or(0.0),
+            );
+        }
+        for (p, (d, e)) in mag
+            .j_diag
+            .iter_mut()
+            .zip(mag.j_next.iter_mut())
+            .enumerate()
+            .take(modal.dim())
+        {
+            *d = modal.j.get(p, p).abs();
+            *e = modal.j.get(p, p + 1).abs();
+        }
+        mag
+    }
+
+    /// |J_ab| (kept for b = a, a + 1; computed otherwise).
+    #[inline]
+    fn j_at(&self, modal: &ModalExponential<CAP>, a: usize, b: usize) -> f64 {
+        let kept = if b == a {
+            self.j_diag.get(a)
+        } else if b == a + 1 {
+            self.j_next.get(a)
+        } else {
+            None
+        };
+        kept.copied().unwrap_or_else(|| modal.j.get(a, b).abs())
+    }
 }
 
 impl<const CAP: usize> ProjectedMotion<CAP> {
@@ -135,7 +199,6 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         }
         Ok(ProjectedMotion {
             m,
-            w,
             c: ModalVector {
                 c: [Complex::ZERO; CAP],
                 m,
@@ -143,6 +206,8 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             u: [[Complex::ZERO; 2]; CAP],
             coefficients: [[0.0; 3]; CAP],
             weights: BlockWeights::of(modal),
+            magnitudes: Magnitudes::of(modal, &w),
+            w,
         })
     }
 
@@ -170,12 +235,16 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         &self.c
     }
 
+    /// The 1 × 1 blocks' amplitudes u and the bound coefficients b_{k,j,i} of the current c
+    /// (module docs), from the per-model magnitudes |W|, |J| kept in [`Magnitudes`]: the only
+    /// magnitudes computed per state are |c|'s and the final norms.
     fn prepare(&mut self, modal: &ModalExponential<CAP>) {
         let [wx, wy] = &self.w;
+        let mag = &self.magnitudes;
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
             let start = range.start;
-            let weight = self.weight(k);
+            let weight = self.weights.weight.get(k).copied().unwrap_or(1.0);
             if weight == 0.0 {
                 for p in range {
                     if let Some(b) = self.coefficients.get_mut(p) {
@@ -193,8 +262,8 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 if let Some(u) = self.u.get_mut(start) {
                     *u = [(x * c).scale(weight), (y * c).scale(weight)];
                 }
-                let lambda = modal.j.get(start, start).abs();
-                let b0 = weight * math::hypot(x.abs(), y.abs()) * c.abs();
+                let lambda = mag.j_at(modal, start, start);
+                let b0 = weight * mag.w_norm.get(start).copied().unwrap_or(f64::INFINITY) * c.abs();
                 if let Some(b) = self.coefficients.get_mut(start) {
                     *b = [b0, b0 * lambda, b0 * lambda * lambda];
                 }
@@ -214,34 +283,39 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 for (a, na) in next.iter_mut().enumerate().take(p) {
                     *na = (a..p)
                         .map(|b| {
-                            modal.j.get(start + a, start + b).abs()
+                            mag.j_at(modal, start + a, start + b)
                                 * prev.get(b).copied().unwrap_or(0.0)
                         })
                         .sum();
                 }
             }
+            let [ax, ay] = &mag.w_abs;
             for i in 0..p {
                 let mut b = [0.0; 3];
                 for (jd, vj) in v.iter_mut().enumerate() {
                     let (mut sx, mut sy) = (0.0, 0.0);
                     for (a, &va) in vj.iter().enumerate().take(p) {
-                        sx += wx.get(start + a).map_or(0.0, |z| z.abs()) * va;
-                        sy += wy.get(start + a).map_or(0.0, |z| z.abs()) * va;
+                        sx += ax.get(start + a).copied().unwrap_or(f64::INFINITY) * va;
+                        sy += ay.get(start + a).copied().unwrap_or(f64::INFINITY) * va;
                     }
                     if let Some(bj) = b.get_mut(jd) {
                         *bj = weight * math::hypot(sx, sy);
                     }
-                    // vj ← |U| vj for the next power.
-                    let mut next = [0.0f64; CAP];
-                    for (a, na) in next.iter_mut().enumerate().take(p) {
-                        *na = (a + 1..p)
+                    if i + 1 == p {
+                        continue;
+                    }
+                    // vj ← |U| vj for the next power (in place: row a reads rows > a only).
+                    for a in 0..p {
+                        let na = (a + 1..p)
                             .map(|bb| {
-                                modal.j.get(start + a, start + bb).abs()
+                                mag.j_at(modal, start + a, start + bb)
                                     * vj.get(bb).copied().unwrap_or(0.0)
                             })
                             .sum();
+                        if let Some(x) = vj.get_mut(a) {
+                            *x = na;
+                        }
                     }
-                    *vj = next;
                 }
                 if let Some(slot) = self.coefficients.get_mut(start + i) {
                     *slot = b;

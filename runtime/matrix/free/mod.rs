@@ -243,8 +243,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
                         self.chunk
                     };
                 }
-                ChunkResult::Contact { s, certain } => {
-                    let at = self.flight.point(&self.model, &self.decomposition, s);
+                ChunkResult::Contact { s, at, certain } => {
                     if at.dh < 0.0 {
                         // h falling through 0 is no contact: the closed form's rounding
                         // (≈ 1e-14) above TOUCH just after a start on z = 1 moving outward (an

@@ -92,9 +92,11 @@ pub(super) enum ChunkResult {
         /// Whether a part stayed unresolved after the retries (a touch within rounding).
         unresolved: bool,
     },
-    /// The first contact at local time `s`.
+    /// The first contact at local time `s`, with the station there (the refinement's last
+    /// evaluation: not evaluated again).
     Contact {
         s: f64,
+        at: StationPoint,
         /// Whether it is proved first and refined to rounding.
         certain: bool,
     },
@@ -111,7 +113,11 @@ pub(super) fn search_chunk<const CAP: usize>(
 ) -> ChunkResult {
     match locate(f, a, pa, b, Some(pb), f64::INFINITY, &Budget::EXPLORE, None) {
         Search::None => ChunkResult::Free { unresolved: false },
-        Search::Found { s, certain, .. } => ChunkResult::Contact { s, certain },
+        Search::Found { s, point, certain } => ChunkResult::Contact {
+            s,
+            at: point,
+            certain,
+        },
         Search::Unresolved => {
             let mut unresolved = false;
             let (mut lo, mut plo) = (a, pa);
@@ -134,8 +140,12 @@ pub(super) fn search_chunk<const CAP: usize>(
                     None,
                 ) {
                     Search::None => {}
-                    Search::Found { s, certain, .. } => {
-                        return ChunkResult::Contact { s, certain };
+                    Search::Found { s, point, certain } => {
+                        return ChunkResult::Contact {
+                            s,
+                            at: point,
+                            certain,
+                        };
                     }
                     Search::Unresolved => unresolved = true,
                 }
