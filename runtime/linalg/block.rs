@@ -147,7 +147,7 @@ pub(crate) fn apply_block_exp<const CAP: usize>(
 /// the divided difference is (e^{as} − e^{bs})/(a − b), whose rounding is ε·max|e^{as}|, |e^{bs}|
 /// over |a − b| ≤ 2ε·s·max(…)/(2|w|) ≤ 4ε·s·max(…): within rounding of the majorant s·max(…).
 #[inline]
-fn exp_pair(
+pub(crate) fn exp_pair(
     a: Complex,
     u: Complex,
     b: Complex,

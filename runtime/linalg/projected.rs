@@ -45,7 +45,7 @@
 //! evaluates d and bounds it on the same data never misses a sign change for want of rigor.
 //! Invalid intervals (lo > hi, NaN, hi infinite) give an infinite bound, never NaN.
 
-use super::block::scale_by_exp;
+use super::block::{exp_pair, scale_by_exp};
 use super::complex::Complex;
 use super::conjugate::BlockWeights;
 use super::error::LinalgError;
@@ -347,6 +347,27 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 for (o, (x, y)) in out.iter_mut().zip([(vx, vy), (dx, dy), (ax, ay)]) {
                     o[0] += x;
                     o[1] += y;
+                }
+                continue;
+            }
+            if range.len() == 2 {
+                // The 2 × 2 block (an isotropic rotor's repeated pair) in closed form, with the
+                // general path's operations on two entries and no CAP-sized work arrays.
+                let (i, k) = (range.start, range.start + 1);
+                let (a, u, b) = (modal.j.get(i, i), modal.j.get(i, k), modal.j.get(k, k));
+                let c = |p: usize| self.c.c.get(p).copied().unwrap_or_default();
+                let w = |row: &[Complex; CAP], p: usize| row.get(p).copied().unwrap_or_default();
+                let (mut x0, mut x1) = exp_pair(a, u, b, s, (c(i), c(k)));
+                for o in out.iter_mut() {
+                    let mut px = Complex::ZERO;
+                    let mut py = Complex::ZERO;
+                    px += w(wx, i) * x0;
+                    py += w(wy, i) * x0;
+                    px += w(wx, k) * x1;
+                    py += w(wy, k) * x1;
+                    o[0] += px.scale(weight);
+                    o[1] += py.scale(weight);
+                    (x0, x1) = (Complex::ZERO + a * x0 + u * x1, Complex::ZERO + b * x1);
                 }
                 continue;
             }
