@@ -521,7 +521,8 @@ fn with_margin(sum: [f64; 3]) -> ProjectedBound {
 /// i·(δs/s)² ≤ i·ε²).
 fn peak(alpha: f64, i: usize, lo: f64, hi: f64) -> f64 {
     if i == 0 {
-        return math::exp(alpha * lo).max(math::exp(alpha * hi));
+        // e^{αs} is monotone: its maximum is at hi when α > 0, else at lo (one `exp`).
+        return math::exp(alpha * if alpha > 0.0 { hi } else { lo });
     }
     let at = if alpha < 0.0 {
         let top = i as f64 / -alpha;
