@@ -121,6 +121,8 @@ struct Magnitudes<const CAP: usize> {
     j_diag: [f64; CAP],
     /// |J_{p,p+1}| per position (0 past the last).
     j_next: [f64; CAP],
+    /// Per block: its growth rate α (the largest real part of its eigenvalues).
+    growth: [f64; CAP],
 }
 
 impl<const CAP: usize> Magnitudes<CAP> {
@@ -130,7 +132,11 @@ impl<const CAP: usize> Magnitudes<CAP> {
             w_norm: [0.0; CAP],
             j_diag: [0.0; CAP],
             j_next: [0.0; CAP],
+            growth: [0.0; CAP],
         };
+        for (k, g) in mag.growth.iter_mut().enumerate().take(modal.blocks.count) {
+            *g = growth_rate(modal, modal.blocks.range(k));
+        }
         for (abs, row) in mag.w_abs.iter_mut().zip(w) {
             for (a, z) in abs.iter_mut().zip(row) {
                 *a = z.abs();
@@ -327,8 +333,26 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
     /// d, d', d'' at s ≥ 0 (a negative or NaN s counts as 0; s must be finite for a finite
     /// answer).
     pub fn at(&self, modal: &ModalExponential<CAP>, s: f64) -> ProjectedPoint {
+        let [value, rate, acceleration] = self.derivatives::<3>(modal, s);
+        ProjectedPoint {
+            value,
+            rate,
+            acceleration,
+        }
+    }
+
+    /// d and d' at s ≥ 0: [`Self::at`] without d'' (what a switch function's value and rate
+    /// need), the same values to the bit.
+    pub fn value_and_rate(&self, modal: &ModalExponential<CAP>, s: f64) -> ([f64; 2], [f64; 2]) {
+        let [value, rate] = self.derivatives::<2>(modal, s);
+        (value, rate)
+    }
+
+    /// d^{(j)}(s) for j < N (N ≤ 3).
+    #[inline(always)]
+    fn derivatives<const N: usize>(&self, modal: &ModalExponential<CAP>, s: f64) -> [[f64; 2]; N] {
         let s = span(s);
-        let mut out = [[Complex::ZERO; 2]; 3];
+        let mut out = [[Complex::ZERO; 2]; N];
         let [wx, wy] = &self.w;
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
@@ -341,12 +365,14 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 let lambda = modal.j.get(p, p);
                 let e = scale_by_exp(Complex::ONE, lambda.scale(s));
                 let [ux, uy] = self.u.get(p).copied().unwrap_or_default();
-                let (vx, vy) = (ux * e, uy * e);
-                let (dx, dy) = (vx * lambda, vy * lambda);
-                let (ax, ay) = (dx * lambda, dy * lambda);
-                for (o, (x, y)) in out.iter_mut().zip([(vx, vy), (dx, dy), (ax, ay)]) {
+                // u e^{λs}, then each derivative times λ.
+                let (mut x, mut y) = (ux * e, uy * e);
+                for (j, o) in out.iter_mut().enumerate() {
                     o[0] += x;
                     o[1] += y;
+                    if j + 1 < N {
+                        (x, y) = (x * lambda, y * lambda);
+                    }
                 }
                 continue;
             }
@@ -358,7 +384,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 let c = |p: usize| self.c.c.get(p).copied().unwrap_or_default();
                 let w = |row: &[Complex; CAP], p: usize| row.get(p).copied().unwrap_or_default();
                 let (mut x0, mut x1) = exp_pair(a, u, b, s, (c(i), c(k)));
-                for o in out.iter_mut() {
+                for (j, o) in out.iter_mut().enumerate() {
                     let mut px = Complex::ZERO;
                     let mut py = Complex::ZERO;
                     px += w(wx, i) * x0;
@@ -367,7 +393,9 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                     py += w(wy, k) * x1;
                     o[0] += px.scale(weight);
                     o[1] += py.scale(weight);
-                    (x0, x1) = (Complex::ZERO + a * x0 + u * x1, Complex::ZERO + b * x1);
+                    if j + 1 < N {
+                        (x0, x1) = (Complex::ZERO + a * x0 + u * x1, Complex::ZERO + b * x1);
+                    }
                 }
                 continue;
             }
@@ -384,7 +412,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             super::block::apply_block_exp(&modal.j, range.clone(), shift, s, &mut x, &mut work);
             // x, Jx, J²x on the block, each projected.
             let mut cur = x;
-            for o in out.iter_mut() {
+            for (j, o) in out.iter_mut().enumerate() {
                 let mut px = Complex::ZERO;
                 let mut py = Complex::ZERO;
                 for (a, &ca) in cur.iter().enumerate().take(range.len()) {
@@ -393,6 +421,9 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 }
                 o[0] += px.scale(weight);
                 o[1] += py.scale(weight);
+                if j + 1 == N {
+                    break;
+                }
                 let mut next = [Complex::ZERO; CAP];
                 for (a, na) in next.iter_mut().enumerate().take(range.len()) {
                     *na = (a..range.len()).fold(Complex::ZERO, |acc, b| {
@@ -403,12 +434,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 cur = next;
             }
         }
-        let re = |z: [Complex; 2]| [z[0].re, z[1].re];
-        ProjectedPoint {
-            value: re(out[0]),
-            rate: re(out[1]),
-            acceleration: re(out[2]),
-        }
+        out.map(|z| [z[0].re, z[1].re])
     }
 
     /// Block k's weight (2: a pair's first, 0: its partner, 1: alone).
@@ -499,7 +525,11 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             .filter(|&k| self.weight(k) != 0.0)
             .map(|k| {
                 let range = modal.blocks.range(k);
-                (range.clone(), growth_rate(modal, range))
+                let alpha = self.magnitudes.growth.get(k).copied();
+                (
+                    range.clone(),
+                    alpha.unwrap_or_else(|| growth_rate(modal, range)),
+                )
             })
     }
 }

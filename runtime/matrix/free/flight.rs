@@ -98,13 +98,20 @@ pub(super) struct Flight<const CAP: usize> {
     pub(super) motion: ProjectedMotion<CAP>,
 }
 
-/// The station along a flight at one local time: h = z² − 1, h' and |P'| (for the local
-/// tightening of the curvature bound).
+/// The station along a flight at one local time: h = z² − 1, h' and P' (whose norm tightens
+/// the curvature bound locally: [`StationPoint::speed`], computed only where a bound needs it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct StationPoint {
     pub(super) h: f64,
     pub(super) dh: f64,
-    pub(super) speed: f64,
+    pub(super) rate: [f64; 2],
+}
+
+impl StationPoint {
+    /// |P'|.
+    pub(super) fn speed(&self) -> f64 {
+        math::hypot(self.rate[0], self.rate[1])
+    }
 }
 
 impl<const CAP: usize> Flight<CAP> {
@@ -157,30 +164,30 @@ impl<const CAP: usize> Flight<CAP> {
     }
 
     /// The station at local time `s` (O(m): one complex exponential per mode): P and P' from
-    /// the projected homogeneous and harmonic parts, h and h' by the generated
-    /// `switching_function`.
+    /// the projected homogeneous and harmonic parts (no P'': h and h' do not need it), h and h'
+    /// by the generated `switching_function`.
     pub(super) fn point(
         &self,
         model: &MatrixModel<CAP>,
         d: &Decomposition<CAP>,
         s: f64,
     ) -> StationPoint {
-        let h = self.motion.at(&d.modal, s);
+        let (value, rate) = self.motion.value_and_rate(&d.modal, s);
         let phasor = field::phasor(model.running(), self.t0 + s);
         let p = d.station.at_phase(Complex::new(phasor.ct, phasor.st));
         let at = Position {
-            x: h.value[0] + p.value[0],
-            y: h.value[1] + p.value[1],
+            x: value[0] + p.value[0],
+            y: value[1] + p.value[1],
         };
         let rate = Velocity {
-            vx: h.rate[0] + p.rate[0],
-            vy: h.rate[1] + p.rate[1],
+            vx: rate[0] + p.rate[0],
+            vy: rate[1] + p.rate[1],
         };
         let sw = coef::switching_function(model.running(), &at, &rate);
         StationPoint {
             h: sw.h,
             dh: sw.dh,
-            speed: math::hypot(rate.vx, rate.vy),
+            rate: [rate.vx, rate.vy],
         }
     }
 

@@ -150,7 +150,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
             last: StationPoint {
                 h: -1.0,
                 dh: 0.0,
-                speed: 0.0,
+                rate: [0.0; 2],
             },
             chunk: longest,
             longest,

@@ -81,7 +81,14 @@ impl<const CAP: usize> EventFunction for StationSwitch<'_, CAP> {
         self.tests.set(self.tests.get() + 1);
         let r = self.flight.reach(self.decomposition, lo, hi);
         let r0 = math::sqrt((at_lo.h + 1.0).max(0.0));
-        local_curvature(r0, at_lo.speed, r.radius, r.speed, r.acceleration, hi - lo)
+        local_curvature(
+            r0,
+            at_lo.speed(),
+            r.radius,
+            r.speed,
+            r.acceleration,
+            hi - lo,
+        )
     }
 }
 
