@@ -333,7 +333,7 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
     /// d, d', d'' at s ≥ 0 (a negative or NaN s counts as 0; s must be finite for a finite
     /// answer).
     pub fn at(&self, modal: &ModalExponential<CAP>, s: f64) -> ProjectedPoint {
-        let [value, rate, acceleration] = self.derivatives::<3>(modal, s);
+        let [value, rate, acceleration] = self.derivatives::<3, false>(modal, s);
         ProjectedPoint {
             value,
             rate,
@@ -344,14 +344,26 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
     /// d and d' at s ≥ 0: [`Self::at`] without d'' (what a switch function's value and rate
     /// need), the same values to the bit.
     pub fn value_and_rate(&self, modal: &ModalExponential<CAP>, s: f64) -> ([f64; 2], [f64; 2]) {
-        let [value, rate] = self.derivatives::<2>(modal, s);
+        let [value, rate] = self.derivatives::<2, false>(modal, s);
         (value, rate)
     }
 
-    /// d^{(j)}(s) for j < N (N ≤ 3).
+    /// d and d' at s = 0: [`Self::value_and_rate`] there without exponentials (e^{J·0} c = c
+    /// exactly, as the closed forms give it, to the sign of a zero).
+    pub fn value_and_rate_at_start(&self, modal: &ModalExponential<CAP>) -> ([f64; 2], [f64; 2]) {
+        let [value, rate] = self.derivatives::<2, true>(modal, 0.0);
+        (value, rate)
+    }
+
+    /// d^{(j)}(s) for j < N (N ≤ 3); at s = 0 (`START`) without exponentials.
     #[inline(always)]
-    fn derivatives<const N: usize>(&self, modal: &ModalExponential<CAP>, s: f64) -> [[f64; 2]; N] {
-        let s = span(s);
+    fn derivatives<const N: usize, const START: bool>(
+        &self,
+        modal: &ModalExponential<CAP>,
+        s: f64,
+    ) -> [[f64; 2]; N] {
+        let s = if START { 0.0 } else { span(s) };
+        let at_start = START;
         let mut out = [[Complex::ZERO; 2]; N];
         let [wx, wy] = &self.w;
         for k in 0..modal.blocks.count {
@@ -363,7 +375,11 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             if range.len() == 1 {
                 let p = range.start;
                 let lambda = modal.j.get(p, p);
-                let e = scale_by_exp(Complex::ONE, lambda.scale(s));
+                let e = if at_start {
+                    Complex::ONE
+                } else {
+                    scale_by_exp(Complex::ONE, lambda.scale(s))
+                };
                 let [ux, uy] = self.u.get(p).copied().unwrap_or_default();
                 // u e^{λs}, then each derivative times λ.
                 let (mut x, mut y) = (ux * e, uy * e);
@@ -383,7 +399,11 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 let (a, u, b) = (modal.j.get(i, i), modal.j.get(i, k), modal.j.get(k, k));
                 let c = |p: usize| self.c.c.get(p).copied().unwrap_or_default();
                 let w = |row: &[Complex; CAP], p: usize| row.get(p).copied().unwrap_or_default();
-                let (mut x0, mut x1) = exp_pair(a, u, b, s, (c(i), c(k)));
+                let (mut x0, mut x1) = if at_start {
+                    (c(i), c(k))
+                } else {
+                    exp_pair(a, u, b, s, (c(i), c(k)))
+                };
                 for (j, o) in out.iter_mut().enumerate() {
                     let mut px = Complex::ZERO;
                     let mut py = Complex::ZERO;
@@ -408,8 +428,10 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             {
                 *xa = ca;
             }
-            let shift = modal.shifts.get(k).copied().unwrap_or_default();
-            super::block::apply_block_exp(&modal.j, range.clone(), shift, s, &mut x, &mut work);
+            if !at_start {
+                let shift = modal.shifts.get(k).copied().unwrap_or_default();
+                super::block::apply_block_exp(&modal.j, range.clone(), shift, s, &mut x, &mut work);
+            }
             // x, Jx, J²x on the block, each projected.
             let mut cur = x;
             for (j, o) in out.iter_mut().enumerate() {

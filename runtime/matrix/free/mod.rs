@@ -55,7 +55,7 @@ use super::model::MatrixModel;
 use super::state::MatrixState;
 use crate::analytic::switch::EventFunction;
 use crate::driver::{Located, SegmentSolver};
-use crate::linalg::{LinalgError, ProjectedMotion};
+use crate::linalg::{Complex, LinalgError, ProjectedMotion};
 use crate::propagate::{Event, EventKind, PropagationError};
 
 /// Work counters of an [`ExactFree`] since it was made (benches and diagnostics).
@@ -145,6 +145,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
                 t0: 0.0,
                 y0,
                 motion,
+                phase0: Complex::ONE,
             },
             horizon: 0.0,
             last: StationPoint {
@@ -181,7 +182,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
         self.flight
             .start(&self.model, &self.decomposition, time, state)?;
         self.horizon = 0.0;
-        self.last = self.flight.point(&self.model, &self.decomposition, 0.0);
+        self.last = self.flight.start_point(&self.model, &self.decomposition);
         self.chunk = self.longest / 8.0;
         self.chunks = 0;
         self.found = None;
