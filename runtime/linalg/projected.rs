@@ -459,6 +459,44 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         out.map(|z| [z[0].re, z[1].re])
     }
 
+    /// The full state y(s) = e^{As} y0 (`out`: m entries; s ≥ 0, a negative s counts as 0) of
+    /// the state set last: Σ_k w_k Re(S_k e^{J_k s} c_k) with the blocks' conjugate-pair
+    /// weights, so a pair's partner is neither propagated nor projected (`conjugate.rs`: its
+    /// part is the conjugate of the first's), and only real parts are formed. Equal to
+    /// [`ModalExponential::state`] to rounding.
+    pub fn state(&self, modal: &ModalExponential<CAP>, s: f64, out: &mut [f64]) {
+        let s = span(s);
+        let mut x = [Complex::ZERO; CAP];
+        let mut work = [Complex::ZERO; CAP];
+        for (xa, &ca) in x.iter_mut().zip(self.c.c.iter()) {
+            *xa = ca;
+        }
+        for k in 0..modal.blocks.count {
+            let range = modal.blocks.range(k);
+            let weight = self.weight(k);
+            if let Some(xs) = x.get_mut(range.clone()) {
+                if weight == 0.0 {
+                    xs.iter_mut().for_each(|v| *v = Complex::ZERO);
+                    continue;
+                }
+                let shift = modal.shifts.get(k).copied().unwrap_or_default();
+                super::block::apply_block_exp(&modal.j, range, shift, s, xs, &mut work);
+                if weight != 1.0 {
+                    xs.iter_mut().for_each(|v| *v = v.scale(weight));
+                }
+            }
+        }
+        for (i, o) in out.iter_mut().enumerate().take(self.m) {
+            // Re(Σ_p S_ip x_p), the partners' x_p being 0.
+            *o = modal
+                .s
+                .row(i)
+                .iter()
+                .zip(x.iter())
+                .fold(0.0, |acc, (sp, xp)| acc + (sp.re * xp.re - sp.im * xp.im));
+        }
+    }
+
     /// Block k's weight (2: a pair's first, 0: its partner, 1: alone).
     #[inline]
     fn weight(&self, k: usize) -> f64 {
@@ -604,4 +642,48 @@ fn growth_rate<const CAP: usize>(
     range
         .map(|p| modal.j.get(p, p).re)
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::RealMatrix;
+
+    /// The weighted state (a pair's partner not evaluated) equals the full modal state to
+    /// rounding (‖y0‖ ≈ 1.4): an anisotropic 2-DOF rotor with cross-coupling (complex pairs), an isotropic
+    /// one (repeated pairs: 2 × 2 blocks), and real eigenvalues (overdamped).
+    #[test]
+    fn the_weighted_state_is_the_full_state() {
+        let rotor = |k: (f64, f64), kxy: f64, c: f64| {
+            RealMatrix::<8>::from_rows(&[
+                &[0.0, 0.0, 1.0, 0.0],
+                &[0.0, 0.0, 0.0, 1.0],
+                &[-k.0, -kxy, -c, 0.0],
+                &[kxy, -k.1, 0.0, -c],
+            ])
+            .unwrap()
+        };
+        for a in [
+            rotor((1.0, 1.7), 0.3, 0.1),
+            rotor((1.0, 1.0), 0.0, 0.25),
+            rotor((1.0, 2.0), 0.0, 5.0),
+        ] {
+            let e = ModalExponential::new(&a).unwrap();
+            let mut motion =
+                ProjectedMotion::new(&e, &[1.0, 0.0, 0.0, 0.0], &[0.0, 1.0, 0.0, 0.0]).unwrap();
+            let y0 = [0.3, -0.7, 1.1, 0.4];
+            motion.set_state(&e, &y0).unwrap();
+            for s in [0.0, 0.01, 0.7, 3.0, 40.0] {
+                let (mut full, mut weighted) = ([0.0; 4], [0.0; 4]);
+                e.state(motion.modal_coordinates(), s, &mut full);
+                motion.state(&e, s, &mut weighted);
+                // Both are exact to rounding relative to ‖y0‖, plus the eigenvalues' rounding
+                // turned into phase over the span (≈ s‖A‖ε; `modal.rs`).
+                let size = (1.0 + 2.0 * s) * 1.1;
+                for (f, w) in full.iter().zip(&weighted) {
+                    assert!((f - w).abs() <= 1e-14 * size, "s = {s}: {f} vs {w}");
+                }
+            }
+        }
+    }
 }

@@ -147,7 +147,8 @@ impl<const CAP: usize> Flight<CAP> {
     }
 
     /// The state at local time `s` ≥ 0: y0 itself at s = 0, else
-    /// Re(S e^{Js} c) + y_p(t0 + s) (O(m²)).
+    /// Re(S e^{Js} c) + y_p(t0 + s) (O(m²); a conjugate pair's partner block is not evaluated:
+    /// [`ProjectedMotion::state`]).
     pub(super) fn state(
         &self,
         model: &MatrixModel<CAP>,
@@ -162,11 +163,8 @@ impl<const CAP: usize> Flight<CAP> {
         let mut particular = [0.0; CAP];
         d.particular(model, self.t0 + s, &mut particular);
         let out = y.as_mut_slice();
-        d.modal.state(
-            self.motion.modal_coordinates(),
-            s,
-            out.get_mut(..m).unwrap_or(&mut []),
-        );
+        self.motion
+            .state(&d.modal, s, out.get_mut(..m).unwrap_or(&mut []));
         for (o, &p) in out.iter_mut().zip(&particular) {
             *o += p;
         }
