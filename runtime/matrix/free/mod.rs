@@ -205,7 +205,11 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
         let mut first = true;
         while self.found.is_none() && !self.settled && (first || self.horizon < wanted) {
             first = false;
+            // The reach over all later times is at least the station's distance where the
+            // search stands: on or outside the clearance (h ≥ 0, a start just after a contact)
+            // it cannot settle, and is not bounded.
             if self.chunks.is_multiple_of(SETTLE_CHECK_CHUNKS)
+                && self.last.h < 0.0
                 && self
                     .flight
                     .reach_after(&self.decomposition, self.horizon)
