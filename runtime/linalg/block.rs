@@ -26,6 +26,8 @@
 use super::complex::Complex;
 use super::dense::ComplexMatrix;
 
+/// |w| (|re| + |im|) below which a 2 × 2 block's series stops at w²: w⁴/120 < 1e-34.
+const TINY_SPLIT: f64 = 1e-8;
 /// Substep size limit: ρ h ≤ θ.
 const THETA: f64 = 0.5;
 /// Taylor terms beyond the block size.
@@ -142,12 +144,13 @@ pub(crate) fn apply_block_exp<const CAP: usize>(
 /// e^{Ts} = [[e^{as}, u·(e^{as} − e^{bs})/(a − b)], [0, e^{bs}]]. With μ = (a + b)/2 and
 /// w = (a − b)s/2 that is e^{μs}·[[e^{w}, u·s·sinh(w)/w], [0, e^{−w}]]; for |w| < 1/4 (a repeated
 /// eigenvalue, w at rounding level, or a near-defective pair) e^{±w} = cosh w ± sinh w and
-/// sinh(w)/w by their Taylor series to w¹² (the next terms are below 5e-20 relative), so the
+/// sinh(w)/w by their Taylor series to w¹² (the next terms are below 5e-20 relative; to w²
+/// below |w| = 1e-8, the repeated eigenvalue of an isotropic rotor, where w⁴/120 < 1e-34), so the
 /// divided difference never cancels and the block costs one complex exponential; for larger |w|
 /// the divided difference is (e^{as} − e^{bs})/(a − b), whose rounding is ε·max|e^{as}|, |e^{bs}|
 /// over |a − b| ≤ 2ε·s·max(…)/(2|w|) ≤ 4ε·s·max(…): within rounding of the majorant s·max(…).
 #[inline]
-fn exp_pair(
+pub(crate) fn exp_pair(
     a: Complex,
     u: Complex,
     b: Complex,
@@ -155,6 +158,23 @@ fn exp_pair(
     (x0, x1): (Complex, Complex),
 ) -> (Complex, Complex) {
     let w = (a - b).scale(0.5 * s);
+    if w.abs1() < TINY_SPLIT {
+        // A repeated eigenvalue (w at rounding level): the series to w² (the next terms are
+        // below 1e-32 relative), the same values to rounding as the full series below.
+        let w2 = w * w;
+        let sinhc = Complex::ONE + w2.scale(1.0 / 6.0);
+        let cosh = Complex::ONE + w2.scale(0.5);
+        let sinh = w * sinhc;
+        let mu = (a + b).scale(0.5 * s);
+        let y0 = (cosh + sinh) * x0 + (u * sinhc).scale(s) * x1;
+        let y1 = (cosh - sinh) * x1;
+        return if mu.re > 700.0 {
+            (scale_by_exp(y0, mu), scale_by_exp(y1, mu))
+        } else {
+            let e = mu.exp();
+            (y0 * e, y1 * e)
+        };
+    }
     if w.abs1() < 0.25 {
         let w2 = w * w;
         let series = |c: &[f64]| {
@@ -185,7 +205,13 @@ fn exp_pair(
         let mu = (a + b).scale(0.5 * s);
         let y0 = (cosh + sinh) * x0 + (u * sinhc).scale(s) * x1;
         let y1 = (cosh - sinh) * x1;
-        (scale_by_exp(y0, mu), scale_by_exp(y1, mu))
+        if mu.re > 700.0 {
+            (scale_by_exp(y0, mu), scale_by_exp(y1, mu))
+        } else {
+            // One complex exponential for both entries (what `scale_by_exp` multiplies by).
+            let e = mu.exp();
+            (y0 * e, y1 * e)
+        }
     } else {
         let ea = scale_by_exp(Complex::ONE, a.scale(s));
         let eb = scale_by_exp(Complex::ONE, b.scale(s));

@@ -16,7 +16,8 @@
 //!   rounding in every degenerate case (repeated, defective, near-defective, zero, growing,
 //!   purely imaginary eigenvalues).
 //! - [`ProjectedMotion`]: d(s) = B e^{As} y0 for a 2 × m B at O(m) per evaluation, with d', d''
-//!   and bounds over an interval whose proof is in `projected.rs`.
+//!   and bounds over an interval whose proof is in `projected.rs` (the bounds themselves in
+//!   `projected_bound.rs`).
 //! - [`HarmonicResponse`]: the particular solution for harmonic and constant forcing
 //!   (`harmonic.rs`), and its projection [`ProjectedHarmonic`].
 //! - [`eigenvalues`] (`eigen.rs`): the eigenvalues of any real matrix, sorted by modulus (Floquet
@@ -36,6 +37,7 @@ mod hessenberg;
 mod lu;
 mod modal;
 mod projected;
+mod projected_bound;
 mod schur;
 
 pub use cluster::{MAX_COUPLING, MERGE_DISTANCE};

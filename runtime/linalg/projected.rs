@@ -45,12 +45,12 @@
 //! evaluates d and bounds it on the same data never misses a sign change for want of rigor.
 //! Invalid intervals (lo > hi, NaN, hi infinite) give an infinite bound, never NaN.
 
-use super::block::scale_by_exp;
+use super::block::{exp_pair, scale_by_exp};
 use super::complex::Complex;
 use super::conjugate::BlockWeights;
 use super::error::LinalgError;
 use super::modal::{ModalExponential, ModalVector, span};
-use crate::math;
+use super::projected_bound::Magnitudes;
 
 /// Relative margin the bounds carry for rounding (module docs).
 pub const BOUND_MARGIN: f64 = 1e-12;
@@ -88,22 +88,25 @@ impl ProjectedBound {
 
 /// The projection W = B S of a fixed 2 × m matrix B, and one state's modal data: evaluates
 /// d(s) = B e^{As} y0 and its bounds with the [`ModalExponential`] it was made from (passed to
-/// each call, so this stays small plain data: 2·16·CAP + 16·CAP + 32·CAP + 32·CAP bytes).
+/// each call, so this stays small plain data: 2·16·CAP + 16·CAP + 32·CAP + 24·CAP + 40·CAP
+/// bytes).
 #[derive(Clone, Debug)]
 pub struct ProjectedMotion<const CAP: usize> {
-    m: usize,
+    pub(super) m: usize,
     /// W = B S, rows x and y.
-    w: [[Complex; CAP]; 2],
+    pub(super) w: [[Complex; CAP]; 2],
     /// c = S⁻¹ y0.
-    c: ModalVector<CAP>,
+    pub(super) c: ModalVector<CAP>,
     /// Per position p of a 1 × 1 block: u = W_p c_p; unused in larger blocks.
-    u: [[Complex; 2]; CAP],
+    pub(super) u: [[Complex; 2]; CAP],
     /// Per position: the bound coefficients b_{k,j,i} for j = 0..3, stored at position
     /// start_k + i of block k (times the block's weight).
-    coefficients: [[f64; 3]; CAP],
+    pub(super) coefficients: [[f64; 3]; CAP],
     /// Per block: 2 for the first of a conjugate pair, 0 for its partner (never evaluated nor
     /// bounded), 1 otherwise (`conjugate.rs`): d is real, so a pair's parts are conjugate.
-    weights: BlockWeights<CAP>,
+    pub(super) weights: BlockWeights<CAP>,
+    /// The magnitudes of W and J the bound coefficients are made of: per model, not per state.
+    pub(super) magnitudes: Magnitudes<CAP>,
 }
 
 impl<const CAP: usize> ProjectedMotion<CAP> {
@@ -135,7 +138,6 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         }
         Ok(ProjectedMotion {
             m,
-            w,
             c: ModalVector {
                 c: [Complex::ZERO; CAP],
                 m,
@@ -143,6 +145,8 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             u: [[Complex::ZERO; 2]; CAP],
             coefficients: [[0.0; 3]; CAP],
             weights: BlockWeights::of(modal),
+            magnitudes: Magnitudes::of(modal, &w),
+            w,
         })
     }
 
@@ -170,91 +174,41 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
         &self.c
     }
 
-    fn prepare(&mut self, modal: &ModalExponential<CAP>) {
-        let [wx, wy] = &self.w;
-        for k in 0..modal.blocks.count {
-            let range = modal.blocks.range(k);
-            let start = range.start;
-            let weight = self.weight(k);
-            if weight == 0.0 {
-                for p in range {
-                    if let Some(b) = self.coefficients.get_mut(p) {
-                        *b = [0.0; 3];
-                    }
-                }
-                continue;
-            }
-            if range.len() == 1 {
-                let c = self.c.c.get(start).copied().unwrap_or_default();
-                let (x, y) = (
-                    wx.get(start).copied().unwrap_or_default(),
-                    wy.get(start).copied().unwrap_or_default(),
-                );
-                if let Some(u) = self.u.get_mut(start) {
-                    *u = [(x * c).scale(weight), (y * c).scale(weight)];
-                }
-                let lambda = modal.j.get(start, start).abs();
-                let b0 = weight * math::hypot(x.abs(), y.abs()) * c.abs();
-                if let Some(b) = self.coefficients.get_mut(start) {
-                    *b = [b0, b0 * lambda, b0 * lambda * lambda];
-                }
-                continue;
-            }
-            // v_j = |J|^j |c| (j = 0, 1, 2), then |U|^i v_j projected by |W|.
-            let p = range.len();
-            let mut v = [[0.0f64; CAP]; 3];
-            for (a, va) in v[0].iter_mut().enumerate().take(p) {
-                *va = self.c.c.get(start + a).map_or(0.0, |z| z.abs());
-            }
-            for jd in 1..3 {
-                let (prev, next) = v.split_at_mut(jd);
-                let (Some(prev), Some(next)) = (prev.last(), next.first_mut()) else {
-                    continue;
-                };
-                for (a, na) in next.iter_mut().enumerate().take(p) {
-                    *na = (a..p)
-                        .map(|b| {
-                            modal.j.get(start + a, start + b).abs()
-                                * prev.get(b).copied().unwrap_or(0.0)
-                        })
-                        .sum();
-                }
-            }
-            for i in 0..p {
-                let mut b = [0.0; 3];
-                for (jd, vj) in v.iter_mut().enumerate() {
-                    let (mut sx, mut sy) = (0.0, 0.0);
-                    for (a, &va) in vj.iter().enumerate().take(p) {
-                        sx += wx.get(start + a).map_or(0.0, |z| z.abs()) * va;
-                        sy += wy.get(start + a).map_or(0.0, |z| z.abs()) * va;
-                    }
-                    if let Some(bj) = b.get_mut(jd) {
-                        *bj = weight * math::hypot(sx, sy);
-                    }
-                    // vj ← |U| vj for the next power.
-                    let mut next = [0.0f64; CAP];
-                    for (a, na) in next.iter_mut().enumerate().take(p) {
-                        *na = (a + 1..p)
-                            .map(|bb| {
-                                modal.j.get(start + a, start + bb).abs()
-                                    * vj.get(bb).copied().unwrap_or(0.0)
-                            })
-                            .sum();
-                    }
-                    *vj = next;
-                }
-                if let Some(slot) = self.coefficients.get_mut(start + i) {
-                    *slot = b;
-                }
-            }
-        }
-    }
-
     /// d, d', d'' at s ≥ 0 (a negative or NaN s counts as 0; s must be finite for a finite
     /// answer).
     pub fn at(&self, modal: &ModalExponential<CAP>, s: f64) -> ProjectedPoint {
-        let s = span(s);
-        let mut out = [[Complex::ZERO; 2]; 3];
+        let [value, rate, acceleration] = self.derivatives::<3, false>(modal, s);
+        ProjectedPoint {
+            value,
+            rate,
+            acceleration,
+        }
+    }
+
+    /// d and d' at s ≥ 0: [`Self::at`] without d'' (what a switch function's value and rate
+    /// need), the same values to the bit.
+    pub fn value_and_rate(&self, modal: &ModalExponential<CAP>, s: f64) -> ([f64; 2], [f64; 2]) {
+        let [value, rate] = self.derivatives::<2, false>(modal, s);
+        (value, rate)
+    }
+
+    /// d and d' at s = 0: [`Self::value_and_rate`] there without exponentials (e^{J·0} c = c
+    /// exactly, as the closed forms give it, to the sign of a zero).
+    pub fn value_and_rate_at_start(&self, modal: &ModalExponential<CAP>) -> ([f64; 2], [f64; 2]) {
+        let [value, rate] = self.derivatives::<2, true>(modal, 0.0);
+        (value, rate)
+    }
+
+    /// d^{(j)}(s) for j < N (N ≤ 3); at s = 0 (`START`) without exponentials.
+    #[inline(always)]
+    fn derivatives<const N: usize, const START: bool>(
+        &self,
+        modal: &ModalExponential<CAP>,
+        s: f64,
+    ) -> [[f64; 2]; N] {
+        let s = if START { 0.0 } else { span(s) };
+        let at_start = START;
+        let mut out = [[Complex::ZERO; 2]; N];
         let [wx, wy] = &self.w;
         for k in 0..modal.blocks.count {
             let range = modal.blocks.range(k);
@@ -265,14 +219,47 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             if range.len() == 1 {
                 let p = range.start;
                 let lambda = modal.j.get(p, p);
-                let e = scale_by_exp(Complex::ONE, lambda.scale(s));
+                let e = if at_start {
+                    Complex::ONE
+                } else {
+                    scale_by_exp(Complex::ONE, lambda.scale(s))
+                };
                 let [ux, uy] = self.u.get(p).copied().unwrap_or_default();
-                let (vx, vy) = (ux * e, uy * e);
-                let (dx, dy) = (vx * lambda, vy * lambda);
-                let (ax, ay) = (dx * lambda, dy * lambda);
-                for (o, (x, y)) in out.iter_mut().zip([(vx, vy), (dx, dy), (ax, ay)]) {
+                // u e^{λs}, then each derivative times λ.
+                let (mut x, mut y) = (ux * e, uy * e);
+                for (j, o) in out.iter_mut().enumerate() {
                     o[0] += x;
                     o[1] += y;
+                    if j + 1 < N {
+                        (x, y) = (x * lambda, y * lambda);
+                    }
+                }
+                continue;
+            }
+            if range.len() == 2 {
+                // The 2 × 2 block (an isotropic rotor's repeated pair) in closed form, with the
+                // general path's operations on two entries and no CAP-sized work arrays.
+                let (i, k) = (range.start, range.start + 1);
+                let (a, u, b) = (modal.j.get(i, i), modal.j.get(i, k), modal.j.get(k, k));
+                let c = |p: usize| self.c.c.get(p).copied().unwrap_or_default();
+                let w = |row: &[Complex; CAP], p: usize| row.get(p).copied().unwrap_or_default();
+                let (mut x0, mut x1) = if at_start {
+                    (c(i), c(k))
+                } else {
+                    exp_pair(a, u, b, s, (c(i), c(k)))
+                };
+                for (j, o) in out.iter_mut().enumerate() {
+                    let mut px = Complex::ZERO;
+                    let mut py = Complex::ZERO;
+                    px += w(wx, i) * x0;
+                    py += w(wy, i) * x0;
+                    px += w(wx, k) * x1;
+                    py += w(wy, k) * x1;
+                    o[0] += px.scale(weight);
+                    o[1] += py.scale(weight);
+                    if j + 1 < N {
+                        (x0, x1) = (Complex::ZERO + a * x0 + u * x1, Complex::ZERO + b * x1);
+                    }
                 }
                 continue;
             }
@@ -285,11 +272,13 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
             {
                 *xa = ca;
             }
-            let shift = modal.shifts.get(k).copied().unwrap_or_default();
-            super::block::apply_block_exp(&modal.j, range.clone(), shift, s, &mut x, &mut work);
+            if !at_start {
+                let shift = modal.shifts.get(k).copied().unwrap_or_default();
+                super::block::apply_block_exp(&modal.j, range.clone(), shift, s, &mut x, &mut work);
+            }
             // x, Jx, J²x on the block, each projected.
             let mut cur = x;
-            for o in out.iter_mut() {
+            for (j, o) in out.iter_mut().enumerate() {
                 let mut px = Complex::ZERO;
                 let mut py = Complex::ZERO;
                 for (a, &ca) in cur.iter().enumerate().take(range.len()) {
@@ -298,6 +287,9 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 }
                 o[0] += px.scale(weight);
                 o[1] += py.scale(weight);
+                if j + 1 == N {
+                    break;
+                }
                 let mut next = [Complex::ZERO; CAP];
                 for (a, na) in next.iter_mut().enumerate().take(range.len()) {
                     *na = (a..range.len()).fold(Complex::ZERO, |acc, b| {
@@ -308,152 +300,94 @@ impl<const CAP: usize> ProjectedMotion<CAP> {
                 cur = next;
             }
         }
-        let re = |z: [Complex; 2]| [z[0].re, z[1].re];
-        ProjectedPoint {
-            value: re(out[0]),
-            rate: re(out[1]),
-            acceleration: re(out[2]),
+        out.map(|z| [z[0].re, z[1].re])
+    }
+
+    /// The full state y(s) = e^{As} y0 (`out`: m entries; s ≥ 0, a negative s counts as 0) of
+    /// the state set last: Σ_k w_k Re(S_k e^{J_k s} c_k) with the blocks' conjugate-pair
+    /// weights, so a pair's partner is neither propagated nor projected (`conjugate.rs`: its
+    /// part is the conjugate of the first's), and only real parts are formed. Equal to
+    /// [`ModalExponential::state`] to rounding.
+    pub fn state(&self, modal: &ModalExponential<CAP>, s: f64, out: &mut [f64]) {
+        let s = span(s);
+        let mut x = [Complex::ZERO; CAP];
+        let mut work = [Complex::ZERO; CAP];
+        for (xa, &ca) in x.iter_mut().zip(self.c.c.iter()) {
+            *xa = ca;
+        }
+        for k in 0..modal.blocks.count {
+            let range = modal.blocks.range(k);
+            let weight = self.weight(k);
+            if let Some(xs) = x.get_mut(range.clone()) {
+                if weight == 0.0 {
+                    xs.iter_mut().for_each(|v| *v = Complex::ZERO);
+                    continue;
+                }
+                let shift = modal.shifts.get(k).copied().unwrap_or_default();
+                super::block::apply_block_exp(&modal.j, range, shift, s, xs, &mut work);
+                if weight != 1.0 {
+                    xs.iter_mut().for_each(|v| *v = v.scale(weight));
+                }
+            }
+        }
+        for (i, o) in out.iter_mut().enumerate().take(self.m) {
+            // Re(Σ_p S_ip x_p), the partners' x_p being 0.
+            *o = modal
+                .s
+                .row(i)
+                .iter()
+                .zip(x.iter())
+                .fold(0.0, |acc, (sp, xp)| acc + (sp.re * xp.re - sp.im * xp.im));
         }
     }
 
     /// Block k's weight (2: a pair's first, 0: its partner, 1: alone).
     #[inline]
-    fn weight(&self, k: usize) -> f64 {
+    pub(super) fn weight(&self, k: usize) -> f64 {
         self.weights.weight.get(k).copied().unwrap_or(1.0)
     }
-
-    /// The bound coefficients of mode `p` (|d|, |d'|, |d''| per unit of its basis); infinite
-    /// for a mode the projection does not have (never for the modal form it was made from).
-    fn coefficient(&self, p: usize) -> [f64; 3] {
-        self.coefficients
-            .get(p)
-            .copied()
-            .unwrap_or([f64::INFINITY; 3])
-    }
-
-    /// Upper bounds of |d|, |d'|, |d''| valid for every s in [lo, hi] (module docs: the proof).
-    pub fn bound(&self, modal: &ModalExponential<CAP>, lo: f64, hi: f64) -> ProjectedBound {
-        let inf = ProjectedBound::UNBOUNDED;
-        if !(0.0 <= lo && lo <= hi && hi < f64::INFINITY) {
-            return inf;
-        }
-        let mut sum = [0.0f64; 3];
-        for (range, alpha) in self.seen_blocks(modal) {
-            let mut poly = [0.0f64; 3];
-            for (i, p) in range.enumerate() {
-                let b = self.coefficient(p);
-                let weight = peak(alpha, i, lo, hi);
-                for (acc, bj) in poly.iter_mut().zip(b) {
-                    *acc += bj * weight;
-                }
-            }
-            for (acc, pj) in sum.iter_mut().zip(poly) {
-                // NaN (0·∞ from an overflowing weight) becomes ∞.
-                *acc += if pj.is_nan() { f64::INFINITY } else { pj };
-            }
-        }
-        with_margin(sum)
-    }
 }
 
-impl<const CAP: usize> ProjectedMotion<CAP> {
-    /// Upper bounds of |d|, |d'|, |d''| valid for every s ≥ `lo` (finite, ≥ 0): the bound of
-    /// [`Self::bound`] with hi → ∞, finite when every block the projection sees decays or, for
-    /// its leading term only (i = 0), stays (Re λ = 0: an undamped mode rings for ever at its
-    /// amplitude). A growing mode, or a secular term (i ≥ 1) of an undamped block, with a
-    /// nonzero coefficient gives ∞. The switch search stops searching a free flight whose
-    /// reach over all later times is inside the clearance.
-    pub fn bound_after(&self, modal: &ModalExponential<CAP>, lo: f64) -> ProjectedBound {
-        let inf = ProjectedBound::UNBOUNDED;
-        if !(0.0..f64::INFINITY).contains(&lo) {
-            return inf;
-        }
-        let mut sum = [0.0f64; 3];
-        for (range, alpha) in self.seen_blocks(modal) {
-            for (i, p) in range.enumerate() {
-                let b = self.coefficient(p);
-                if b.iter().all(|&x| x == 0.0) {
-                    continue;
-                }
-                let weight = if alpha < 0.0 {
-                    // e^{αs} s^i/i! falls after s = i/(−α): its maximum on [lo, ∞).
-                    peak(alpha, i, lo, lo.max(i as f64 / -alpha))
-                } else if alpha == 0.0 && i == 0 {
-                    1.0
-                } else {
-                    f64::INFINITY
-                };
-                for (acc, bj) in sum.iter_mut().zip(b) {
-                    let term = bj * weight;
-                    *acc += if term.is_nan() { f64::INFINITY } else { term };
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::RealMatrix;
+
+    /// The weighted state (a pair's partner not evaluated) equals the full modal state to
+    /// rounding (‖y0‖ ≈ 1.4): an anisotropic 2-DOF rotor with cross-coupling (complex pairs),
+    /// an isotropic one (repeated pairs: 2 × 2 blocks), and real eigenvalues (overdamped).
+    #[test]
+    fn the_weighted_state_is_the_full_state() {
+        let rotor = |k: (f64, f64), kxy: f64, c: f64| {
+            RealMatrix::<8>::from_rows(&[
+                &[0.0, 0.0, 1.0, 0.0],
+                &[0.0, 0.0, 0.0, 1.0],
+                &[-k.0, -kxy, -c, 0.0],
+                &[kxy, -k.1, 0.0, -c],
+            ])
+            .unwrap()
+        };
+        for a in [
+            rotor((1.0, 1.7), 0.3, 0.1),
+            rotor((1.0, 1.0), 0.0, 0.25),
+            rotor((1.0, 2.0), 0.0, 5.0),
+        ] {
+            let e = ModalExponential::new(&a).unwrap();
+            let mut motion =
+                ProjectedMotion::new(&e, &[1.0, 0.0, 0.0, 0.0], &[0.0, 1.0, 0.0, 0.0]).unwrap();
+            let y0 = [0.3, -0.7, 1.1, 0.4];
+            motion.set_state(&e, &y0).unwrap();
+            for s in [0.0, 0.01, 0.7, 3.0, 40.0] {
+                let (mut full, mut weighted) = ([0.0; 4], [0.0; 4]);
+                e.state(motion.modal_coordinates(), s, &mut full);
+                motion.state(&e, s, &mut weighted);
+                // Both are exact to rounding relative to ‖y0‖, plus the eigenvalues' rounding
+                // turned into phase over the span (≈ s‖A‖ε; `modal.rs`).
+                let size = (1.0 + 2.0 * s) * 1.1;
+                for (f, w) in full.iter().zip(&weighted) {
+                    assert!((f - w).abs() <= 1e-14 * size, "s = {s}: {f} vs {w}");
                 }
             }
         }
-        with_margin(sum)
     }
-}
-
-impl<const CAP: usize> ProjectedMotion<CAP> {
-    /// The blocks the projection sees (nonzero weight): each one's index range and growth
-    /// rate α.
-    fn seen_blocks<'m>(
-        &'m self,
-        modal: &'m ModalExponential<CAP>,
-    ) -> impl Iterator<Item = (core::ops::Range<usize>, f64)> + 'm {
-        (0..modal.blocks.count)
-            .filter(|&k| self.weight(k) != 0.0)
-            .map(|k| {
-                let range = modal.blocks.range(k);
-                (range.clone(), growth_rate(modal, range))
-            })
-    }
-}
-
-/// The bounds |d|, |d'|, |d''| of summed terms, each raised by the rounding margin.
-fn with_margin(sum: [f64; 3]) -> ProjectedBound {
-    let up = |x: f64| x * (1.0 + BOUND_MARGIN);
-    ProjectedBound {
-        value: up(sum[0]),
-        rate: up(sum[1]),
-        acceleration: up(sum[2]),
-    }
-}
-
-/// max over s ∈ [lo, hi] of e^{αs} s^i / i! (0 ≤ lo ≤ hi < ∞): for i = 0 at an end; for i ≥ 1
-/// the function rises while s < i/(−α) and falls after, so its maximum is at that point clamped
-/// into [lo, hi] (at hi when α ≥ 0). Computed with one `exp` and i nonnegative factors; the
-/// rounding of the peak's location changes the value only to second order (relative
-/// i·(δs/s)² ≤ i·ε²).
-fn peak(alpha: f64, i: usize, lo: f64, hi: f64) -> f64 {
-    if i == 0 {
-        return math::exp(alpha * lo).max(math::exp(alpha * hi));
-    }
-    let at = if alpha < 0.0 {
-        let top = i as f64 / -alpha;
-        if top < lo {
-            lo
-        } else if top > hi {
-            hi
-        } else {
-            top
-        }
-    } else {
-        hi
-    };
-    let mut v = math::exp(alpha * at);
-    for k in 1..=i {
-        v *= at / k as f64;
-    }
-    v
-}
-
-/// The largest real part of the eigenvalues of a triangular block (rows `range` of the modal
-/// form): the block's exponential growth rate in the bound e^{αs} e^{|U|s}.
-fn growth_rate<const CAP: usize>(
-    modal: &ModalExponential<CAP>,
-    range: core::ops::Range<usize>,
-) -> f64 {
-    range
-        .map(|p| modal.j.get(p, p).re)
-        .fold(f64::NEG_INFINITY, f64::max)
 }

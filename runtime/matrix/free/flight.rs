@@ -14,6 +14,7 @@ use crate::coefficients::{self as coef, Position, Velocity};
 use crate::field;
 use crate::linalg::{
     Complex, HarmonicResponse, LinalgError, ModalExponential, ProjectedHarmonic, ProjectedMotion,
+    ProjectedPoint,
 };
 use crate::math;
 
@@ -82,9 +83,14 @@ impl<const CAP: usize> Decomposition<CAP> {
 
     /// y_p at absolute time `t` (m entries of `out`).
     pub(super) fn particular(&self, model: &MatrixModel<CAP>, t: f64, out: &mut [f64]) {
-        let p = field::phasor(model.running(), t);
-        self.harmonic.state_at_phase(Complex::new(p.ct, p.st), out);
+        self.harmonic.state_at_phase(phase(model, t), out);
     }
+}
+
+/// e^{iθ(t)}: the forcing phasor at absolute time `t` (`field::phasor`).
+fn phase<const CAP: usize>(model: &MatrixModel<CAP>, t: f64) -> Complex {
+    let p = field::phasor(model.running(), t);
+    Complex::new(p.ct, p.st)
 }
 
 /// One free segment: its start and the station's homogeneous motion from there.
@@ -96,15 +102,24 @@ pub(super) struct Flight<const CAP: usize> {
     pub(super) y0: MatrixState<CAP>,
     /// P_h(s) = B e^{As} c with c = S⁻¹(y0 − y_p(t0)).
     pub(super) motion: ProjectedMotion<CAP>,
+    /// e^{iθ(t0)}, the forcing phasor at the start (kept for the start's point).
+    pub(super) phase0: Complex,
 }
 
-/// The station along a flight at one local time: h = z² − 1, h' and |P'| (for the local
-/// tightening of the curvature bound).
+/// The station along a flight at one local time: h = z² − 1, h' and P' (whose norm tightens
+/// the curvature bound locally: [`StationPoint::speed`], computed only where a bound needs it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct StationPoint {
     pub(super) h: f64,
     pub(super) dh: f64,
-    pub(super) speed: f64,
+    pub(super) rate: [f64; 2],
+}
+
+impl StationPoint {
+    /// |P'|.
+    pub(super) fn speed(&self) -> f64 {
+        math::hypot(self.rate[0], self.rate[1])
+    }
 }
 
 impl<const CAP: usize> Flight<CAP> {
@@ -118,7 +133,8 @@ impl<const CAP: usize> Flight<CAP> {
     ) -> Result<(), LinalgError> {
         let m = d.modal.dim();
         let mut relative = [0.0; CAP];
-        d.particular(model, t0, &mut relative);
+        let phase0 = phase(model, t0);
+        d.harmonic.state_at_phase(phase0, &mut relative);
         for (r, &y) in relative.iter_mut().zip(y0.as_slice()) {
             *r = y - *r;
         }
@@ -126,11 +142,13 @@ impl<const CAP: usize> Flight<CAP> {
             .set_state(&d.modal, relative.get(..m).unwrap_or(&[]))?;
         self.t0 = t0;
         self.y0 = y0;
+        self.phase0 = phase0;
         Ok(())
     }
 
     /// The state at local time `s` ≥ 0: y0 itself at s = 0, else
-    /// Re(S e^{Js} c) + y_p(t0 + s) (O(m²)).
+    /// Re(S e^{Js} c) + y_p(t0 + s) (O(m²); a conjugate pair's partner block is not evaluated:
+    /// [`ProjectedMotion::state`]).
     pub(super) fn state(
         &self,
         model: &MatrixModel<CAP>,
@@ -145,11 +163,8 @@ impl<const CAP: usize> Flight<CAP> {
         let mut particular = [0.0; CAP];
         d.particular(model, self.t0 + s, &mut particular);
         let out = y.as_mut_slice();
-        d.modal.state(
-            self.motion.modal_coordinates(),
-            s,
-            out.get_mut(..m).unwrap_or(&mut []),
-        );
+        self.motion
+            .state(&d.modal, s, out.get_mut(..m).unwrap_or(&mut []));
         for (o, &p) in out.iter_mut().zip(&particular) {
             *o += p;
         }
@@ -157,31 +172,31 @@ impl<const CAP: usize> Flight<CAP> {
     }
 
     /// The station at local time `s` (O(m): one complex exponential per mode): P and P' from
-    /// the projected homogeneous and harmonic parts, h and h' by the generated
-    /// `switching_function`.
+    /// the projected homogeneous and harmonic parts (no P'': h and h' do not need it), h and h'
+    /// by the generated `switching_function`.
     pub(super) fn point(
         &self,
         model: &MatrixModel<CAP>,
         d: &Decomposition<CAP>,
         s: f64,
     ) -> StationPoint {
-        let h = self.motion.at(&d.modal, s);
-        let phasor = field::phasor(model.running(), self.t0 + s);
-        let p = d.station.at_phase(Complex::new(phasor.ct, phasor.st));
-        let at = Position {
-            x: h.value[0] + p.value[0],
-            y: h.value[1] + p.value[1],
-        };
-        let rate = Velocity {
-            vx: h.rate[0] + p.rate[0],
-            vy: h.rate[1] + p.rate[1],
-        };
-        let sw = coef::switching_function(model.running(), &at, &rate);
-        StationPoint {
-            h: sw.h,
-            dh: sw.dh,
-            speed: math::hypot(rate.vx, rate.vy),
-        }
+        let (value, rate) = self.motion.value_and_rate(&d.modal, s);
+        station_point(
+            model,
+            value,
+            rate,
+            d.station.at_phase(phase(model, self.t0 + s)),
+        )
+    }
+
+    /// [`Self::point`] at s = 0, the same values without exponentials or a new phasor.
+    pub(super) fn start_point(
+        &self,
+        model: &MatrixModel<CAP>,
+        d: &Decomposition<CAP>,
+    ) -> StationPoint {
+        let (value, rate) = self.motion.value_and_rate_at_start(&d.modal);
+        station_point(model, value, rate, d.station.at_phase(self.phase0))
     }
 
     /// Bounds of |P − ε̂|, |P'|, |P''| over local times [lo, hi]: the homogeneous part's
@@ -197,6 +212,30 @@ impl<const CAP: usize> Flight<CAP> {
     pub(super) fn reach_after(&self, d: &Decomposition<CAP>, lo: f64) -> Reach {
         let b = self.motion.bound_after(&d.modal, lo);
         combine(d, b.value, b.rate, b.acceleration)
+    }
+}
+
+/// The station from its homogeneous part's P, P' and the particular part.
+#[inline(always)]
+fn station_point<const CAP: usize>(
+    model: &MatrixModel<CAP>,
+    value: [f64; 2],
+    rate: [f64; 2],
+    p: ProjectedPoint,
+) -> StationPoint {
+    let at = Position {
+        x: value[0] + p.value[0],
+        y: value[1] + p.value[1],
+    };
+    let rate = Velocity {
+        vx: rate[0] + p.rate[0],
+        vy: rate[1] + p.rate[1],
+    };
+    let sw = coef::switching_function(model.running(), &at, &rate);
+    StationPoint {
+        h: sw.h,
+        dh: sw.dh,
+        rate: [rate.vx, rate.vy],
     }
 }
 

@@ -55,7 +55,7 @@ use super::model::MatrixModel;
 use super::state::MatrixState;
 use crate::analytic::switch::EventFunction;
 use crate::driver::{Located, SegmentSolver};
-use crate::linalg::{LinalgError, ProjectedMotion};
+use crate::linalg::{Complex, LinalgError, ProjectedMotion};
 use crate::propagate::{Event, EventKind, PropagationError};
 
 /// Work counters of an [`ExactFree`] since it was made (benches and diagnostics).
@@ -145,12 +145,13 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
                 t0: 0.0,
                 y0,
                 motion,
+                phase0: Complex::ONE,
             },
             horizon: 0.0,
             last: StationPoint {
                 h: -1.0,
                 dh: 0.0,
-                speed: 0.0,
+                rate: [0.0; 2],
             },
             chunk: longest,
             longest,
@@ -181,7 +182,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
         self.flight
             .start(&self.model, &self.decomposition, time, state)?;
         self.horizon = 0.0;
-        self.last = self.flight.point(&self.model, &self.decomposition, 0.0);
+        self.last = self.flight.start_point(&self.model, &self.decomposition);
         self.chunk = self.longest / 8.0;
         self.chunks = 0;
         self.found = None;
@@ -204,7 +205,11 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
         let mut first = true;
         while self.found.is_none() && !self.settled && (first || self.horizon < wanted) {
             first = false;
+            // The reach over all later times is at least the station's distance where the
+            // search stands: on or outside the clearance (h ≥ 0, a start just after a contact)
+            // it cannot settle, and is not bounded.
             if self.chunks.is_multiple_of(SETTLE_CHECK_CHUNKS)
+                && self.last.h < 0.0
                 && self
                     .flight
                     .reach_after(&self.decomposition, self.horizon)
@@ -243,8 +248,7 @@ impl<M: Deref<Target = MatrixModel<CAP>> + Clone, const CAP: usize> ExactFree<M,
                         self.chunk
                     };
                 }
-                ChunkResult::Contact { s, certain } => {
-                    let at = self.flight.point(&self.model, &self.decomposition, s);
+                ChunkResult::Contact { s, at, certain } => {
                     if at.dh < 0.0 {
                         // h falling through 0 is no contact: the closed form's rounding
                         // (≈ 1e-14) above TOUCH just after a start on z = 1 moving outward (an

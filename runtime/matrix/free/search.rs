@@ -81,7 +81,14 @@ impl<const CAP: usize> EventFunction for StationSwitch<'_, CAP> {
         self.tests.set(self.tests.get() + 1);
         let r = self.flight.reach(self.decomposition, lo, hi);
         let r0 = math::sqrt((at_lo.h + 1.0).max(0.0));
-        local_curvature(r0, at_lo.speed, r.radius, r.speed, r.acceleration, hi - lo)
+        local_curvature(
+            r0,
+            at_lo.speed(),
+            r.radius,
+            r.speed,
+            r.acceleration,
+            hi - lo,
+        )
     }
 }
 
@@ -92,9 +99,11 @@ pub(super) enum ChunkResult {
         /// Whether a part stayed unresolved after the retries (a touch within rounding).
         unresolved: bool,
     },
-    /// The first contact at local time `s`.
+    /// The first contact at local time `s`, with the station there (the refinement's last
+    /// evaluation: not evaluated again).
     Contact {
         s: f64,
+        at: StationPoint,
         /// Whether it is proved first and refined to rounding.
         certain: bool,
     },
@@ -111,7 +120,11 @@ pub(super) fn search_chunk<const CAP: usize>(
 ) -> ChunkResult {
     match locate(f, a, pa, b, Some(pb), f64::INFINITY, &Budget::EXPLORE, None) {
         Search::None => ChunkResult::Free { unresolved: false },
-        Search::Found { s, certain, .. } => ChunkResult::Contact { s, certain },
+        Search::Found { s, point, certain } => ChunkResult::Contact {
+            s,
+            at: point,
+            certain,
+        },
         Search::Unresolved => {
             let mut unresolved = false;
             let (mut lo, mut plo) = (a, pa);
@@ -134,8 +147,12 @@ pub(super) fn search_chunk<const CAP: usize>(
                     None,
                 ) {
                     Search::None => {}
-                    Search::Found { s, certain, .. } => {
-                        return ChunkResult::Contact { s, certain };
+                    Search::Found { s, point, certain } => {
+                        return ChunkResult::Contact {
+                            s,
+                            at: point,
+                            certain,
+                        };
                     }
                     Search::Unresolved => unresolved = true,
                 }
