@@ -40,6 +40,40 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
+/// The largest |x| [`sin_cos_small`] takes its polynomials for.
+pub const SMALL_ANGLE: f64 = 0.3;
+
+/// `(sin x, cos x)` for a small angle: for |x| ≤ [`SMALL_ANGLE`] their Taylor polynomials to
+/// x¹³ and x¹² (the first terms left out, x¹⁵/15! and x¹⁴/14!, are below 4e-20 and 6e-19 of
+/// the result there), within 1 ulp of [`sin_cos`] (unit test); beyond it [`sin_cos`]. What a
+/// step's stages take to turn the forcing direction by η·s: no argument reduction and no
+/// dispatch, about half of `sin_cos`'s instructions.
+#[inline]
+pub fn sin_cos_small(x: f64) -> (f64, f64) {
+    if !(abs(x) <= SMALL_ANGLE) {
+        return sin_cos(x);
+    }
+    const S: [f64; 6] = [
+        -1.0 / 6.0,
+        1.0 / 120.0,
+        -1.0 / 5040.0,
+        1.0 / 362_880.0,
+        -1.0 / 39_916_800.0,
+        1.0 / 6_227_020_800.0,
+    ];
+    const C: [f64; 6] = [
+        -1.0 / 2.0,
+        1.0 / 24.0,
+        -1.0 / 720.0,
+        1.0 / 40_320.0,
+        -1.0 / 3_628_800.0,
+        1.0 / 479_001_600.0,
+    ];
+    let x2 = x * x;
+    let horner = |c: &[f64; 6]| c.iter().rev().fold(0.0, |acc, &k| acc * x2 + k);
+    (x + x * x2 * horner(&S), 1.0 + x2 * horner(&C))
+}
+
 /// Hyperbolic sine.
 #[inline]
 pub fn sinh(x: f64) -> f64 {
@@ -94,4 +128,45 @@ pub fn pow(x: f64, y: f64) -> f64 {
 #[inline]
 pub fn ln(x: f64) -> f64 {
     libm::log(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Distance in units in the last place (same sign, finite).
+    fn ulps(a: f64, b: f64) -> u64 {
+        (a.to_bits() as i64).abs_diff(b.to_bits() as i64)
+    }
+
+    /// The small-angle polynomials are within 2 ulps of libm's sine and cosine over the whole
+    /// range they serve, and are libm's beyond it.
+    #[test]
+    fn small_angle_sine_and_cosine_match_libm() {
+        let mut worst = (0, 0);
+        let n = 600_000;
+        for k in 0..=n {
+            let x = SMALL_ANGLE * (2.0 * k as f64 / n as f64 - 1.0);
+            let (s, c) = sin_cos_small(x);
+            let (s0, c0) = sin_cos(x);
+            if x != 0.0 {
+                worst.0 = worst.0.max(ulps(s, s0));
+            }
+            worst.1 = worst.1.max(ulps(c, c0));
+        }
+        assert!(
+            worst.0 <= 1 && worst.1 <= 1,
+            "worst ulps (sin, cos) = {worst:?}"
+        );
+        for x in [0.0, 1e-300, -1e-300, 1e-9] {
+            assert_eq!(sin_cos_small(x), sin_cos(x), "{x}");
+        }
+        for x in [0.31, -0.5, 3.0, 1e6] {
+            assert_eq!(sin_cos_small(x), sin_cos(x), "{x}");
+        }
+        for x in [f64::INFINITY, f64::NAN] {
+            let (s, c) = sin_cos_small(x);
+            assert!(s.is_nan() && c.is_nan(), "{x}");
+        }
+    }
 }

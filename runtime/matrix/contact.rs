@@ -12,8 +12,9 @@
 //!   the function to dip below 0 and back between two samples with rates that show no minimum,
 //!   which takes two extrema inside the piece; a switching function's extrema driven by a mode
 //!   are half its period apart, four pieces;
-//! - the forcing direction at a stage is the step start's turned by η·s ([`StepField`]), one
-//!   sine and cosine of a small angle instead of the phase's at the stage's time;
+//! - the forcing direction at a stage is the step start's turned by η·s ([`StepField`]), the
+//!   sine and cosine of a small angle by their polynomials instead of the phase's at the
+//!   stage's time;
 //! - each contact after the first starts with the step size the previous one ended with
 //!   instead of a fresh initial guess (two evaluations and a trial).
 //!
@@ -77,7 +78,7 @@ pub fn longest_piece<const CAP: usize>(model: &MatrixModel<CAP>) -> f64 {
 }
 
 /// A regime's field on one step: [`MatrixField`]'s, with the forcing direction at `t` that at
-/// the step's start `t0` turned by η·(t − t0) (`field::phasor_after`): every stage, the dense
+/// the step's start `t0` turned by η·(t − t0) (`field::phasor_within_step`): every stage, the dense
 /// output and a redone step of that step use the same base.
 struct StepField<'a, const CAP: usize> {
     model: &'a MatrixModel<CAP>,
@@ -99,15 +100,16 @@ impl<'a, const CAP: usize> StepField<'a, CAP> {
 }
 
 impl<const CAP: usize> OdeSystem<CAP> for StepField<'_, CAP> {
-    #[inline]
+    #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64; CAP]) -> [f64; CAP] {
         let phasor = if t == self.t0 {
             self.phasor
         } else {
-            field::phasor_after(self.model.running(), &self.phasor, t - self.t0)
+            field::phasor_within_step(self.model.running(), &self.phasor, t - self.t0)
         };
         let mut dy = [0.0; CAP];
-        self.model.derivative(self.field, &phasor, y, &mut dy);
+        self.model
+            .derivative_inline(self.field, &phasor, y, &mut dy);
         dy
     }
 

@@ -56,7 +56,8 @@ impl<const CAP: usize> OdeSystem<CAP> for MatrixField<'_, CAP> {
     fn rhs(&self, t: f64, y: &[f64; CAP]) -> [f64; CAP] {
         let phasor = field::phasor(self.model.running(), t);
         let mut dy = [0.0; CAP];
-        self.model.derivative(self.field, &phasor, y, &mut dy);
+        self.model
+            .derivative_inline(self.field, &phasor, y, &mut dy);
         dy
     }
 

@@ -201,8 +201,9 @@ impl<const CAP: usize> MatrixExpansion<CAP> {
         let force = model.running().unbalance_force;
         let a = model.linear();
         let (unbalance, input, _) = model.force_accelerations();
-        for (i, out) in acc.iter_mut().enumerate().take(dofs) {
-            let linear = a.row_times(i, &y);
+        let mut linear = [0.0; CAP];
+        a.times(&y, linear.get_mut(..dofs).unwrap_or(&mut []));
+        for (i, (out, &linear)) in acc.iter_mut().zip(&linear).enumerate().take(dofs) {
             let u = unbalance.get(i).copied().unwrap_or_default();
             let constant = if n == 0 {
                 input.get(i).copied().unwrap_or(0.0)

@@ -83,8 +83,9 @@ impl<const CAP: usize> MatrixModel<CAP> {
         let unbalance = self.unbalance_acceleration();
         let a = self.linear();
         let mut jerk = [0.0; CAP];
-        for (i, j) in jerk.iter_mut().enumerate().take(n) {
-            let linear = a.row_times(i, &dy);
+        let mut linear = [0.0; CAP];
+        a.times(&dy, linear.get_mut(..n).unwrap_or(&mut []));
+        for (i, (j, &linear)) in jerk.iter_mut().zip(&linear).enumerate().take(n) {
             let u = unbalance.get(i).copied().unwrap_or_default();
             *j = linear + force * (u.re * turn.ct_rate - u.im * turn.st_rate);
         }
