@@ -50,7 +50,8 @@ pub const SMALL_ANGLE: f64 = 0.3;
 /// dispatch, about half of `sin_cos`'s instructions.
 #[inline]
 pub fn sin_cos_small(x: f64) -> (f64, f64) {
-    if abs(x) > SMALL_ANGLE || x.is_nan() {
+    // (A NaN takes the polynomials, which give NaN as `sin_cos` does.)
+    if abs(x) > SMALL_ANGLE {
         return sin_cos(x);
     }
     const S: [f64; 6] = [

@@ -102,11 +102,8 @@ impl<'a, const CAP: usize> StepField<'a, CAP> {
 impl<const CAP: usize> OdeSystem<CAP> for StepField<'_, CAP> {
     #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64; CAP]) -> [f64; CAP] {
-        let phasor = if t == self.t0 {
-            self.phasor
-        } else {
-            field::phasor_within_step(self.model.running(), &self.phasor, t - self.t0)
-        };
+        // At t0 itself the angle is 0, its sine and cosine (0, 1) exactly: the start's phasor.
+        let phasor = field::phasor_within_step(self.model.running(), &self.phasor, t - self.t0);
         let mut dy = [0.0; CAP];
         self.model
             .derivative_inline(self.field, &phasor, y, &mut dy);
