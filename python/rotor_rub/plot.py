@@ -92,7 +92,7 @@ def orbit(
         ax.plot(offset[0] + state[:, 4], offset[1] + state[:, 5], lw=0.8, color="tab:orange",
                 label="ring centre")
         ax.plot(state[:, 0] - state[:, 4], state[:, 1] - state[:, 5], lw=0.6,
-                color="tab:green", ls=":", label="rotor − ring (contact on the circle)")
+                color="tab:green", ls=":", label="rotor − ring (in contact outside the circle)")
     if events and len(run.events):
         ev_keep = (np.ones(len(run.events), dtype=bool) if from_time is None
                    else run.events.time >= from_time)

@@ -462,9 +462,10 @@ def test_the_orbit_plot_draws_the_ring(tmp_path):
     ax = plot.orbit(run)
     lines = {line.get_label(): line for line in ax.get_lines()}
     assert "ring centre" in lines
-    # The relative orbit is the one the clearance circle bounds: at every contact start it is
-    # on the circle (|x − xs − ε̂| = 1), where the rotor's own orbit is not once the ring moves.
-    relative = lines["rotor − ring (contact on the circle)"].get_xydata()
+    # The relative orbit is the one the clearance circle bounds: at every contact start it
+    # is on the circle (|x − xs − ε̂| = 1), where the rotor's own orbit is not once the ring
+    # moves.
+    relative = lines["rotor − ring (in contact outside the circle)"].get_xydata()
     s = run.samples.state
     assert np.allclose(relative, np.column_stack([s[:, 0] - s[:, 4], s[:, 1] - s[:, 5]]))
     enters = run.events.state[run.events.kind == "enter"]

@@ -25,7 +25,7 @@ pub enum Preset {
     /// ring's two support modes, 2.76 and 7.24 per unit τ). The rub is sustained and the ring
     /// moves with it: over forcing periods 50–100 (hybrid, 20 001 samples over 100 periods) the
     /// rotor enters contact 321 times and is in contact 46 % of the time, the ring's centre
-    /// moves up to 0.59 clearances and the rotor up to 1.73. With ĉ = 1 the rub is as heavy
+    /// moves up to 0.58 clearances and the rotor up to 1.72. With ĉ = 1 the rub is as heavy
     /// (67 % in contact); with k̂_c = 50 and ĉ = 0.5 it dies out after the start (no contact
     /// after period 50). `tests/ring_presets.rs` checks the numbers.
     StatorMass,
