@@ -26,12 +26,12 @@ use core::ops::Deref;
 use super::model::MatrixModel;
 use super::numerical::{fastest_rate, first_switch, max_step};
 use super::state::MatrixState;
-use super::switches::MatrixSwitches;
+use super::switches::SegmentSide;
 use crate::coefficients::Phasor;
 use crate::driver::{Located, SegmentSolver, SegmentStart, System};
 use crate::field::{self, Field};
 use crate::math;
-use crate::propagate::{Event, PropagationError, Regime};
+use crate::propagate::{Event, PropagationError};
 use crate::reference::{
     Dop853, Dop853Dense, Dop853Step, Integrator, Interpolant, LazyDense, OdeSystem, Tolerance,
 };
@@ -121,9 +121,7 @@ impl<const CAP: usize> OdeSystem<CAP> for StepField<'_, CAP> {
 #[derive(Clone)]
 pub struct Dop853Contact<M, const CAP: usize> {
     model: M,
-    regime: Regime,
-    slip: f64,
-    offset: f64,
+    side: SegmentSide,
     integrator: Integrator<Dop853, CAP>,
     /// [`longest_piece`] of the model.
     piece: f64,
@@ -149,9 +147,7 @@ where
         let piece = longest_piece(&model);
         Dop853Contact {
             model,
-            regime: Regime::Contact,
-            slip: 0.0,
-            offset: 0.0,
+            side: SegmentSide::NONE,
             integrator,
             piece,
             carried_step: None,
@@ -175,7 +171,7 @@ where
             self.step.y1
         } else {
             let step = &self.step;
-            let field = StepField::new(model, Field::of(self.regime, self.slip), step.t0);
+            let field = StepField::new(model, self.side.field(), step.t0);
             self.dense.get_or_insert_with(|| step.dense(&field)).eval(t)
         };
         MatrixState::from_array(model.dofs(), y)
@@ -189,16 +185,13 @@ where
     /// Take the regime's field and restart the integration at the switch, with the step size
     /// the last contact ended with.
     fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
-        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
-        self.regime = regime;
-        self.slip = slip;
-        let y = *state.array();
-        self.offset = MatrixSwitches::start_offset(&self.model, regime, slip, time, &y);
+        self.side = SegmentSide::at(&self.model, &at);
         self.stepped = false;
         self.dense = None;
         self.pending = None;
         let model: &MatrixModel<CAP> = &self.model;
-        let field = StepField::new(model, Field::of(regime, slip), time);
+        let (time, y) = (at.time, *at.state.array());
+        let field = StepField::new(model, self.side.field(), time);
         match self.carried_step {
             Some(h) => self.integrator.restart_with_step(&field, time, y, h),
             None => self.integrator.restart(&field, time, y),
@@ -223,11 +216,7 @@ where
     /// Take one step and look for a switch in it.
     fn step(&mut self) -> Result<(), PropagationError> {
         let model: &MatrixModel<CAP> = &self.model;
-        let sys = StepField::new(
-            model,
-            Field::of(self.regime, self.slip),
-            self.integrator.time(),
-        );
+        let sys = StepField::new(model, self.side.field(), self.integrator.time());
         self.dense = None;
         self.integrator
             .step_deferred(&sys, f64::INFINITY, &mut self.step)?;
@@ -243,7 +232,7 @@ where
         } else {
             (libm::ceil(ratio) as usize).min(MAX_PIECES)
         };
-        let switches = MatrixSwitches::new(model, self.regime, self.slip, self.offset);
+        let switches = self.side.switches(model);
         let lazy = LazyDense::new(&sys, step);
         let integrator = &mut self.integrator;
         let f0 = step.f0();

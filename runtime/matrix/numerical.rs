@@ -18,7 +18,7 @@ use core::ops::Deref;
 
 use super::model::MatrixModel;
 use super::state::MatrixState;
-use super::switches::{Function, MatrixSwitches};
+use super::switches::{Function, MatrixSwitches, SegmentSide};
 use crate::driver::{Located, SegmentSolver, Solvers, System};
 use crate::field::{self, Field};
 use crate::math;
@@ -109,9 +109,7 @@ type Found<const CAP: usize> = (f64, [f64; CAP], EventKind);
 #[derive(Clone)]
 pub struct NumericalSolver<S: Scheme<CAP>, M, const CAP: usize> {
     model: M,
-    regime: Regime,
-    slip: f64,
-    offset: f64,
+    side: SegmentSide,
     integrator: Integrator<S, CAP>,
     step: Option<AcceptedStep<CAP, S::Dense>>,
     pending: Option<Event<MatrixState<CAP>>>,
@@ -128,9 +126,7 @@ where
             Integrator::unstarted(0.0, [0.0; CAP], Tolerance::uniform(tol), max_step(&model));
         NumericalSolver {
             model,
-            regime: Regime::Free,
-            slip: 0.0,
-            offset: 0.0,
+            side: SegmentSide::NONE,
             integrator,
             step: None,
             pending: None,
@@ -154,16 +150,12 @@ where
 {
     /// Take the regime's field and restart the integration at the switch.
     fn start(&mut self, at: SegmentStart<MatrixState<CAP>>) -> Result<(), PropagationError> {
-        let (regime, slip, time, state) = (at.regime, at.slip, at.time, at.state);
-        self.regime = regime;
-        self.slip = slip;
-        let y = *state.array();
-        self.offset = MatrixSwitches::start_offset(&self.model, regime, slip, time, &y);
+        self.side = SegmentSide::at(&self.model, &at);
         self.step = None;
         self.pending = None;
         let model: &MatrixModel<CAP> = &self.model;
-        let field = MatrixField::new(model, Field::of(regime, slip));
-        self.integrator.restart(&field, time, y);
+        let field = MatrixField::new(model, self.side.field());
+        self.integrator.restart(&field, at.time, *at.state.array());
         Ok(())
     }
 
@@ -186,13 +178,13 @@ where
     /// Take one step and look for a switch in it.
     fn step(&mut self) -> Result<(), PropagationError> {
         let model: &MatrixModel<CAP> = &self.model;
-        let sys = MatrixField::new(model, Field::of(self.regime, self.slip));
+        let sys = MatrixField::new(model, self.side.field());
         let step = self.integrator.step(&sys, f64::INFINITY)?;
         let end = MatrixState::from_array(model.dofs(), step.y1);
         if !System::within_bounds(&model, &end) {
             return Err(System::diverged(&model, step.t1, &end));
         }
-        let switches = MatrixSwitches::new(model, self.regime, self.slip, self.offset);
+        let switches = self.side.switches(model);
         let integrator = &mut self.integrator;
         let found = first_switch(
             &switches,

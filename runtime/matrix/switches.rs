@@ -8,9 +8,11 @@
 //! not a formula. Where σw reaches 0 the friction rules decide ([`Friction::at_slip_zero`]).
 
 use super::model::MatrixModel;
+use super::state::MatrixState;
 use crate::coefficients::{
     self as coef, Acceleration, DriveRate, OffsetAcceleration, Phasor, PhasorRate, Slip,
 };
+use crate::driver::SegmentStart;
 use crate::field::{self, Field, Friction, SlipZero};
 use crate::propagate::{EventKind, Regime};
 pub use crate::reference::Function;
@@ -120,6 +122,52 @@ pub struct MatrixSwitches<'a, const CAP: usize> {
     regime: Regime,
     slip: f64,
     offset: f64,
+}
+
+/// A segment's side as a numerical solver's switch search keeps it from the segment's start:
+/// regime, slip direction σ and the slip-velocity function's offset there
+/// ([`MatrixSwitches::start_offset`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SegmentSide {
+    regime: Regime,
+    slip: f64,
+    offset: f64,
+}
+
+impl SegmentSide {
+    /// No segment yet (free flight, no slip).
+    pub(crate) const NONE: SegmentSide = SegmentSide {
+        regime: Regime::Free,
+        slip: 0.0,
+        offset: 0.0,
+    };
+
+    /// The side of a segment of `model` starting at `at`.
+    pub(crate) fn at<const CAP: usize>(
+        model: &MatrixModel<CAP>,
+        at: &SegmentStart<MatrixState<CAP>>,
+    ) -> Self {
+        let (regime, slip) = (at.regime, at.slip);
+        let offset = MatrixSwitches::start_offset(model, regime, slip, at.time, at.state.array());
+        SegmentSide {
+            regime,
+            slip,
+            offset,
+        }
+    }
+
+    /// The segment's field.
+    pub(crate) fn field(&self) -> Field {
+        Field::of(self.regime, self.slip)
+    }
+
+    /// The segment's switch functions on `model`.
+    pub(crate) fn switches<'a, const CAP: usize>(
+        &self,
+        model: &'a MatrixModel<CAP>,
+    ) -> MatrixSwitches<'a, CAP> {
+        MatrixSwitches::new(model, self.regime, self.slip, self.offset)
+    }
 }
 
 impl<'a, const CAP: usize> MatrixSwitches<'a, CAP> {
