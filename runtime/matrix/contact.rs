@@ -104,10 +104,7 @@ impl<const CAP: usize> OdeSystem<CAP> for StepField<'_, CAP> {
     fn rhs(&self, t: f64, y: &[f64; CAP]) -> [f64; CAP] {
         // At t0 itself the angle is 0, its sine and cosine (0, 1) exactly: the start's phasor.
         let phasor = field::phasor_within_step(self.model.running(), &self.phasor, t - self.t0);
-        let mut dy = [0.0; CAP];
-        self.model
-            .derivative_inline(self.field, &phasor, y, &mut dy);
-        dy
+        self.model.stage(self.field, &phasor, y)
     }
 
     #[inline(always)]

@@ -80,16 +80,18 @@ impl<const CAP: usize> MatrixModel<CAP> {
         self.derivative_inline(field, phasor, y, dy);
     }
 
+    /// [`Self::derivative`] of a whole state, returned: an integrator's stage (inlined).
+    #[inline(always)]
+    pub(crate) fn stage(&self, field: Field, phasor: &Phasor, y: &[f64; CAP]) -> [f64; CAP] {
+        let mut dy = [0.0; CAP];
+        self.derivative_inline(field, phasor, y, &mut dy);
+        dy
+    }
+
     /// [`Self::derivative`] inlined into its caller: an integrator's stage, where the call's
     /// own cost is a tenth of the field's.
     #[inline(always)]
-    pub(crate) fn derivative_inline(
-        &self,
-        field: Field,
-        phasor: &Phasor,
-        y: &[f64],
-        dy: &mut [f64],
-    ) {
+    fn derivative_inline(&self, field: Field, phasor: &Phasor, y: &[f64], dy: &mut [f64]) {
         let n = self.dofs();
         // A model that fills its storage (n = CAP/2: the ring in CAP = 8) runs the same body
         // with every length a constant, which the compiler unrolls and checks once.

@@ -55,10 +55,7 @@ impl<const CAP: usize> OdeSystem<CAP> for MatrixField<'_, CAP> {
     #[inline]
     fn rhs(&self, t: f64, y: &[f64; CAP]) -> [f64; CAP] {
         let phasor = field::phasor(self.model.running(), t);
-        let mut dy = [0.0; CAP];
-        self.model
-            .derivative_inline(self.field, &phasor, y, &mut dy);
-        dy
+        self.model.stage(self.field, &phasor, y)
     }
 
     #[inline(always)]
