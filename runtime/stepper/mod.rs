@@ -99,6 +99,7 @@ mod inputs;
 pub mod matrix;
 pub mod polynomial;
 mod report;
+mod resolution;
 pub mod ring;
 mod ring_words;
 pub mod search;

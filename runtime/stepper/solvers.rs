@@ -79,14 +79,9 @@ impl<'a> Frame<'a> {
             t0,
             dt,
             phasor: stepper.phasor,
-            // At least the sub-steps the contact mode needs at this dt (`ContactResolution`):
-            // the configured count unless the stator is too stiff for it.
-            nominal: dt
-                / f64::from(
-                    config
-                        .contact_substeps
-                        .max(stepper.transition.resolving_substeps()),
-                ),
+            // The configured count, or more where the stator is too stiff for it (the
+            // transition is the one of this step's dt).
+            nominal: dt / f64::from(stepper.contact_substeps()),
             cursor: Cell::new(0.0),
             budget: Cell::new(config.max_substeps),
             substeps: Cell::new(0),

@@ -14,15 +14,12 @@
 //! static deflection d: w(dt) − d = Φ·(w(0) − d) + G·phasor, so the map gains the constant
 //! b = d − Φ·d, recomputed (16 multiplications) when u changes; Φ and G do not depend on u.
 
-use super::MAX_SUBSTEPS;
-use super::polynomial::MAX_RATE_STEP;
+use super::resolution::ContactResolution;
 use super::search::local_curvature;
 use crate::analytic::free::{
     BasisBound, FreeConstants, FreeInstant, FreeSegment, forcing_matrix, plain_norm,
     transition_matrix,
 };
-use crate::analytic::linear::max_contact_stiffness;
-use crate::analytic::series::rate;
 use crate::coefficients::FreeBasis;
 use crate::params::{Params, State};
 
@@ -59,63 +56,6 @@ pub struct FreeTransition {
     basis_at_dt: FreeBasis,
     /// The contact sub-steps one step of `dt` needs (`ContactResolution`).
     contact: ContactResolution,
-}
-
-/// How finely contact must be stepped for the parameters in force: the contact mode's rate
-/// bound ρ_c = ν + √(ν² + S), S = `max_contact_stiffness` (the generated bound of ‖Kl‖₂ over
-/// every linearization with z ≥ 1, friction included), and the sub-steps per step of `dt` that
-/// keep every contact sub-step at ρ_c·h ≤ [`MAX_RATE_STEP`] = 0.5. Why that bound: it is where
-/// a sub-step's continuous extension is its Taylor polynomial to rounding (`polynomial.rs`,
-/// the exit search's tight bounds), inside the resonant series' reach (ρh ≤ 2, else the
-/// linearization is refused as singular) and the analytic method's contact cap (ρh ≤ 1); past
-/// it, at ρ_c·dt ≈ 1–4, the stepper's answers went wrong without a word (switches missed or
-/// spurious, `tests/stepper_coarse.rs`). Recomputed only when what S depends on changes (a
-/// speed ramp keeps it).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct ContactResolution {
-    /// ρ_c (1/time).
-    rate: f64,
-    /// ⌈ρ_c·dt / [`MAX_RATE_STEP`]⌉, in [1, [`MAX_SUBSTEPS`]].
-    substeps: u32,
-    /// The parameters ρ_c depends on: K̂xx, K̂xy, K̂yx, K̂yy, μ, ν, ε̂x, ε̂y.
-    key: [f64; 8],
-}
-
-impl ContactResolution {
-    fn new(params: &Params, dt: f64) -> Self {
-        let rate = rate(max_contact_stiffness(params), params.damping_ratio);
-        ContactResolution {
-            rate,
-            substeps: substeps_for(rate, dt),
-            key: Self::key_of(params),
-        }
-    }
-
-    fn key_of(p: &Params) -> [f64; 8] {
-        [
-            p.k_xx,
-            p.k_xy,
-            p.k_yx,
-            p.k_yy,
-            p.friction_coefficient,
-            p.damping_ratio,
-            p.offset_x,
-            p.offset_y,
-        ]
-    }
-}
-
-/// ⌈rate·dt / [`MAX_RATE_STEP`] − 1e-9⌉ clamped to [1, [`MAX_SUBSTEPS`]] (the cast saturates;
-/// the slack keeps a dt of exactly k·[`MAX_RATE_STEP`]/rate at k sub-steps despite rounding).
-fn substeps_for(rate: f64, dt: f64) -> u32 {
-    let q = rate * dt / MAX_RATE_STEP - 1e-9;
-    let k = q as u32;
-    let k = if f64::from(k) < q {
-        k.saturating_add(1)
-    } else {
-        k
-    };
-    k.clamp(1, MAX_SUBSTEPS)
 }
 
 impl FreeTransition {
@@ -165,7 +105,7 @@ impl FreeTransition {
             self.rotation = rotation;
             self.basis = self.basis.with_forcing(&self.constants, self.dt);
         }
-        if ContactResolution::key_of(params) != self.contact.key {
+        if self.contact.changed_by(params) {
             self.contact = ContactResolution::new(params, self.dt);
         }
         self.take_input(offset, deflection);
@@ -225,13 +165,13 @@ impl FreeTransition {
 
     /// The contact mode's rate bound ρ_c (see `ContactResolution`).
     pub fn contact_rate(&self) -> f64 {
-        self.contact.rate
+        self.contact.rate()
     }
 
     /// The contact sub-steps a step of [`Self::dt`] needs so that each is at most
     /// [`MAX_RATE_STEP`]/ρ_c long (at least 1, at most [`MAX_SUBSTEPS`]).
     pub fn resolving_substeps(&self) -> u32 {
-        self.contact.substeps
+        self.contact.substeps()
     }
 
     /// The stator offset (ε̂x, ε̂y).
@@ -328,7 +268,6 @@ mod tests {
                 (&kept.rotation.1, &fresh.rotation.1),
                 (&kept.basis_at_dt.ec, &fresh.basis_at_dt.ec),
                 (&kept.basis_at_dt.es, &fresh.basis_at_dt.es),
-                (&kept.contact.rate, &fresh.contact.rate),
             ]);
         assert_eq!(kept.contact, fresh.contact, "{what}: contact resolution");
         for (a, b) in pairs {
