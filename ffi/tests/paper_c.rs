@@ -27,9 +27,6 @@
 //!    safe bound that still catches any real defect (a wrong step, a missed or shifted switch
 //!    moves times and states by ≥ 1e-4). Measured: 1e-10 (times), 2.4e-10 (states).
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
 use rotor_rub::{
     EventKind, Options, Preset, Problem, Propagate, Propagator, State, Stepper, StepperConfig,
     advance_to, events,
@@ -50,68 +47,17 @@ struct Checkpoint {
     state: State,
 }
 
-fn staticlib() -> PathBuf {
-    let exe = std::env::current_exe().expect("test binary path");
-    let deps = exe.parent().expect("deps folder");
-    let name = "librotor_rub_ffi.a";
-    [
-        deps.join(name),
-        deps.parent().map(|p| p.join(name)).unwrap_or_default(),
-    ]
-    .into_iter()
-    .find(|p| p.is_file())
-    .unwrap_or_else(|| panic!("{name} not found next to {}", exe.display()))
-}
+#[path = "common/c_example.rs"]
+mod c_example;
 
+/// `examples/paper.c` run with `args` (none: the open-loop run; `control …`: the controller).
 fn compile_and_run(args: &[&str]) -> String {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let name = if args.is_empty() {
+    let binary = if args.is_empty() {
         "rotor_rub_paper_c"
     } else {
         "rotor_rub_paper_c_control"
     };
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
-    let mut cmd = Command::new(&cc);
-    cmd.arg("-O2")
-        .arg("-std=c99")
-        .arg("-Wall")
-        .arg("-Werror")
-        .arg("-I")
-        .arg(dir.join("include"))
-        .arg(dir.join("examples/paper.c"))
-        .arg(staticlib())
-        .arg("-o")
-        .arg(&out);
-    // The native libraries Rust's std needs in a static link.
-    if cfg!(target_os = "macos") {
-        cmd.args(["-lSystem", "-lc", "-lm"]);
-    } else {
-        cmd.args([
-            "-lgcc_s",
-            "-lutil",
-            "-lrt",
-            "-lpthread",
-            "-lm",
-            "-ldl",
-            "-lc",
-        ]);
-    }
-    let built = cmd
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run `{cc}`: {e}"));
-    assert!(
-        built.status.success(),
-        "compiling paper.c failed:\n{}",
-        String::from_utf8_lossy(&built.stderr)
-    );
-    let ran = Command::new(&out).args(args).output().expect("run paper");
-    assert!(
-        ran.status.success(),
-        "paper failed:\n{}",
-        String::from_utf8_lossy(&ran.stderr)
-    );
-    String::from_utf8(ran.stdout).expect("utf-8 output")
+    c_example::compile_and_run("paper", binary, args)
 }
 
 fn parse(output: &str) -> (Vec<Switch>, Vec<Checkpoint>) {

@@ -3,38 +3,12 @@
 //! reads the ring's state without allocating; its inputs and bad values give the planar
 //! stepper's error codes; the massless ring's state reads 0.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
 use rotor_rub::{Parameter, Preset};
 use rotor_rub_ffi::*;
 
-struct Counting;
-
-thread_local! {
-    /// Allocations made by this thread (other tests run on other threads).
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-// SAFETY: forwards to the system allocator.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
-        // SAFETY: same contract.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
+#[path = "common/alloc.rs"]
+mod alloc;
+use alloc::allocations;
 
 fn ring_problem() -> rotor_rub::Problem {
     let mut problem = Preset::Paper.problem();

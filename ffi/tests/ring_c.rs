@@ -3,66 +3,12 @@
 //! Rust [`RingStepper`]'s (same code, same arithmetic): the same switches, bit for bit, and the
 //! same rotor and ring states at the checkpoints; the ring moves.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
 use rotor_rub::stepper::RingStepper;
 use rotor_rub::stepper::matrix::MatrixStepperConfig;
 use rotor_rub::{Parameter, Preset};
 
-fn staticlib() -> PathBuf {
-    let exe = std::env::current_exe().expect("test binary path");
-    let deps = exe.parent().expect("deps folder");
-    let name = "librotor_rub_ffi.a";
-    [
-        deps.join(name),
-        deps.parent().map(|p| p.join(name)).unwrap_or_default(),
-    ]
-    .into_iter()
-    .find(|p| p.is_file())
-    .unwrap_or_else(|| panic!("{name} not found next to {}", exe.display()))
-}
-
-fn compile_and_run() -> String {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rotor_rub_ring_c");
-    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
-    let mut cmd = Command::new(&cc);
-    cmd.args(["-O2", "-std=c99", "-Wall", "-Werror", "-I"])
-        .arg(dir.join("include"))
-        .arg(dir.join("examples/ring.c"))
-        .arg(staticlib())
-        .arg("-o")
-        .arg(&out);
-    if cfg!(target_os = "macos") {
-        cmd.args(["-lSystem", "-lc", "-lm"]);
-    } else {
-        cmd.args([
-            "-lgcc_s",
-            "-lutil",
-            "-lrt",
-            "-lpthread",
-            "-lm",
-            "-ldl",
-            "-lc",
-        ]);
-    }
-    let built = cmd
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run `{cc}`: {e}"));
-    assert!(
-        built.status.success(),
-        "compiling ring.c failed:\n{}",
-        String::from_utf8_lossy(&built.stderr)
-    );
-    let ran = Command::new(&out).output().expect("run ring");
-    assert!(
-        ran.status.success(),
-        "ring failed:\n{}",
-        String::from_utf8_lossy(&ran.stderr)
-    );
-    String::from_utf8(ran.stdout).expect("utf-8 output")
-}
+#[path = "common/c_example.rs"]
+mod c_example;
 
 fn numbers(words: &[&str]) -> Vec<f64> {
     words.iter().map(|w| w.parse().expect("a number")).collect()
@@ -70,7 +16,7 @@ fn numbers(words: &[&str]) -> Vec<f64> {
 
 #[test]
 fn the_c_ring_run_is_the_rust_ring_stepper() {
-    let output = compile_and_run();
+    let output = c_example::compile_and_run("ring", "rotor_rub_ring_c", &[]);
     let mut problem = Preset::Paper.problem();
     for (p, v) in [
         (Parameter::StatorMassRatio, 1.0),
